@@ -1,0 +1,686 @@
+//! Building a mesh from polygons, and getting polygons back.
+//!
+//! The builder runs in time linear in the input: corners are bucketed by
+//! their lower vertex with a counting sort, each bucket (a vertex's edges,
+//! a handful) is sorted to pair every directed edge with its twin, edges are
+//! numbered in face order for locality, and the unpaired sides are linked
+//! into hole faces. Where several boundary loops meet at one vertex (a
+//! bowtie), the hole passes through it once per fan and the fans are chained
+//! so that turning around the vertex still visits every half-edge.
+
+use crate::attr::{Column, Interpolate, POSITION};
+use crate::error::{BuildError, Error, Result};
+use crate::keys::{FaceKey, VertexKey};
+use crate::mesh::{HalfedgeRecord, Mesh, HOLE_BIT, NONE};
+use crate::slots::Slots;
+
+/// An integer type usable as a vertex index in face lists.
+pub trait VertexIndex: Copy {
+    /// The index as `usize`, or the raw value (for the error) if negative or
+    /// too large.
+    fn to_index(self) -> Result<usize, i64>;
+}
+
+macro_rules! vertex_index {
+    ($($t:ty),*) => {$(
+        impl VertexIndex for $t {
+            #[inline]
+            #[allow(clippy::unnecessary_fallible_conversions, irrefutable_let_patterns)]
+            fn to_index(self) -> Result<usize, i64> {
+                usize::try_from(self).map_err(|_| i64::try_from(self).unwrap_or(i64::MAX))
+            }
+        }
+    )*};
+}
+vertex_index!(u8, u16, u32, u64, usize, i32, i64, isize);
+
+/// Polygons in compact buffers: positions, and faces as one index array cut
+/// by offsets (face `i` is `indices[offsets[i]..offsets[i + 1]]`).
+#[derive(Clone, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Polygons {
+    /// One position per vertex (empty for a topology-only mesh).
+    pub positions: Vec<[f64; 3]>,
+    /// `faces + 1` offsets into `indices`, starting at 0.
+    pub offsets: Vec<u32>,
+    /// Vertex indices of every face, one face after the other.
+    pub indices: Vec<u32>,
+}
+
+impl Polygons {
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    /// Face `i`'s vertex indices.
+    pub fn face(&self, i: usize) -> &[u32] {
+        &self.indices[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+
+    /// Every face's vertex indices, in order.
+    pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        self.offsets
+            .windows(2)
+            .map(|w| &self.indices[w[0] as usize..w[1] as usize])
+    }
+}
+
+/// Maps between a mesh's keys and the dense indices of [`Polygons`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct IndexMaps {
+    /// The key of each vertex index.
+    pub vertices: Vec<VertexKey>,
+    /// The key of each face index.
+    pub faces: Vec<FaceKey>,
+    vertex_slot: Vec<u32>,
+    face_slot: Vec<u32>,
+}
+
+impl IndexMaps {
+    /// The dense index of a vertex key, if it was exported.
+    pub fn vertex_index(&self, v: VertexKey) -> Option<usize> {
+        let i = *self.vertex_slot.get(v.index())?;
+        (i != NONE && self.vertices[i as usize] == v).then_some(i as usize)
+    }
+
+    /// The dense index of a face key, if it was exported (holes are not).
+    pub fn face_index(&self, f: FaceKey) -> Option<usize> {
+        let i = *self.face_slot.get(f.index())?;
+        (i != NONE && self.faces[i as usize] == f).then_some(i as usize)
+    }
+}
+
+/// A built mesh with the keys of its input's vertices and faces.
+#[derive(Clone, Debug)]
+pub struct Built {
+    /// The mesh.
+    pub mesh: Mesh,
+    /// The key of each input vertex; `None` for a vertex no face used.
+    pub vertices: Vec<Option<VertexKey>>,
+    /// The key of each input face, in input order.
+    pub faces: Vec<FaceKey>,
+    /// How many input vertices no face used (dropped: a vertex exists only
+    /// while an edge touches it).
+    pub unreferenced: usize,
+}
+
+impl Mesh {
+    /// Build a mesh from positions and faces (index lists of any degree ≥ 3,
+    /// counter-clockwise). Vertices no face uses are dropped.
+    ///
+    /// # Errors
+    /// [`Error::Build`] naming the face and vertices: an index out of range,
+    /// a face with fewer than three corners or a repeated vertex, an edge
+    /// used by more than two faces or twice in one direction, a vertex whose
+    /// faces form separate closed fans, a non-finite position.
+    ///
+    /// # Complexity
+    /// O(corners), plus a sort of each vertex's edges.
+    ///
+    /// ```
+    /// use meshloom::Mesh;
+    /// let p = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    /// let tet = Mesh::from_polygons(&p, &[[0u32, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]])?;
+    /// assert_eq!(tet.euler_characteristic(), 2);
+    /// assert!(tet.is_closed());
+    ///
+    /// let err = Mesh::from_polygons(&p, &[[0u32, 1, 9]]).unwrap_err();
+    /// assert!(err.to_string().contains("face 0"));
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn from_polygons<F, I>(positions: &[[f64; 3]], faces: &[F]) -> Result<Mesh>
+    where
+        F: AsRef<[I]>,
+        I: VertexIndex,
+    {
+        Ok(Mesh::build(Some(positions), positions.len(), faces)?.mesh)
+    }
+
+    /// Build a topology-only mesh (no positions) over `vertex_count`
+    /// vertices. Errors as [`Mesh::from_polygons`].
+    ///
+    /// ```
+    /// let quad = meshloom::Mesh::from_faces(4, &[vec![0usize, 1, 2, 3]])?;
+    /// assert!(!quad.has_positions());
+    /// assert_eq!(quad.face_count(), 1);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn from_faces<F, I>(vertex_count: usize, faces: &[F]) -> Result<Mesh>
+    where
+        F: AsRef<[I]>,
+        I: VertexIndex,
+    {
+        Ok(Mesh::build(None, vertex_count, faces)?.mesh)
+    }
+
+    /// Build from compact buffers, as [`Mesh::to_polygons`] returns them. A
+    /// topology-only mesh results when `positions` is empty; then the vertex
+    /// count is one past the largest index.
+    pub fn from_buffers(polygons: &Polygons) -> Result<Mesh> {
+        Ok(Mesh::build_buffers(polygons)?.mesh)
+    }
+
+    /// [`Mesh::from_buffers`], also returning the input's keys.
+    pub fn build_buffers(polygons: &Polygons) -> Result<Built> {
+        let p = polygons;
+        if p.offsets.first().is_some_and(|&o| o != 0)
+            || p.offsets.windows(2).any(|w| w[1] < w[0])
+            || p.offsets
+                .last()
+                .is_some_and(|&o| o as usize != p.indices.len())
+        {
+            return Err(Error::Build(BuildError::TooLarge {
+                what: "offsets are not a non-decreasing cut of the index array",
+            }));
+        }
+        let (positions, n) = if p.positions.is_empty() {
+            (None, p.indices.iter().max().map_or(0, |&m| m as usize + 1))
+        } else {
+            (Some(&p.positions[..]), p.positions.len())
+        };
+        let offsets = if p.offsets.is_empty() {
+            vec![0]
+        } else {
+            p.offsets.clone()
+        };
+        build_flat(positions, n, offsets, p.indices.clone())
+    }
+
+    /// Build, also returning the keys of the input's vertices and faces and
+    /// the number of unreferenced vertices dropped. `positions`, when given,
+    /// must have `vertex_count` entries.
+    pub fn build<F, I>(
+        positions: Option<&[[f64; 3]]>,
+        vertex_count: usize,
+        faces: &[F],
+    ) -> Result<Built>
+    where
+        F: AsRef<[I]>,
+        I: VertexIndex,
+    {
+        let n = positions.map_or(vertex_count, |p| p.len().min(vertex_count));
+        let total: usize = faces.iter().map(|f| f.as_ref().len()).sum();
+        if total >= (1 << 29) || faces.len() >= (1 << 29) || n >= (1 << 31) {
+            return Err(BuildError::TooLarge {
+                what: "more than 2^29 corners or faces, or 2^31 vertices",
+            }
+            .into());
+        }
+        let mut offsets = Vec::with_capacity(faces.len() + 1);
+        let mut indices = Vec::with_capacity(total);
+        offsets.push(0u32);
+        for (fi, face) in faces.iter().enumerate() {
+            for &i in face.as_ref() {
+                match i.to_index() {
+                    Ok(i) if i < n => indices.push(i as u32),
+                    Ok(i) => {
+                        return Err(BuildError::IndexOutOfRange {
+                            face: fi,
+                            index: i64::try_from(i).unwrap_or(i64::MAX),
+                            vertex_count: n,
+                        }
+                        .into())
+                    }
+                    Err(raw) => {
+                        return Err(BuildError::IndexOutOfRange {
+                            face: fi,
+                            index: raw,
+                            vertex_count: n,
+                        }
+                        .into())
+                    }
+                }
+            }
+            offsets.push(indices.len() as u32);
+        }
+        build_flat(positions.map(|p| &p[..n]), n, offsets, indices)
+    }
+
+    /// The mesh as compact buffers (vertices and faces numbered densely in
+    /// slot order; holes are not faces here), with the maps between keys and
+    /// indices.
+    ///
+    /// ```
+    /// let cube = meshloom::shapes::cube();
+    /// let (poly, maps) = cube.to_polygons();
+    /// assert_eq!((poly.positions.len(), poly.face_count()), (8, 6));
+    /// assert!(poly.faces().all(|f| f.len() == 4));
+    /// assert_eq!(maps.vertex_index(maps.vertices[3]), Some(3));
+    /// ```
+    pub fn to_polygons(&self) -> (Polygons, IndexMaps) {
+        let mut vertex_slot = vec![NONE; self.v_slots.slot_count()];
+        let mut vertices = Vec::with_capacity(self.vertex_count());
+        for v in self.vertices() {
+            vertex_slot[v.index()] = vertices.len() as u32;
+            vertices.push(v);
+        }
+        let positions = match self.attrs.positions() {
+            Some(col) => vertices
+                .iter()
+                .map(|v| col.get(v.index()).copied().unwrap_or([f64::NAN; 3]))
+                .collect(),
+            None => Vec::new(),
+        };
+        let mut face_slot = vec![NONE; self.f_slots.slot_count()];
+        let mut faces = Vec::with_capacity(self.face_count());
+        let mut offsets = Vec::with_capacity(self.face_count() + 1);
+        let mut indices = Vec::with_capacity(self.halfedge_count());
+        offsets.push(0);
+        for f in self.faces() {
+            face_slot[f.index()] = faces.len() as u32;
+            faces.push(f);
+            for h in self.face_loop_raw(f.index) {
+                indices.push(vertex_slot[self.origin_of(h) as usize]);
+            }
+            offsets.push(indices.len() as u32);
+        }
+        (
+            Polygons {
+                positions,
+                offsets,
+                indices,
+            },
+            IndexMaps {
+                vertices,
+                faces,
+                vertex_slot,
+                face_slot,
+            },
+        )
+    }
+}
+
+/// The face a corner belongs to (error paths only).
+fn face_of_corner(offsets: &[u32], c: usize) -> usize {
+    offsets.partition_point(|&o| o as usize <= c) - 1
+}
+
+/// The builder proper, over validated-in-range flat input.
+fn build_flat(
+    positions: Option<&[[f64; 3]]>,
+    n_in: usize,
+    offsets: Vec<u32>,
+    mut indices: Vec<u32>,
+) -> Result<Built> {
+    let nf = offsets.len() - 1;
+    let nc = indices.len();
+    if nc >= (1 << 29) {
+        return Err(BuildError::TooLarge {
+            what: "more than 2^29 corners",
+        }
+        .into());
+    }
+    if indices.iter().any(|&i| i as usize >= n_in) {
+        let c = indices
+            .iter()
+            .position(|&i| i as usize >= n_in)
+            .unwrap_or(0);
+        return Err(BuildError::IndexOutOfRange {
+            face: face_of_corner(&offsets, c),
+            index: i64::from(indices[c]),
+            vertex_count: n_in,
+        }
+        .into());
+    }
+
+    // 1. Per face: degree and repeated vertices.
+    let mut scratch: Vec<u32> = Vec::new();
+    for f in 0..nf {
+        let face = &indices[offsets[f] as usize..offsets[f + 1] as usize];
+        if face.len() < 3 {
+            return Err(BuildError::TooFewVertices {
+                face: f,
+                degree: face.len(),
+            }
+            .into());
+        }
+        let repeated = if face.len() <= 8 {
+            (1..face.len()).find_map(|i| face[..i].contains(&face[i]).then_some(face[i]))
+        } else {
+            scratch.clear();
+            scratch.extend_from_slice(face);
+            scratch.sort_unstable();
+            scratch
+                .windows(2)
+                .find_map(|w| (w[0] == w[1]).then_some(w[0]))
+        };
+        if let Some(v) = repeated {
+            return Err(BuildError::RepeatedVertex {
+                face: f,
+                vertex: v as usize,
+            }
+            .into());
+        }
+    }
+
+    // 2. Drop unreferenced vertices; remap to dense slots.
+    let mut slot_of = vec![NONE; n_in];
+    for &i in &indices {
+        slot_of[i as usize] = 0;
+    }
+    let mut nv = 0u32;
+    let mut input_of_slot = Vec::new();
+    for (i, s) in slot_of.iter_mut().enumerate() {
+        if *s == 0 {
+            *s = nv;
+            nv += 1;
+            input_of_slot.push(i as u32);
+        }
+    }
+    let unreferenced = n_in - nv as usize;
+    if unreferenced > 0 {
+        for i in &mut indices {
+            *i = slot_of[*i as usize];
+        }
+    }
+    if let Some(p) = positions {
+        for &input in &input_of_slot {
+            let q = p[input as usize];
+            if !q.iter().all(|c| c.is_finite()) {
+                return Err(BuildError::NonFinitePosition {
+                    vertex: input as usize,
+                    position: q,
+                }
+                .into());
+            }
+        }
+    }
+    let nv = nv as usize;
+
+    // 3. The corner after each corner in its face.
+    let mut next_corner = vec![0u32; nc];
+    for f in 0..nf {
+        let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
+        for c in s..e - 1 {
+            next_corner[c] = c as u32 + 1;
+        }
+        next_corner[e - 1] = s as u32;
+    }
+    let dest = |c: usize| indices[next_corner[c] as usize];
+
+    // 4. Bucket corners by their edge's lower vertex (counting sort).
+    let mut start = vec![0u32; nv + 1];
+    for c in 0..nc {
+        let lo = indices[c].min(dest(c));
+        start[lo as usize + 1] += 1;
+    }
+    for i in 0..nv {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut bucket = vec![0u32; nc];
+    for c in 0..nc {
+        let lo = indices[c].min(dest(c)) as usize;
+        bucket[fill[lo] as usize] = c as u32;
+        fill[lo] += 1;
+    }
+    drop(fill);
+
+    // 5. Pair each directed edge with its twin.
+    let key = |c: u32| {
+        let (a, b) = (indices[c as usize], dest(c as usize));
+        (u64::from(a.max(b)) << 1) | u64::from(a > b)
+    };
+    let mut partner = vec![NONE; nc];
+    for v in 0..nv {
+        let group = &mut bucket[start[v] as usize..start[v + 1] as usize];
+        if group.len() > 1 {
+            group.sort_unstable_by_key(|&c| (key(c), c));
+        }
+        let mut i = 0;
+        while i < group.len() {
+            let hi = key(group[i]) >> 1;
+            let mut j = i + 1;
+            while j < group.len() && key(group[j]) >> 1 == hi {
+                j += 1;
+            }
+            let (a_slot, b_slot) = (indices[group[i] as usize], dest(group[i] as usize));
+            let (a, b) = (
+                input_of_slot[a_slot as usize] as usize,
+                input_of_slot[b_slot as usize] as usize,
+            );
+            match j - i {
+                1 => {}
+                2 => {
+                    let (c0, c1) = (group[i], group[i + 1]);
+                    if key(c0) == key(c1) {
+                        return Err(BuildError::InconsistentOrientation {
+                            a,
+                            b,
+                            faces: [
+                                face_of_corner(&offsets, c0 as usize),
+                                face_of_corner(&offsets, c1 as usize),
+                            ],
+                        }
+                        .into());
+                    }
+                    partner[c0 as usize] = c1;
+                    partner[c1 as usize] = c0;
+                }
+                _ => {
+                    let mut fs: Vec<usize> = group[i..j]
+                        .iter()
+                        .map(|&c| face_of_corner(&offsets, c as usize))
+                        .collect();
+                    fs.sort_unstable();
+                    return Err(BuildError::NonManifoldEdge {
+                        a: a.min(b),
+                        b: a.max(b),
+                        faces: [fs[0], fs[1], fs[2]],
+                    }
+                    .into());
+                }
+            }
+            i = j;
+        }
+    }
+    drop(bucket);
+    drop(start);
+
+    // 6. Number edges in corner order; corner c's half-edge is he_of[c].
+    let mut he_of = vec![NONE; nc];
+    let mut ne = 0u32;
+    for c in 0..nc {
+        if he_of[c] == NONE {
+            he_of[c] = 2 * ne;
+            if partner[c] != NONE {
+                he_of[partner[c] as usize] = 2 * ne + 1;
+            }
+            ne += 1;
+        }
+    }
+    let nh = 2 * ne as usize;
+
+    // 7. Interior half-edges.
+    let mut he = vec![HalfedgeRecord::VACANT; nh];
+    let mut v_halfedge = vec![NONE; nv];
+    let mut out_degree = vec![0u32; nv];
+    for f in 0..nf {
+        for c in offsets[f] as usize..offsets[f + 1] as usize {
+            let h = he_of[c] as usize;
+            he[h] = HalfedgeRecord {
+                origin: indices[c],
+                next: he_of[next_corner[c] as usize],
+                face: f as u32,
+            };
+            v_halfedge[indices[c] as usize] = h as u32;
+            out_degree[indices[c] as usize] += 1;
+        }
+    }
+
+    // 8. Boundary half-edges: origins; one hole half-edge leaving each
+    //    boundary vertex, or a count > 1 at a bowtie.
+    let mut hole_out = vec![NONE; nv];
+    let mut hole_out_count = vec![0u32; nv];
+    let mut boundary = Vec::new();
+    for c in 0..nc {
+        if partner[c] == NONE {
+            let g = he_of[c] ^ 1; // dest(c) -> origin(c)
+            let o = dest(c);
+            he[g as usize].origin = o;
+            hole_out[o as usize] = g;
+            hole_out_count[o as usize] += 1;
+            out_degree[o as usize] += 1;
+            boundary.push(g);
+        }
+    }
+    drop(partner);
+    // Link each hole half-edge to the one leaving the vertex it enters.
+    let mut bowtie = false;
+    for &g in &boundary {
+        let a = he[(g ^ 1) as usize].origin; // g enters a
+        if hole_out_count[a as usize] == 1 {
+            he[g as usize].next = hole_out[a as usize];
+        } else {
+            bowtie = true;
+        }
+    }
+    if bowtie {
+        link_bowties(&mut he, &boundary, &hole_out_count, &input_of_slot)?;
+    }
+    if let Some(&g) = boundary.iter().find(|&&g| he[g as usize].next == NONE) {
+        let a = he[(g ^ 1) as usize].origin;
+        return Err(BuildError::NonManifoldVertex {
+            vertex: input_of_slot[a as usize] as usize,
+            face: he[(g ^ 1) as usize].face as usize,
+        }
+        .into());
+    }
+
+    // 9. Hole faces: walk every unassigned boundary loop.
+    let mut hole_starts = Vec::new();
+    for &g in &boundary {
+        if he[g as usize].face != NONE {
+            continue;
+        }
+        let f = (nf + hole_starts.len()) as u32;
+        hole_starts.push(g);
+        let mut h = g;
+        for _ in 0..=boundary.len() {
+            he[h as usize].face = f;
+            h = he[h as usize].next;
+            if h == g || h == NONE {
+                break;
+            }
+        }
+    }
+    let mut f_halfedge = Vec::with_capacity(nf + hole_starts.len());
+    for f in 0..nf {
+        f_halfedge.push(he_of[offsets[f] as usize]);
+    }
+    for &g in &hole_starts {
+        f_halfedge.push(g | HOLE_BIT);
+    }
+    drop(he_of);
+
+    let holes = hole_starts.len();
+    let mut mesh = Mesh {
+        v_halfedge,
+        v_slots: Slots::from_generations(vec![1; nv]),
+        he,
+        e_slots: Slots::from_generations(vec![1; ne as usize]),
+        f_halfedge,
+        f_slots: Slots::from_generations(vec![1; nf + holes]),
+        holes,
+        attrs: Default::default(),
+    };
+
+    // 10. Every vertex's ring must reach all its half-edges.
+    for v in 0..nv {
+        let ring = mesh.outgoing_raw(v as u32).count();
+        if ring != out_degree[v] as usize {
+            let h = mesh.v_halfedge[v];
+            let face = mesh
+                .outgoing_raw(v as u32)
+                .map(|h| mesh.face_of(h) as usize)
+                .find(|&f| f < nf)
+                .unwrap_or(mesh.face_of(h) as usize);
+            return Err(BuildError::NonManifoldVertex {
+                vertex: input_of_slot[v] as usize,
+                face,
+            }
+            .into());
+        }
+    }
+
+    if let Some(p) = positions {
+        let values: Vec<[f64; 3]> = if unreferenced == 0 {
+            p.to_vec()
+        } else {
+            input_of_slot.iter().map(|&i| p[i as usize]).collect()
+        };
+        mesh.attrs.position = Some(mesh.attrs.vertex.push(
+            POSITION,
+            Box::new(Column::<[f64; 3], Interpolate>::dense(values)),
+        ));
+    }
+
+    let mut vertices = vec![None; n_in];
+    for (slot, &input) in input_of_slot.iter().enumerate() {
+        vertices[input as usize] = Some(VertexKey::new(slot as u32, 1));
+    }
+    let faces = (0..nf as u32).map(|f| FaceKey::new(f, 1)).collect();
+    debug_assert_eq!(mesh.validate(), Ok(()));
+    Ok(Built {
+        mesh,
+        vertices,
+        faces,
+        unreferenced,
+    })
+}
+
+/// At each vertex with several hole half-edges leaving it, find the fan each
+/// starts, and chain the fans: the hole half-edge ending fan `i` continues
+/// with the one starting fan `i + 1`.
+fn link_bowties(
+    he: &mut [HalfedgeRecord],
+    boundary: &[u32],
+    count: &[u32],
+    input_of_slot: &[u32],
+) -> Result<()> {
+    // Hole half-edges leaving each bowtie vertex, grouped by vertex.
+    let mut leaving: Vec<(u32, u32)> = boundary
+        .iter()
+        .map(|&k| (he[k as usize].origin, k))
+        .filter(|&(a, _)| count[a as usize] > 1)
+        .collect();
+    leaving.sort_unstable();
+    let budget = he.len();
+    let mut i = 0;
+    while i < leaving.len() {
+        let a = leaving[i].0;
+        let mut j = i;
+        while j < leaving.len() && leaving[j].0 == a {
+            j += 1;
+        }
+        // The hole half-edge that ends the fan started by each k.
+        let mut ends = Vec::with_capacity(j - i);
+        for &(_, k) in &leaving[i..j] {
+            let mut o = he[(k ^ 1) as usize].next; // first interior outgoing
+            let mut end = NONE;
+            for _ in 0..budget {
+                let x = o ^ 1; // enters a
+                if he[x as usize].face == NONE {
+                    end = x;
+                    break;
+                }
+                o = he[x as usize].next;
+            }
+            if end == NONE {
+                return Err(BuildError::NonManifoldVertex {
+                    vertex: input_of_slot[a as usize] as usize,
+                    face: he[(k ^ 1) as usize].face as usize,
+                }
+                .into());
+            }
+            ends.push(end);
+        }
+        let m = j - i;
+        for (fan, &end) in ends.iter().enumerate() {
+            he[end as usize].next = leaving[i + (fan + 1) % m].1;
+        }
+        i = j;
+    }
+    Ok(())
+}

@@ -1,0 +1,204 @@
+//! Error types. Every error names what was wrong and where.
+
+use crate::keys::{AnyKey, ElementKind};
+use crate::validate::ValidationError;
+
+/// What can go wrong in a mesh operation.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// Occurs when a key names an element that was removed, or was never
+    /// issued by this mesh.
+    #[error("{0} is stale: its element was removed or never existed in this mesh")]
+    StaleKey(AnyKey),
+    /// Occurs when a geometric operation needs positions and the mesh has
+    /// none (it was built with [`Mesh::from_faces`](crate::Mesh::from_faces)).
+    #[error("the mesh has no vertex positions")]
+    NoPositions,
+    /// Occurs when a position is NaN or infinite.
+    #[error("{key} would get the non-finite position {position:?}")]
+    NonFinitePosition {
+        /// The vertex.
+        key: AnyKey,
+        /// The rejected position.
+        position: [f64; 3],
+    },
+    /// Occurs when an attribute is added under a name its arena already uses.
+    #[error("the {kind} attribute {name:?} exists already")]
+    AttributeExists {
+        /// The arena.
+        kind: ElementKind,
+        /// The name.
+        name: String,
+    },
+    /// Occurs when no attribute of that name exists on that arena.
+    #[error("no {kind} attribute named {name:?}")]
+    AttributeMissing {
+        /// The arena.
+        kind: ElementKind,
+        /// The name.
+        name: String,
+    },
+    /// Occurs when an attribute exists with another value type or rule.
+    #[error("the {kind} attribute {name:?} holds {found}, not {expected}")]
+    AttributeType {
+        /// The arena.
+        kind: ElementKind,
+        /// The name.
+        name: String,
+        /// The type asked for.
+        expected: &'static str,
+        /// The type stored.
+        found: &'static str,
+    },
+    /// Occurs when an operator's preconditions fail. The mesh is unchanged.
+    #[error("{op} refused on {key}: {reason}")]
+    Refused {
+        /// The operator's name, as in its method.
+        op: &'static str,
+        /// The element the operator was called on (or the offending one).
+        key: AnyKey,
+        /// Why.
+        reason: Refusal,
+    },
+    /// Occurs when input polygons cannot form a half-edge mesh.
+    #[error(transparent)]
+    Build(#[from] BuildError),
+    /// Occurs when a mesh (deserialized, or edited through the low-level
+    /// setters) breaks a structural rule.
+    #[error(transparent)]
+    Invalid(#[from] ValidationError),
+}
+
+/// Why an operator refused. The mesh is left exactly as it was.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Refusal {
+    /// The link condition fails: the collapse would pinch the surface.
+    #[error("the link condition fails (the collapse would make the mesh non-manifold)")]
+    LinkCondition,
+    /// The result would not be a manifold half-edge mesh.
+    #[error("the result would be non-manifold")]
+    NonManifold,
+    /// The operator needs triangles on both sides.
+    #[error("the faces beside the edge are not both triangles")]
+    NotTriangles,
+    /// The edge to be made exists already.
+    #[error("the edge to be made exists already")]
+    EdgeExists,
+    /// The element lies on a boundary where the operator needs an interior
+    /// one (or the reverse).
+    #[error("the element is on the boundary")]
+    Boundary,
+    /// The operator works on faces, not holes (or on holes, not faces).
+    #[error("the face is a hole")]
+    Hole,
+    /// The operator needs a hole.
+    #[error("the face is not a hole")]
+    NotHole,
+    /// Removing the edge would disconnect the mesh.
+    #[error("the edge is a bridge: removing it would disconnect the mesh")]
+    Bridge,
+    /// A face would be left with fewer than three sides.
+    #[error("a face would be left with fewer than three sides")]
+    Degenerate,
+    /// The vertices are not both corners of the face.
+    #[error("the vertices are not corners of the face")]
+    NotInFace,
+    /// The two elements are the same, or already adjacent.
+    #[error("the elements are the same or already adjacent")]
+    Adjacent,
+    /// The two elements are not adjacent.
+    #[error("the elements are not adjacent")]
+    NotAdjacent,
+    /// A parameter is out of its range (for example `t` outside 0..=1).
+    #[error("parameter out of range: {0}")]
+    Parameter(&'static str),
+    /// The operation would remove every element of the mesh or of a
+    /// component that must remain.
+    #[error("the operation would leave nothing behind")]
+    Empty,
+}
+
+/// Why polygons could not be built into a mesh. Face and vertex numbers are
+/// the caller's indices (0-based positions in the input).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum BuildError {
+    /// Occurs when a face refers to a vertex index past the vertex count.
+    #[error(
+        "face {face}: vertex index {index} is out of range (the mesh has {vertex_count} vertices)"
+    )]
+    IndexOutOfRange {
+        /// Face index.
+        face: usize,
+        /// The offending index, as given (negative ones as given too).
+        index: i64,
+        /// How many vertices there are.
+        vertex_count: usize,
+    },
+    /// Occurs when a face has fewer than three corners.
+    #[error("face {face} has {degree} corners; a face needs at least three")]
+    TooFewVertices {
+        /// Face index.
+        face: usize,
+        /// Corners given.
+        degree: usize,
+    },
+    /// Occurs when a face names a vertex twice.
+    #[error("face {face} uses vertex {vertex} more than once")]
+    RepeatedVertex {
+        /// Face index.
+        face: usize,
+        /// The repeated vertex.
+        vertex: usize,
+    },
+    /// Occurs when an edge is used by more than two faces.
+    #[error("edge {a}-{b} is used by more than two faces ({faces:?} at least)")]
+    NonManifoldEdge {
+        /// One end.
+        a: usize,
+        /// The other end.
+        b: usize,
+        /// Three of the faces using it.
+        faces: [usize; 3],
+    },
+    /// Occurs when two faces use an edge in the same direction: their
+    /// orientations disagree, or one face is a duplicate of the other.
+    #[error("faces {faces:?} both use edge {a}->{b} in the same direction (inconsistent orientation or duplicate face)")]
+    InconsistentOrientation {
+        /// Start of the directed edge.
+        a: usize,
+        /// End of the directed edge.
+        b: usize,
+        /// The two faces.
+        faces: [usize; 2],
+    },
+    /// Occurs when the faces around a vertex form more than one closed fan,
+    /// or a closed fan and an open one: no single ring of half-edges can
+    /// circle it.
+    #[error("vertex {vertex} is non-manifold: its faces (face {face} among them) form separate fans that cannot be joined through a boundary")]
+    NonManifoldVertex {
+        /// The vertex.
+        vertex: usize,
+        /// One face at the vertex.
+        face: usize,
+    },
+    /// Occurs when a position is NaN or infinite.
+    #[error("vertex {vertex} has the non-finite position {position:?}")]
+    NonFinitePosition {
+        /// The vertex.
+        vertex: usize,
+        /// Its position.
+        position: [f64; 3],
+    },
+    /// Occurs when the input has more elements than 32-bit indices address.
+    #[error("the input is too large: {what}")]
+    TooLarge {
+        /// What overflowed.
+        what: &'static str,
+    },
+}
+
+/// The result type of meshloom's fallible operations.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

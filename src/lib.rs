@@ -1,0 +1,53 @@
+//! # meshloom
+//!
+//! Polygon meshes as a half-edge graph whose attributes follow every edit.
+//!
+//! - **Edges own the connectivity.** Half-edges live in an arena and link to
+//!   their origin, twin, next and face. A vertex or face exists only while a
+//!   half-edge refers to it: no isolated vertices, no dangling faces.
+//! - **Holes are faces.** Outside every boundary loop sits a face flagged as
+//!   a hole, so every half-edge has a twin and a face. Face listings skip
+//!   holes unless asked ([`Mesh::holes`], [`Mesh::faces_and_holes`]).
+//! - **Keys are safe.** [`VertexKey`], [`HalfedgeKey`], [`EdgeKey`] and
+//!   [`FaceKey`] are generational: a key to a removed element is reported as
+//!   [`Error::StaleKey`], never a panic or a wrong element. Keys are checked
+//!   once, when a view is made ([`Mesh::halfedge`]); navigation from a view
+//!   cannot fail.
+//! - **Attributes merge and split by rule.** Columns of typed values sit
+//!   beside each arena ([`attr`]); positions are the vertex column
+//!   [`attr::POSITION`].
+//! - **Checked structure.** [`Mesh::validate`] states every rule in one
+//!   place.
+//!
+//! ```
+//! use meshloom::Mesh;
+//! let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [2.0, 0.5, 0.0]];
+//! let mesh = Mesh::from_polygons(&positions, &[vec![0u32, 1, 2, 3], vec![1, 4, 2]])?;
+//! assert_eq!(mesh.face_count(), 2);
+//! assert_eq!(mesh.hole_count(), 1);
+//! let f = mesh.faces().next().unwrap();
+//! let corners: Vec<_> = mesh.face(f)?.vertices().collect();
+//! assert_eq!(corners.len(), 4);
+//! mesh.validate()?;
+//! # Ok::<(), meshloom::Error>(())
+//! ```
+#![deny(missing_docs)]
+#![forbid(unsafe_code)]
+
+pub mod attr;
+pub mod build;
+mod circulate;
+pub mod error;
+pub mod keys;
+mod mesh;
+pub mod shapes;
+mod slots;
+pub mod validate;
+pub mod view;
+
+pub use build::{Built, IndexMaps, Polygons, VertexIndex};
+pub use error::{BuildError, Error, Refusal, Result};
+pub use keys::{AnyKey, EdgeKey, ElementKind, FaceKey, HalfedgeKey, VertexKey};
+pub use mesh::Mesh;
+pub use validate::ValidationError;
+pub use view::{EdgeView, FaceView, HalfedgeView, VertexView};

@@ -1,0 +1,477 @@
+//! The [`Mesh`]: three arenas, their attribute columns, counts and element
+//! iterators.
+//!
+//! # Storage
+//!
+//! | arena | per slot | notes |
+//! |---|---|---|
+//! | vertices | outgoing half-edge `u32`, generation `u32` | position in the `position` column (`[f64; 3]`) |
+//! | edges | generation `u32`; two half-edge records of `origin`, `next`, `face` (`u32` each) | half-edges `2e` and `2e + 1` are twins |
+//! | faces | one half-edge `u32` (top bit: hole flag), generation `u32` | holes are faces |
+//!
+//! There is no `prev` link: `prev(h)` is found by turning around `origin(h)`
+//! (O(vertex degree), not O(face degree)), which keeps a triangle mesh with
+//! f64 positions at about 132 heap bytes per vertex, generations included.
+//! Internal links are plain `u32` slot indices; generations are checked once,
+//! at the public door.
+
+use crate::attr::{AttrStore, Column, Interpolate, POSITION};
+use crate::error::{Error, Result};
+use crate::keys::{AnyKey, EdgeKey, FaceKey, HalfedgeKey, VertexKey};
+use crate::slots::Slots;
+
+/// "No element" in an internal link.
+pub(crate) const NONE: u32 = u32::MAX;
+/// The hole flag, stored in the top bit of a face's half-edge link.
+pub(crate) const HOLE_BIT: u32 = 1 << 31;
+
+/// One half-edge's links.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct HalfedgeRecord {
+    /// The vertex it leaves.
+    pub(crate) origin: u32,
+    /// The next half-edge around its face.
+    pub(crate) next: u32,
+    /// The face (or hole) on its left.
+    pub(crate) face: u32,
+}
+
+impl HalfedgeRecord {
+    pub(crate) const VACANT: HalfedgeRecord = HalfedgeRecord {
+        origin: NONE,
+        next: NONE,
+        face: NONE,
+    };
+}
+
+/// A polygon mesh stored as a half-edge graph.
+///
+/// Build one with [`Mesh::from_polygons`], [`Mesh::from_faces`], a shape
+/// from [`shapes`](crate::shapes) or a reader from [`io`](crate::io);
+/// navigate with the borrowed views [`Mesh::vertex`], [`Mesh::halfedge`],
+/// [`Mesh::face`], [`Mesh::edge`].
+///
+/// ```
+/// use meshloom::Mesh;
+/// let square = Mesh::from_polygons(
+///     &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+///     &[[0u32, 1, 2, 3]],
+/// )?;
+/// assert_eq!((square.vertex_count(), square.edge_count(), square.face_count()), (4, 4, 1));
+/// assert_eq!(square.hole_count(), 1); // the outside of the boundary
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    pub(crate) v_halfedge: Vec<u32>,
+    pub(crate) v_slots: Slots,
+    pub(crate) he: Vec<HalfedgeRecord>,
+    pub(crate) e_slots: Slots,
+    pub(crate) f_halfedge: Vec<u32>,
+    pub(crate) f_slots: Slots,
+    pub(crate) holes: usize,
+    pub(crate) attrs: AttrStore,
+}
+
+impl Mesh {
+    /// An empty mesh with a position column.
+    pub fn new() -> Mesh {
+        let mut m = Mesh::default();
+        m.attrs.position = Some(m.attrs.vertex.push(
+            POSITION,
+            Box::new(Column::<[f64; 3], Interpolate>::dense(Vec::new())),
+        ));
+        m
+    }
+
+    // ----- counts ---------------------------------------------------------
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.v_slots.live()
+    }
+
+    /// Number of half-edges (twice the edges).
+    pub fn halfedge_count(&self) -> usize {
+        2 * self.e_slots.live()
+    }
+
+    /// Number of edges.
+    pub fn edge_count(&self) -> usize {
+        self.e_slots.live()
+    }
+
+    /// Number of faces, holes excluded.
+    pub fn face_count(&self) -> usize {
+        self.f_slots.live() - self.holes
+    }
+
+    /// Number of hole faces: one per boundary loop.
+    pub fn hole_count(&self) -> usize {
+        self.holes
+    }
+
+    /// Whether the mesh has no elements.
+    pub fn is_empty(&self) -> bool {
+        self.e_slots.live() == 0
+    }
+
+    /// V − E + F over faces that are not holes. For a mesh without boundary
+    /// this is 2 − 2·genus per component.
+    pub fn euler_characteristic(&self) -> i64 {
+        self.vertex_count() as i64 - self.edge_count() as i64 + self.face_count() as i64
+    }
+
+    /// Whether the mesh has no boundary (no holes).
+    pub fn is_closed(&self) -> bool {
+        self.holes == 0
+    }
+
+    /// Heap bytes held by the connectivity, generations, free lists and
+    /// every attribute column (capacities, not lengths).
+    pub fn heap_bytes(&self) -> usize {
+        self.v_halfedge.capacity() * 4
+            + self.v_slots.heap_bytes()
+            + self.he.capacity() * std::mem::size_of::<HalfedgeRecord>()
+            + self.e_slots.heap_bytes()
+            + self.f_halfedge.capacity() * 4
+            + self.f_slots.heap_bytes()
+            + self.attrs.heap_bytes()
+    }
+
+    // ----- element iterators (keys, in slot order) -------------------------
+
+    /// Every vertex key, in slot order.
+    pub fn vertices(&self) -> impl Iterator<Item = VertexKey> + '_ {
+        self.v_slots
+            .live_indices()
+            .map(|i| VertexKey::new(i, self.v_slots.generation_of(i)))
+    }
+
+    /// Every half-edge key, in slot order (twins adjacent).
+    pub fn halfedges(&self) -> impl Iterator<Item = HalfedgeKey> + '_ {
+        self.e_slots.live_indices().flat_map(|e| {
+            let g = self.e_slots.generation_of(e);
+            [HalfedgeKey::new(2 * e, g), HalfedgeKey::new(2 * e + 1, g)]
+        })
+    }
+
+    /// Every edge key, in slot order.
+    pub fn edges(&self) -> impl Iterator<Item = EdgeKey> + '_ {
+        self.e_slots
+            .live_indices()
+            .map(|i| EdgeKey::new(i, self.e_slots.generation_of(i)))
+    }
+
+    /// Every face key, holes excluded, in slot order.
+    pub fn faces(&self) -> impl Iterator<Item = FaceKey> + '_ {
+        self.f_slots
+            .live_indices()
+            .filter(|&f| self.f_halfedge[f as usize] & HOLE_BIT == 0)
+            .map(|i| FaceKey::new(i, self.f_slots.generation_of(i)))
+    }
+
+    /// Every hole face key, in slot order.
+    pub fn holes(&self) -> impl Iterator<Item = FaceKey> + '_ {
+        self.f_slots
+            .live_indices()
+            .filter(|&f| self.f_halfedge[f as usize] & HOLE_BIT != 0)
+            .map(|i| FaceKey::new(i, self.f_slots.generation_of(i)))
+    }
+
+    /// Every face key, holes included, in slot order.
+    pub fn faces_and_holes(&self) -> impl Iterator<Item = FaceKey> + '_ {
+        self.f_slots
+            .live_indices()
+            .map(|i| FaceKey::new(i, self.f_slots.generation_of(i)))
+    }
+
+    // ----- key checks at the door -------------------------------------------
+
+    /// Whether the key names a live vertex of this mesh.
+    pub fn contains_vertex(&self, v: VertexKey) -> bool {
+        self.v_slots.is_current(v.index, v.generation)
+    }
+
+    /// Whether the key names a live half-edge of this mesh.
+    pub fn contains_halfedge(&self, h: HalfedgeKey) -> bool {
+        self.e_slots.is_current(h.index >> 1, h.generation)
+    }
+
+    /// Whether the key names a live edge of this mesh.
+    pub fn contains_edge(&self, e: EdgeKey) -> bool {
+        self.e_slots.is_current(e.index, e.generation)
+    }
+
+    /// Whether the key names a live face or hole of this mesh.
+    pub fn contains_face(&self, f: FaceKey) -> bool {
+        self.f_slots.is_current(f.index, f.generation)
+    }
+
+    #[inline]
+    pub(crate) fn check_vertex(&self, v: VertexKey) -> Result<u32> {
+        if self.contains_vertex(v) {
+            Ok(v.index)
+        } else {
+            Err(Error::StaleKey(AnyKey::Vertex(v)))
+        }
+    }
+
+    #[inline]
+    pub(crate) fn check_halfedge(&self, h: HalfedgeKey) -> Result<u32> {
+        if self.contains_halfedge(h) {
+            Ok(h.index)
+        } else {
+            Err(Error::StaleKey(AnyKey::Halfedge(h)))
+        }
+    }
+
+    #[inline]
+    pub(crate) fn check_edge(&self, e: EdgeKey) -> Result<u32> {
+        if self.contains_edge(e) {
+            Ok(e.index)
+        } else {
+            Err(Error::StaleKey(AnyKey::Edge(e)))
+        }
+    }
+
+    #[inline]
+    pub(crate) fn check_face(&self, f: FaceKey) -> Result<u32> {
+        if self.contains_face(f) {
+            Ok(f.index)
+        } else {
+            Err(Error::StaleKey(AnyKey::Face(f)))
+        }
+    }
+
+    // ----- raw slot -> key ---------------------------------------------------
+
+    #[inline]
+    pub(crate) fn vkey(&self, v: u32) -> VertexKey {
+        VertexKey::new(v, self.v_slots.generation_of(v))
+    }
+
+    #[inline]
+    pub(crate) fn hkey(&self, h: u32) -> HalfedgeKey {
+        HalfedgeKey::new(h, self.e_slots.generation_of(h >> 1))
+    }
+
+    #[inline]
+    pub(crate) fn ekey(&self, e: u32) -> EdgeKey {
+        EdgeKey::new(e, self.e_slots.generation_of(e))
+    }
+
+    #[inline]
+    pub(crate) fn fkey(&self, f: u32) -> FaceKey {
+        FaceKey::new(f, self.f_slots.generation_of(f))
+    }
+
+    // ----- raw navigation (no checks; internal links are trusted) -------------
+
+    #[inline]
+    pub(crate) fn origin_of(&self, h: u32) -> u32 {
+        self.he[h as usize].origin
+    }
+
+    #[inline]
+    pub(crate) fn dest_of(&self, h: u32) -> u32 {
+        self.he[(h ^ 1) as usize].origin
+    }
+
+    #[inline]
+    pub(crate) fn next_of(&self, h: u32) -> u32 {
+        self.he[h as usize].next
+    }
+
+    #[inline]
+    pub(crate) fn face_of(&self, h: u32) -> u32 {
+        self.he[h as usize].face
+    }
+
+    /// The half-edge before `h` in its face, found by turning around
+    /// `origin(h)`: O(degree of that vertex).
+    #[inline]
+    pub(crate) fn prev_of(&self, h: u32) -> u32 {
+        let mut o = h;
+        // Bounded: the ring around a vertex has at most 2E half-edges.
+        for _ in 0..self.he.len() {
+            let t = o ^ 1;
+            let n = self.he[t as usize].next;
+            if n == h {
+                return t;
+            }
+            o = n;
+        }
+        NONE
+    }
+
+    #[inline]
+    pub(crate) fn is_hole_raw(&self, f: u32) -> bool {
+        self.f_halfedge[f as usize] & HOLE_BIT != 0
+    }
+
+    #[inline]
+    pub(crate) fn face_halfedge_raw(&self, f: u32) -> u32 {
+        self.f_halfedge[f as usize] & !HOLE_BIT
+    }
+
+    /// Whether half-edge `h` lies in a hole.
+    #[inline]
+    pub(crate) fn in_hole_raw(&self, h: u32) -> bool {
+        self.is_hole_raw(self.he[h as usize].face)
+    }
+
+    // ----- allocation (internal; columns follow every slot) -------------------
+
+    /// A new vertex slot with no links yet. Columns grow; values are set by
+    /// the caller's rule.
+    pub(crate) fn alloc_vertex(&mut self) -> u32 {
+        let (i, _, is_new) = self.v_slots.alloc();
+        if is_new {
+            self.v_halfedge.push(NONE);
+        } else {
+            self.v_halfedge[i as usize] = NONE;
+        }
+        self.attrs.vertex.ensure_len(self.v_slots.slot_count());
+        i
+    }
+
+    /// A new edge slot (two half-edges) with no links yet.
+    pub(crate) fn alloc_edge(&mut self) -> u32 {
+        let (e, _, is_new) = self.e_slots.alloc();
+        if is_new {
+            self.he.push(HalfedgeRecord::VACANT);
+            self.he.push(HalfedgeRecord::VACANT);
+        } else {
+            self.he[2 * e as usize] = HalfedgeRecord::VACANT;
+            self.he[2 * e as usize + 1] = HalfedgeRecord::VACANT;
+        }
+        self.attrs.edge.ensure_len(self.e_slots.slot_count());
+        self.attrs
+            .halfedge
+            .ensure_len(2 * self.e_slots.slot_count());
+        e
+    }
+
+    /// A new face slot (a hole if `hole`) with no links yet.
+    pub(crate) fn alloc_face(&mut self, hole: bool) -> u32 {
+        let (f, _, is_new) = self.f_slots.alloc();
+        let link = if hole {
+            HOLE_BIT | (NONE >> 1)
+        } else {
+            NONE >> 1
+        };
+        if is_new {
+            self.f_halfedge.push(link);
+        } else {
+            self.f_halfedge[f as usize] = link;
+        }
+        if hole {
+            self.holes += 1;
+        }
+        self.attrs.face.ensure_len(self.f_slots.slot_count());
+        f
+    }
+
+    /// Remove a vertex slot and its attribute values.
+    pub(crate) fn free_vertex(&mut self, v: u32) {
+        self.attrs.vertex.clear(v as usize);
+        self.v_halfedge[v as usize] = NONE;
+        self.v_slots.free(v);
+    }
+
+    /// Remove an edge slot, both half-edges and their attribute values.
+    pub(crate) fn free_edge(&mut self, e: u32) {
+        self.attrs.edge.clear(e as usize);
+        self.attrs.halfedge.clear(2 * e as usize);
+        self.attrs.halfedge.clear(2 * e as usize + 1);
+        self.he[2 * e as usize] = HalfedgeRecord::VACANT;
+        self.he[2 * e as usize + 1] = HalfedgeRecord::VACANT;
+        self.e_slots.free(e);
+    }
+
+    /// Remove a face slot and its attribute values.
+    pub(crate) fn free_face(&mut self, f: u32) {
+        if self.is_hole_raw(f) {
+            self.holes -= 1;
+        }
+        self.attrs.face.clear(f as usize);
+        self.f_halfedge[f as usize] = NONE >> 1;
+        self.f_slots.free(f);
+    }
+
+    /// Set or clear a face's hole flag.
+    pub(crate) fn set_hole_raw(&mut self, f: u32, hole: bool) {
+        let was = self.is_hole_raw(f);
+        if was != hole {
+            self.f_halfedge[f as usize] ^= HOLE_BIT;
+            if hole {
+                self.holes += 1;
+            } else {
+                self.holes -= 1;
+            }
+        }
+    }
+
+    // ----- positions -----------------------------------------------------------
+
+    /// Whether the mesh carries vertex positions.
+    pub fn has_positions(&self) -> bool {
+        self.attrs.positions().is_some()
+    }
+
+    /// A vertex's position.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`] for a removed vertex; [`Error::NoPositions`] for
+    /// a topology-only mesh.
+    pub fn position(&self, v: VertexKey) -> Result<[f64; 3]> {
+        let i = self.check_vertex(v)?;
+        self.attrs
+            .positions()
+            .and_then(|c| c.get(i as usize).copied())
+            .ok_or(Error::NoPositions)
+    }
+
+    /// Set a vertex's position. NaN and infinite coordinates are refused.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`], [`Error::NoPositions`],
+    /// [`Error::NonFinitePosition`].
+    pub fn set_position(&mut self, v: VertexKey, p: [f64; 3]) -> Result<()> {
+        let i = self.check_vertex(v)?;
+        if !p.iter().all(|c| c.is_finite()) {
+            return Err(Error::NonFinitePosition {
+                key: v.into(),
+                position: p,
+            });
+        }
+        let col = self.attrs.positions_mut().ok_or(Error::NoPositions)?;
+        col.set(i as usize, Some(p));
+        Ok(())
+    }
+
+    /// The position column indexed by vertex slot ([`VertexKey::index`]);
+    /// vacant slots hold zeros. For fast whole-mesh geometry passes.
+    pub fn position_slots(&self) -> Option<&[[f64; 3]]> {
+        self.attrs.positions().map(|c| c.raw())
+    }
+
+    /// The position column indexed by vertex slot, mutably. Callers must
+    /// keep coordinates finite.
+    pub fn position_slots_mut(&mut self) -> Option<&mut [[f64; 3]]> {
+        self.attrs.positions_mut().map(|c| c.raw_mut())
+    }
+
+    /// Slots allocated in each arena (live or vacant): the length of the
+    /// attribute columns of vertices, half-edges, edges and faces.
+    pub fn slot_counts(&self) -> [usize; 4] {
+        [
+            self.v_slots.slot_count(),
+            self.he.len(),
+            self.e_slots.slot_count(),
+            self.f_slots.slot_count(),
+        ]
+    }
+}

@@ -1,0 +1,324 @@
+//! Every structural rule of a mesh, stated and checked in one place.
+//!
+//! [`Mesh::validate`] walks the raw records with bounded loops (a corrupted
+//! ring cannot hang it) and reports the first broken rule with the keys
+//! involved. Debug builds run it after every mutation; tests run it after
+//! every step of random operation streams.
+//!
+//! # The rules
+//!
+//! 1. **Storage.** Link arrays and attribute columns have one entry per
+//!    slot of their arena; live counts match the generations; the hole count
+//!    matches the flagged faces.
+//! 2. **Links in range.** Every live half-edge's `origin`, `next` and `face`
+//!    name live elements.
+//! 3. **No loops.** The two half-edges of an edge leave different vertices.
+//! 4. **Next is a permutation.** Every live half-edge is the `next` of
+//!    exactly one half-edge.
+//! 5. **Faces are cycles.** `next(h)` has the face of `h`, and leaves the
+//!    vertex `h` enters.
+//! 6. **Face links.** Every live face names a half-edge of its own, and the
+//!    `next` cycle from it holds every half-edge of that face.
+//! 7. **Face size.** A face (not a hole) has at least three sides and no
+//!    corner vertex twice.
+//! 8. **Vertex links.** Every live vertex names a half-edge leaving it, and
+//!    turning around it (`twin(h).next`) visits every half-edge that leaves
+//!    it, once: one ring per vertex, also where several holes meet.
+//! 9. **No dangling edges.** Every edge has a face (not a hole) on at least
+//!    one side.
+//! 10. **No multi-edges.** No two edges join the same two vertices.
+
+use std::fmt;
+
+use crate::keys::AnyKey;
+use crate::mesh::{Mesh, NONE};
+
+/// A broken structural rule: its number (see the [module docs](self)), the
+/// element where it broke and what was found.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ValidationError {
+    /// The rule's number, 1 to 10.
+    pub rule: u8,
+    /// The element where the rule broke, when one can be named.
+    pub key: Option<AnyKey>,
+    /// What was found.
+    pub detail: String,
+}
+
+impl ValidationError {
+    /// The rule's short name.
+    pub fn rule_name(&self) -> &'static str {
+        match self.rule {
+            1 => "storage",
+            2 => "links in range",
+            3 => "no loops",
+            4 => "next is a permutation",
+            5 => "faces are cycles",
+            6 => "face links",
+            7 => "face size",
+            8 => "vertex links",
+            9 => "no dangling edges",
+            10 => "no multi-edges",
+            _ => "unknown rule",
+        }
+    }
+}
+
+impl fmt::Display for ValidationError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "rule {} ({}) broken", self.rule, self.rule_name())?;
+        if let Some(k) = &self.key {
+            write!(f, " at {k}")?;
+        }
+        write!(f, ": {}", self.detail)
+    }
+}
+
+impl std::error::Error for ValidationError {}
+
+fn broken(rule: u8, key: Option<AnyKey>, detail: impl Into<String>) -> ValidationError {
+    ValidationError {
+        rule,
+        key,
+        detail: detail.into(),
+    }
+}
+
+impl Mesh {
+    /// Check every structural rule (listed in [`validate`](crate::validate)).
+    ///
+    /// # Errors
+    /// The first broken rule, with its number, the element and what was
+    /// found.
+    ///
+    /// # Complexity
+    /// O(half-edges + Σ vertex degree · log degree).
+    ///
+    /// ```
+    /// let mesh = meshloom::shapes::icosahedron();
+    /// assert_eq!(mesh.validate(), Ok(()));
+    /// ```
+    pub fn validate(&self) -> Result<(), ValidationError> {
+        self.check_storage()?;
+        self.check_halfedges()?;
+        self.check_faces()?;
+        self.check_vertices()?;
+        Ok(())
+    }
+
+    fn check_storage(&self) -> Result<(), ValidationError> {
+        let [nv, nh, ne, nf] = self.slot_counts();
+        if self.v_halfedge.len() != nv || nh != 2 * ne || self.f_halfedge.len() != nf {
+            return Err(broken(
+                1,
+                None,
+                "link arrays and generations disagree in length",
+            ));
+        }
+        let columns = [
+            (&self.attrs.vertex, nv, "vertex"),
+            (&self.attrs.halfedge, nh, "half-edge"),
+            (&self.attrs.edge, ne, "edge"),
+            (&self.attrs.face, nf, "face"),
+        ];
+        for (cols, n, kind) in columns {
+            for (name, c) in &cols.cols {
+                if c.len() != n {
+                    return Err(broken(
+                        1,
+                        None,
+                        format!(
+                            "{kind} column {name:?} does not have one value per slot ({n} slots)"
+                        ),
+                    ));
+                }
+            }
+        }
+        let flagged = self.holes().count();
+        if flagged != self.holes {
+            return Err(broken(
+                1,
+                None,
+                format!(
+                    "{flagged} faces are flagged as holes but the count says {}",
+                    self.holes
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    fn check_halfedges(&self) -> Result<(), ValidationError> {
+        let nh = self.he.len();
+        let mut is_next_of = vec![0u8; nh];
+        for e in self.e_slots.live_indices() {
+            for h in [2 * e, 2 * e + 1] {
+                let key = Some(AnyKey::Halfedge(self.hkey(h)));
+                let r = self.he[h as usize];
+                if !self.v_slots.is_live(r.origin as usize) {
+                    return Err(broken(
+                        2,
+                        key,
+                        format!("origin {} is not a live vertex", r.origin),
+                    ));
+                }
+                if (r.next as usize) >= nh || !self.e_slots.is_live((r.next >> 1) as usize) {
+                    return Err(broken(
+                        2,
+                        key,
+                        format!("next {} is not a live half-edge", r.next),
+                    ));
+                }
+                if !self.f_slots.is_live(r.face as usize) {
+                    return Err(broken(
+                        2,
+                        key,
+                        format!("face {} is not a live face", r.face),
+                    ));
+                }
+                let c = &mut is_next_of[r.next as usize];
+                *c = c.saturating_add(1);
+            }
+            let (a, b) = (self.origin_of(2 * e), self.origin_of(2 * e + 1));
+            if a == b {
+                return Err(broken(
+                    3,
+                    Some(AnyKey::Edge(self.ekey(e))),
+                    format!("both half-edges leave vertex {a}"),
+                ));
+            }
+            if self.in_hole_raw(2 * e) && self.in_hole_raw(2 * e + 1) {
+                return Err(broken(
+                    9,
+                    Some(AnyKey::Edge(self.ekey(e))),
+                    "holes on both sides",
+                ));
+            }
+        }
+        for e in self.e_slots.live_indices() {
+            for h in [2 * e, 2 * e + 1] {
+                let key = Some(AnyKey::Halfedge(self.hkey(h)));
+                if is_next_of[h as usize] != 1 {
+                    return Err(broken(
+                        4,
+                        key,
+                        format!("is the next of {} half-edges", is_next_of[h as usize]),
+                    ));
+                }
+                let n = self.next_of(h);
+                if self.face_of(n) != self.face_of(h) {
+                    return Err(broken(5, key, "next half-edge lies in another face"));
+                }
+                if self.origin_of(n) != self.dest_of(h) {
+                    return Err(broken(
+                        5,
+                        key,
+                        "next half-edge does not leave this one's end",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn check_faces(&self) -> Result<(), ValidationError> {
+        let mut per_face = vec![0u32; self.f_halfedge.len()];
+        for e in self.e_slots.live_indices() {
+            per_face[self.face_of(2 * e) as usize] += 1;
+            per_face[self.face_of(2 * e + 1) as usize] += 1;
+        }
+        let mut corners: Vec<u32> = Vec::new();
+        for f in self.f_slots.live_indices() {
+            let key = Some(AnyKey::Face(self.fkey(f)));
+            let h = self.face_halfedge_raw(f);
+            if (h as usize) >= self.he.len()
+                || !self.e_slots.is_live((h >> 1) as usize)
+                || self.face_of(h) != f
+            {
+                return Err(broken(
+                    6,
+                    key,
+                    format!("names half-edge {h}, which is not its own"),
+                ));
+            }
+            let len = self.face_loop_raw(f).count();
+            if len != per_face[f as usize] as usize {
+                return Err(broken(
+                    6,
+                    key,
+                    format!(
+                        "its cycle has {len} half-edges but {} name it",
+                        per_face[f as usize]
+                    ),
+                ));
+            }
+            if !self.is_hole_raw(f) {
+                if len < 3 {
+                    return Err(broken(7, key, format!("has {len} sides")));
+                }
+                corners.clear();
+                corners.extend(self.face_loop_raw(f).map(|h| self.origin_of(h)));
+                corners.sort_unstable();
+                if let Some(w) = corners.windows(2).find(|w| w[0] == w[1]) {
+                    return Err(broken(
+                        7,
+                        key,
+                        format!("corner {} appears twice", self.vkey(w[0])),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn check_vertices(&self) -> Result<(), ValidationError> {
+        let mut out_degree = vec![0u32; self.v_halfedge.len()];
+        for e in self.e_slots.live_indices() {
+            out_degree[self.origin_of(2 * e) as usize] += 1;
+            out_degree[self.origin_of(2 * e + 1) as usize] += 1;
+        }
+        let mut ends: Vec<u32> = Vec::new();
+        for v in self.v_slots.live_indices() {
+            let key = Some(AnyKey::Vertex(self.vkey(v)));
+            let h = self.v_halfedge[v as usize];
+            if h == NONE
+                || (h as usize) >= self.he.len()
+                || !self.e_slots.is_live((h >> 1) as usize)
+                || self.origin_of(h) != v
+            {
+                return Err(broken(8, key, "does not name a half-edge leaving it"));
+            }
+            ends.clear();
+            for o in self.outgoing_raw(v) {
+                if self.origin_of(o) != v {
+                    return Err(broken(
+                        8,
+                        key,
+                        "its ring reaches a half-edge leaving elsewhere",
+                    ));
+                }
+                ends.push(self.dest_of(o));
+            }
+            if ends.len() != out_degree[v as usize] as usize {
+                return Err(broken(
+                    8,
+                    key,
+                    format!(
+                        "its ring visits {} of the {} half-edges leaving it",
+                        ends.len(),
+                        out_degree[v as usize]
+                    ),
+                ));
+            }
+            ends.sort_unstable();
+            if let Some(w) = ends.windows(2).find(|w| w[0] == w[1]) {
+                return Err(broken(
+                    10,
+                    key,
+                    format!("two edges join it to {}", self.vkey(w[0])),
+                ));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,422 @@
+//! Borrowed views: a key checked once, then infallible navigation.
+//!
+//! [`Mesh::halfedge`] and its siblings check the key's generation and hand
+//! back a small `Copy` view holding the mesh and the slot. Every step from a
+//! view (`twin`, `next`, `origin`, `face`, ...) follows the mesh's own links,
+//! which are valid by construction, so it cannot fail and returns another
+//! view:
+//!
+//! ```
+//! use meshloom::shapes;
+//! let mesh = shapes::tetrahedron();
+//! let h = mesh.halfedges().next().unwrap();
+//! let v = mesh.halfedge(h)?.twin().next().origin();
+//! assert_eq!(v.key(), mesh.halfedge(h)?.origin().key());
+//! # Ok::<(), meshloom::Error>(())
+//! ```
+//!
+//! Orientation: the corners of a face run counter-clockwise seen from the
+//! side its normal points to (the order given when building); a hole runs
+//! the other way round, as the twins of its boundary's half-edges.
+
+use crate::circulate::{FaceHalfedges, VertexOutgoing};
+use crate::error::Result;
+use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
+use crate::mesh::Mesh;
+
+/// A checked half-edge.
+#[derive(Copy, Clone)]
+pub struct HalfedgeView<'m> {
+    pub(crate) mesh: &'m Mesh,
+    pub(crate) h: u32,
+}
+
+/// A checked vertex.
+#[derive(Copy, Clone)]
+pub struct VertexView<'m> {
+    pub(crate) mesh: &'m Mesh,
+    pub(crate) v: u32,
+}
+
+/// A checked face or hole.
+#[derive(Copy, Clone)]
+pub struct FaceView<'m> {
+    pub(crate) mesh: &'m Mesh,
+    pub(crate) f: u32,
+}
+
+/// A checked edge.
+#[derive(Copy, Clone)]
+pub struct EdgeView<'m> {
+    pub(crate) mesh: &'m Mesh,
+    pub(crate) e: u32,
+}
+
+impl Mesh {
+    /// A view of half-edge `h`.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey) if `h` was removed.
+    #[inline]
+    pub fn halfedge(&self, h: HalfedgeKey) -> Result<HalfedgeView<'_>> {
+        Ok(HalfedgeView {
+            mesh: self,
+            h: self.check_halfedge(h)?,
+        })
+    }
+
+    /// A view of vertex `v`.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey) if `v` was removed.
+    #[inline]
+    pub fn vertex(&self, v: VertexKey) -> Result<VertexView<'_>> {
+        Ok(VertexView {
+            mesh: self,
+            v: self.check_vertex(v)?,
+        })
+    }
+
+    /// A view of face (or hole) `f`.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey) if `f` was removed.
+    #[inline]
+    pub fn face(&self, f: FaceKey) -> Result<FaceView<'_>> {
+        Ok(FaceView {
+            mesh: self,
+            f: self.check_face(f)?,
+        })
+    }
+
+    /// A view of edge `e`.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey) if `e` was removed.
+    #[inline]
+    pub fn edge(&self, e: EdgeKey) -> Result<EdgeView<'_>> {
+        Ok(EdgeView {
+            mesh: self,
+            e: self.check_edge(e)?,
+        })
+    }
+
+    /// The half-edge from `a` to `b`, if they are joined by an edge.
+    /// O(degree of `a`).
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey) if either vertex was
+    /// removed.
+    ///
+    /// ```
+    /// let mesh = meshloom::shapes::tetrahedron();
+    /// let v: Vec<_> = mesh.vertices().collect();
+    /// let h = mesh.find_halfedge(v[0], v[1])?.expect("tetrahedron vertices are all joined");
+    /// assert_eq!(mesh.halfedge(h)?.dest().key(), v[1]);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn find_halfedge(&self, a: VertexKey, b: VertexKey) -> Result<Option<HalfedgeKey>> {
+        let a = self.check_vertex(a)?;
+        let b = self.check_vertex(b)?;
+        Ok(self.find_halfedge_raw(a, b).map(|h| self.hkey(h)))
+    }
+
+    pub(crate) fn find_halfedge_raw(&self, a: u32, b: u32) -> Option<u32> {
+        VertexOutgoing::new(self, a).find(|&h| self.dest_of(h) == b)
+    }
+}
+
+impl<'m> HalfedgeView<'m> {
+    #[inline]
+    fn at(self, h: u32) -> HalfedgeView<'m> {
+        HalfedgeView { mesh: self.mesh, h }
+    }
+
+    /// The key.
+    #[inline]
+    pub fn key(self) -> HalfedgeKey {
+        self.mesh.hkey(self.h)
+    }
+
+    /// The opposite half-edge of the same edge.
+    #[inline]
+    pub fn twin(self) -> HalfedgeView<'m> {
+        self.at(self.h ^ 1)
+    }
+
+    /// The next half-edge around the face.
+    #[inline]
+    pub fn next(self) -> HalfedgeView<'m> {
+        self.at(self.mesh.next_of(self.h))
+    }
+
+    /// The previous half-edge around the face. O(degree of the origin).
+    #[inline]
+    pub fn prev(self) -> HalfedgeView<'m> {
+        self.at(self.mesh.prev_of(self.h))
+    }
+
+    /// The vertex it leaves.
+    #[inline]
+    pub fn origin(self) -> VertexView<'m> {
+        VertexView {
+            mesh: self.mesh,
+            v: self.mesh.origin_of(self.h),
+        }
+    }
+
+    /// The vertex it enters.
+    #[inline]
+    pub fn dest(self) -> VertexView<'m> {
+        VertexView {
+            mesh: self.mesh,
+            v: self.mesh.dest_of(self.h),
+        }
+    }
+
+    /// The face (or hole) on its left.
+    #[inline]
+    pub fn face(self) -> FaceView<'m> {
+        FaceView {
+            mesh: self.mesh,
+            f: self.mesh.face_of(self.h),
+        }
+    }
+
+    /// Its edge.
+    #[inline]
+    pub fn edge(self) -> EdgeView<'m> {
+        EdgeView {
+            mesh: self.mesh,
+            e: self.h >> 1,
+        }
+    }
+
+    /// Whether it lies in a hole, i.e. has no real face (the OpenMesh and
+    /// pmp-library meaning of a boundary half-edge).
+    #[inline]
+    pub fn is_boundary(self) -> bool {
+        self.mesh.in_hole_raw(self.h)
+    }
+
+    /// The half-edge turned once clockwise around its origin:
+    /// `twin().next()`.
+    #[inline]
+    pub fn rotate_cw(self) -> HalfedgeView<'m> {
+        self.twin().next()
+    }
+
+    /// The half-edge turned once counter-clockwise around its origin:
+    /// `prev().twin()`.
+    #[inline]
+    pub fn rotate_ccw(self) -> HalfedgeView<'m> {
+        self.prev().twin()
+    }
+}
+
+impl<'m> VertexView<'m> {
+    /// The key.
+    #[inline]
+    pub fn key(self) -> VertexKey {
+        self.mesh.vkey(self.v)
+    }
+
+    /// One outgoing half-edge: the first that [`outgoing`](Self::outgoing)
+    /// yields.
+    #[inline]
+    pub fn halfedge(self) -> HalfedgeView<'m> {
+        HalfedgeView {
+            mesh: self.mesh,
+            h: self.mesh.v_halfedge[self.v as usize],
+        }
+    }
+
+    /// The position, if the mesh has positions.
+    #[inline]
+    pub fn position(self) -> Option<[f64; 3]> {
+        self.mesh
+            .attrs
+            .positions()
+            .and_then(|c| c.get(self.v as usize).copied())
+    }
+
+    /// Outgoing half-edges, clockwise seen from the side face normals point
+    /// to, starting at [`halfedge`](Self::halfedge). Half-edges in holes are
+    /// included: every outgoing half-edge comes exactly once, also at a
+    /// vertex where several boundary loops meet.
+    #[inline]
+    pub fn outgoing(self) -> impl Iterator<Item = HalfedgeKey> + 'm {
+        let m = self.mesh;
+        VertexOutgoing::new(m, self.v).map(move |h| m.hkey(h))
+    }
+
+    /// Incoming half-edges: the twins of [`outgoing`](Self::outgoing), same
+    /// order.
+    #[inline]
+    pub fn incoming(self) -> impl Iterator<Item = HalfedgeKey> + 'm {
+        let m = self.mesh;
+        VertexOutgoing::new(m, self.v).map(move |h| m.hkey(h ^ 1))
+    }
+
+    /// Neighbouring vertices (the ends of the outgoing half-edges), same
+    /// order.
+    #[inline]
+    pub fn neighbors(self) -> impl Iterator<Item = VertexKey> + 'm {
+        let m = self.mesh;
+        VertexOutgoing::new(m, self.v).map(move |h| m.vkey(m.dest_of(h)))
+    }
+
+    /// Faces around the vertex (holes skipped), same order: the face left of
+    /// each outgoing half-edge. A face is listed once per corner it has here.
+    #[inline]
+    pub fn faces(self) -> impl Iterator<Item = FaceKey> + 'm {
+        let m = self.mesh;
+        VertexOutgoing::new(m, self.v)
+            .map(move |h| m.face_of(h))
+            .filter(move |&f| !m.is_hole_raw(f))
+            .map(move |f| m.fkey(f))
+    }
+
+    /// Edges at the vertex, same order.
+    #[inline]
+    pub fn edges(self) -> impl Iterator<Item = EdgeKey> + 'm {
+        let m = self.mesh;
+        VertexOutgoing::new(m, self.v).map(move |h| m.ekey(h >> 1))
+    }
+
+    /// Number of edges at the vertex.
+    #[inline]
+    pub fn degree(self) -> usize {
+        VertexOutgoing::new(self.mesh, self.v).count()
+    }
+
+    /// Whether a hole touches the vertex.
+    #[inline]
+    pub fn is_boundary(self) -> bool {
+        VertexOutgoing::new(self.mesh, self.v).any(|h| self.mesh.in_hole_raw(h))
+    }
+}
+
+impl<'m> FaceView<'m> {
+    /// The key.
+    #[inline]
+    pub fn key(self) -> FaceKey {
+        self.mesh.fkey(self.f)
+    }
+
+    /// The face's first half-edge: the first that
+    /// [`halfedges`](Self::halfedges) yields.
+    #[inline]
+    pub fn halfedge(self) -> HalfedgeView<'m> {
+        HalfedgeView {
+            mesh: self.mesh,
+            h: self.mesh.face_halfedge_raw(self.f),
+        }
+    }
+
+    /// Whether this is a hole (the outside of a boundary loop).
+    #[inline]
+    pub fn is_hole(self) -> bool {
+        self.mesh.is_hole_raw(self.f)
+    }
+
+    /// The half-edges around the face, following `next`: counter-clockwise
+    /// for a face, starting at [`halfedge`](Self::halfedge).
+    #[inline]
+    pub fn halfedges(self) -> impl Iterator<Item = HalfedgeKey> + 'm {
+        let m = self.mesh;
+        FaceHalfedges::new(m, self.f).map(move |h| m.hkey(h))
+    }
+
+    /// The corners (origins of [`halfedges`](Self::halfedges)), same order.
+    #[inline]
+    pub fn vertices(self) -> impl Iterator<Item = VertexKey> + 'm {
+        let m = self.mesh;
+        FaceHalfedges::new(m, self.f).map(move |h| m.vkey(m.origin_of(h)))
+    }
+
+    /// The sides, same order.
+    #[inline]
+    pub fn edges(self) -> impl Iterator<Item = EdgeKey> + 'm {
+        let m = self.mesh;
+        FaceHalfedges::new(m, self.f).map(move |h| m.ekey(h >> 1))
+    }
+
+    /// The faces across each side, same order, holes skipped. A face sharing
+    /// two sides with this one is listed twice.
+    #[inline]
+    pub fn neighbors(self) -> impl Iterator<Item = FaceKey> + 'm {
+        let m = self.mesh;
+        FaceHalfedges::new(m, self.f)
+            .map(move |h| m.face_of(h ^ 1))
+            .filter(move |&g| !m.is_hole_raw(g))
+            .map(move |g| m.fkey(g))
+    }
+
+    /// Number of sides.
+    #[inline]
+    pub fn degree(self) -> usize {
+        FaceHalfedges::new(self.mesh, self.f).count()
+    }
+}
+
+impl<'m> EdgeView<'m> {
+    /// The key.
+    #[inline]
+    pub fn key(self) -> EdgeKey {
+        self.mesh.ekey(self.e)
+    }
+
+    /// Half-edge `side` (0 or 1; taken modulo 2).
+    #[inline]
+    pub fn halfedge(self, side: u32) -> HalfedgeView<'m> {
+        HalfedgeView {
+            mesh: self.mesh,
+            h: 2 * self.e + (side & 1),
+        }
+    }
+
+    /// The two ends: origin and dest of half-edge 0.
+    #[inline]
+    pub fn vertices(self) -> [VertexKey; 2] {
+        let h = self.halfedge(0);
+        [h.origin().key(), h.dest().key()]
+    }
+
+    /// The faces on either side, `None` for a hole.
+    #[inline]
+    pub fn faces(self) -> [Option<FaceKey>; 2] {
+        let side = |s: u32| {
+            let f = self.mesh.face_of(2 * self.e + s);
+            (!self.mesh.is_hole_raw(f)).then(|| self.mesh.fkey(f))
+        };
+        [side(0), side(1)]
+    }
+
+    /// Whether a hole lies on either side.
+    #[inline]
+    pub fn is_boundary(self) -> bool {
+        self.mesh.in_hole_raw(2 * self.e) || self.mesh.in_hole_raw(2 * self.e + 1)
+    }
+}
+
+impl std::fmt::Debug for HalfedgeView<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "HalfedgeView({:?})", self.key())
+    }
+}
+impl std::fmt::Debug for VertexView<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "VertexView({:?})", self.key())
+    }
+}
+impl std::fmt::Debug for FaceView<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "FaceView({:?})", self.key())
+    }
+}
+impl std::fmt::Debug for EdgeView<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "EdgeView({:?})", self.key())
+    }
+}
