@@ -34,14 +34,25 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+#[cfg(feature = "quickcheck")]
+pub mod arbitrary;
 pub mod attr;
 pub mod build;
 mod circulate;
 pub mod error;
+pub mod geometry;
+pub mod io;
 pub mod keys;
+pub mod link;
 mod mesh;
+pub mod ops;
+pub mod render;
+pub mod repair;
+#[cfg(feature = "serde")]
+mod serde_impl;
 pub mod shapes;
 mod slots;
+pub mod traverse;
 pub mod validate;
 pub mod view;
 

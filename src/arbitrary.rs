@@ -1,0 +1,1 @@
+//! `quickcheck::Arbitrary` for valid random meshes (feature `quickcheck`).

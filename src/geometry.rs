@@ -1,0 +1,1 @@
+//! Geometry over positions: the point trait and measures (lengths, areas, normals).

@@ -1,0 +1,1 @@
+//! Low-level reflecting setters, for people writing their own operators.

@@ -1,0 +1,1 @@
+//! Topological editing operators: checked, all-or-nothing, attribute-aware.

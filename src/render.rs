@@ -1,0 +1,1 @@
+//! A small software renderer: shaded orthographic pictures of a mesh as PNG.

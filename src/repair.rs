@@ -1,0 +1,1 @@
+//! Repair of dirty input: import policies and a report of what was done.

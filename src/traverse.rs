@@ -1,0 +1,1 @@
+//! Traversals: breadth- and depth-first order, connected components, shortest paths.
