@@ -40,7 +40,7 @@ pub enum RenderError {
     #[error("the mesh has no vertex positions to render")]
     NoPositions,
     /// Occurs when the image size or supersampling is out of range.
-    #[error("image size {width}x{height} with supersampling {supersample} is out of range (sides 1 to {MAX_SIDE} pixels, supersampling 1 to 4)")]
+    #[error("image size {width}x{height} with supersampling {supersample} is out of range (sides 1 to {MAX_SIDE} pixels, supersampling 1 to 4, at most {MAX_SAMPLES} samples)")]
     Size {
         /// Requested width.
         width: u32,
@@ -73,6 +73,10 @@ pub enum RenderError {
 
 /// The largest image side accepted, in pixels.
 pub const MAX_SIDE: u32 = 8192;
+
+/// The most samples (pixels times supersampling squared) accepted: the
+/// buffers take 7 bytes a sample, so at most 448 MiB.
+pub const MAX_SAMPLES: u64 = 1 << 26;
 
 /// Where the camera looks from. Named views look at the mesh from outside
 /// along an axis; y is up, except for the top and bottom views.
@@ -236,6 +240,37 @@ pub struct RenderOptions {
     pub colors: Colors,
 }
 
+impl RenderOptions {
+    /// Check the size, supersampling and view, without a mesh.
+    ///
+    /// # Errors
+    /// [`RenderError::Size`] for a side outside 1 to [`MAX_SIDE`],
+    /// supersampling outside 1 to 4, or more than [`MAX_SAMPLES`] samples;
+    /// [`RenderError::View`] for a view that defines no camera.
+    ///
+    /// ```
+    /// use meshloom::render::RenderOptions;
+    /// assert!(RenderOptions::default().check().is_ok());
+    /// assert!(RenderOptions { width: 0, ..RenderOptions::default() }.check().is_err());
+    /// ```
+    pub fn check(&self) -> Result<(), RenderError> {
+        let samples =
+            u64::from(self.width) * u64::from(self.height) * u64::from(self.supersample).pow(2);
+        if !(1..=MAX_SIDE).contains(&self.width)
+            || !(1..=MAX_SIDE).contains(&self.height)
+            || !(1..=4).contains(&self.supersample)
+            || samples > MAX_SAMPLES
+        {
+            return Err(RenderError::Size {
+                width: self.width,
+                height: self.height,
+                supersample: self.supersample,
+            });
+        }
+        Camera::new(self.view).map(|_| ())
+    }
+}
+
 impl Default for RenderOptions {
     fn default() -> RenderOptions {
         RenderOptions {
@@ -340,16 +375,7 @@ pub fn render_with_progress(
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Image, RenderError> {
     let o = options;
-    if !(1..=MAX_SIDE).contains(&o.width)
-        || !(1..=MAX_SIDE).contains(&o.height)
-        || !(1..=4).contains(&o.supersample)
-    {
-        return Err(RenderError::Size {
-            width: o.width,
-            height: o.height,
-            supersample: o.supersample,
-        });
-    }
+    o.check()?;
     if mesh.face_count() == 0 {
         return Err(RenderError::Empty);
     }
@@ -396,7 +422,7 @@ pub fn render_with_progress(
             }
         });
         done += 1;
-        if done % 65536 == 0 {
+        if done % 16384 == 0 {
             progress(done, total);
         }
     }
@@ -575,7 +601,7 @@ struct Canvas {
     width: u32,
     height: u32,
     color: Vec<[u8; 3]>,
-    depth: Vec<f64>,
+    depth: Vec<f32>,
     depth_range: [f64; 2],
 }
 
@@ -586,7 +612,7 @@ impl Canvas {
             width,
             height,
             color: vec![background; n],
-            depth: vec![f64::INFINITY; n],
+            depth: vec![f32::INFINITY; n],
             depth_range: [f64::INFINITY, f64::NEG_INFINITY],
         }
     }
@@ -655,9 +681,13 @@ impl Canvas {
                 let Some((i, w)) = hit else { continue };
                 let z = w[0] * pts[0][2] + w[1] * pts[i][2] + w[2] * pts[i + 1][2];
                 let at = y as usize * self.width as usize + x as usize;
+                let z = z as f32;
                 if z < self.depth[at] {
                     self.depth[at] = z;
-                    self.depth_range = [self.depth_range[0].min(z), self.depth_range[1].max(z)];
+                    self.depth_range = [
+                        self.depth_range[0].min(f64::from(z)),
+                        self.depth_range[1].max(f64::from(z)),
+                    ];
                     let weights = [
                         (corners[0], w[0]),
                         (corners[i], w[1]),
@@ -693,7 +723,7 @@ impl Canvas {
                         continue;
                     }
                     let at = py as usize * self.width as usize + px as usize;
-                    if z <= self.depth[at] + bias {
+                    if z <= f64::from(self.depth[at]) + bias {
                         self.color[at] = color;
                     }
                 }

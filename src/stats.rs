@@ -9,6 +9,7 @@
 //! ```
 
 use std::collections::BTreeMap;
+use std::fmt;
 
 use crate::mesh::Mesh;
 
@@ -51,6 +52,68 @@ impl Stats {
     /// Whether the mesh has no boundary.
     pub fn is_closed(&self) -> bool {
         self.holes == 0
+    }
+}
+
+impl fmt::Display for Stats {
+    /// One figure per line, name then value, names padded to one column.
+    ///
+    /// ```
+    /// let text = meshloom::shapes::cube().stats().to_string();
+    /// assert!(text.contains("faces                 6\n"));
+    /// assert!(text.contains("face degrees          4: 6\n"));
+    /// ```
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let yes_no = |b: bool| if b { "yes" } else { "no" };
+        let degrees = self
+            .face_degrees
+            .iter()
+            .map(|(d, n)| format!("{d}: {n}"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let genus = match self.genus {
+            Some(g) => g.to_string(),
+            None if self.vertices == 0 => "-".into(),
+            None => "- (the mesh has boundary)".into(),
+        };
+        let rows: [(&str, String); 13] = [
+            ("vertices", self.vertices.to_string()),
+            ("edges", self.edges.to_string()),
+            ("faces", self.faces.to_string()),
+            ("holes", self.holes.to_string()),
+            ("boundary edges", self.boundary_edges.to_string()),
+            ("boundary loops", self.boundary_loops.to_string()),
+            ("components", self.components.to_string()),
+            (
+                "Euler characteristic",
+                self.euler_characteristic.to_string(),
+            ),
+            ("genus", genus),
+            ("closed", yes_no(self.is_closed()).into()),
+            (
+                "face degrees",
+                if degrees.is_empty() {
+                    "-".into()
+                } else {
+                    degrees
+                },
+            ),
+            ("positions", yes_no(self.has_positions).into()),
+            (
+                "bounding box",
+                match self.bounding_box {
+                    Some([lo, hi]) => format!(
+                        "[{}, {}, {}] to [{}, {}, {}]",
+                        lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
+                    ),
+                    None => "-".into(),
+                },
+            ),
+        ];
+        for (name, value) in rows {
+            writeln!(f, "{name:<22}{value}")?;
+        }
+        Ok(())
     }
 }
 
