@@ -12,11 +12,13 @@ mod api;
 mod attribute;
 pub(crate) mod column;
 mod handle;
+mod infer;
 pub mod rule;
 pub mod rules;
 mod value;
 mod view;
 
+pub use api::AttrInfo;
 pub use attribute::Attribute;
 pub use column::Column;
 pub use handle::{Attr, EdgeAttr, Element, FaceAttr, HalfedgeAttr, VertexAttr};
