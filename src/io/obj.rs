@@ -1,0 +1,209 @@
+//! Wavefront OBJ.
+//!
+//! The parser is hand-written rather than taken from a crate, for three
+//! reasons: speed (one pass over the bytes, integers and floats parsed in
+//! place without strings; the 250k-vertex grid reads in well under the
+//! time of pmp-library's reader, see `examples/bench_peers/io.rs`), n-gons
+//! (faces keep every corner; nothing is triangulated) and error quality
+//! (every error names the line and what was expected there).
+//!
+//! Read: `v` (first three numbers; a `w` or vertex colour after them is
+//! ignored), `vt`, `vn`, `f` with `v`, `v/vt`, `v//vn` and `v/vt/vn`
+//! corners, positive (1-based) and negative (relative) indices, `g`, `o`,
+//! `usemtl`. Texture coordinates and normals become half-edge (corner)
+//! attributes `texcoord` and `normal`; groups and materials become face
+//! attributes. `l`, `p`, `s`, `mtllib` and other statements are skipped.
+//!
+//! ```
+//! let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf -4 -3 -2 -1\n";
+//! let mesh = meshloom::io::read_obj(obj.as_bytes())?;
+//! assert_eq!((mesh.vertex_count(), mesh.face_count()), (4, 1));
+//! # Ok::<(), meshloom::io::Error>(())
+//! ```
+
+use std::io::{Read, Write};
+
+use super::error::Error;
+use super::soup::Soup;
+use super::text::{parse_f64, parse_i64, Lines, Tokens};
+use super::{emit, polygons_of, slurp, ReadOptions};
+use crate::mesh::Mesh;
+use crate::repair::RepairReport;
+
+/// Read an OBJ mesh, strictly.
+///
+/// # Errors
+/// [`Error`] with the line: a malformed number or corner, an index out of
+/// range (or 0), no faces, polygons that need repair.
+pub fn read_obj(reader: impl Read) -> Result<Mesh, Error> {
+    read_obj_with(reader, &ReadOptions::strict()).map(|(m, _)| m)
+}
+
+/// Read an OBJ mesh with repair policies.
+///
+/// # Errors
+/// As [`read_obj`], less what the policies repair.
+pub fn read_obj_with(
+    reader: impl Read,
+    options: &ReadOptions,
+) -> Result<(Mesh, RepairReport), Error> {
+    let bytes = slurp(reader, options)?;
+    parse(&bytes)?.finish(options)
+}
+
+/// Write a mesh as OBJ: `v` lines with every digit needed to read the
+/// positions back exactly, `f` lines with 1-based indices (holes are not
+/// written).
+///
+/// # Errors
+/// [`Error::Unwritable`] without positions; [`Error::Io`].
+pub fn write_obj(mesh: &Mesh, writer: impl Write) -> Result<(), Error> {
+    let p = polygons_of(mesh)?;
+    let mut out = Vec::with_capacity(32 * (p.positions.len() + p.indices.len()));
+    for q in &p.positions {
+        writeln!(out, "v {} {} {}", q[0], q[1], q[2]).map_err(Error::io)?;
+    }
+    for f in p.faces() {
+        out.push(b'f');
+        for i in f {
+            write!(out, " {}", i + 1).map_err(Error::io)?;
+        }
+        out.push(b'\n');
+    }
+    emit(writer, &out)
+}
+
+/// Resolve a 1-based or negative OBJ index against `count` elements.
+#[inline]
+fn resolve(index: i64, count: usize) -> Option<u32> {
+    let i = if index > 0 {
+        index - 1
+    } else {
+        count as i64 + index
+    };
+    (index != 0 && i >= 0 && (i as u64) < count as u64).then_some(i as u32)
+}
+
+/// Corner references to texture coordinates and normals (`NONE` = absent).
+#[derive(Default)]
+struct CornerRefs {
+    texcoords: Vec<[f64; 2]>,
+    normals: Vec<[f64; 3]>,
+    texcoord_of: Vec<u32>,
+    normal_of: Vec<u32>,
+}
+
+/// Parse OBJ bytes into a soup.
+pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
+    let mut soup = Soup::new();
+    let mut refs = CornerRefs::default();
+    let mut lines = Lines::new(bytes);
+    // Reserve by the input's size only: about 30 bytes per statement.
+    soup.polygons.positions.reserve(bytes.len() / 96);
+    soup.polygons.indices.reserve(bytes.len() / 16);
+    while let Some(line) = lines.next() {
+        let mut t = Tokens::new(line);
+        let Some(key) = t.next() else { continue };
+        let at = || lines.here();
+        match key {
+            b"v" => {
+                let mut p = [0.0; 3];
+                for c in &mut p {
+                    let tok = t.next().unwrap_or_default();
+                    *c = parse_f64(tok)
+                        .ok_or_else(|| Error::syntax(at(), "a vertex coordinate", tok))?;
+                }
+                soup.polygons.positions.push(p);
+            }
+            b"vt" => {
+                let tok = t.next().unwrap_or_default();
+                let u = parse_f64(tok)
+                    .ok_or_else(|| Error::syntax(at(), "a texture coordinate", tok))?;
+                let v = match t.next() {
+                    Some(tok) => parse_f64(tok)
+                        .ok_or_else(|| Error::syntax(at(), "a texture coordinate", tok))?,
+                    None => 0.0,
+                };
+                refs.texcoords.push([u, v]);
+            }
+            b"vn" => {
+                let mut n = [0.0; 3];
+                for c in &mut n {
+                    let tok = t.next().unwrap_or_default();
+                    *c = parse_f64(tok)
+                        .ok_or_else(|| Error::syntax(at(), "a normal coordinate", tok))?;
+                }
+                refs.normals.push(n);
+            }
+            b"f" => {
+                let start = soup.polygons.indices.len();
+                for corner in t {
+                    face_corner(corner, &mut soup, &mut refs, at)?;
+                }
+                if soup.polygons.indices.len() == start {
+                    return Err(Error::syntax(at(), "vertex indices after f", b""));
+                }
+                soup.end_face(lines.line);
+            }
+            _ => {}
+        }
+    }
+    Ok(soup)
+}
+
+/// One `v[/vt][/vn]` corner of an `f` statement.
+#[inline]
+fn face_corner(
+    corner: &[u8],
+    soup: &mut Soup,
+    refs: &mut CornerRefs,
+    at: impl Fn() -> super::error::Location,
+) -> Result<(), Error> {
+    let mut parts = corner.splitn(3, |&b| b == b'/');
+    let v_tok = parts.next().unwrap_or_default();
+    let index = parse_i64(v_tok).ok_or_else(|| Error::syntax(at(), "a vertex index", corner))?;
+    let count = soup.polygons.positions.len();
+    let v = resolve(index, count).ok_or(Error::IndexOutOfRange {
+        at: at(),
+        index,
+        count,
+    })?;
+    soup.polygons.indices.push(v);
+    let vt = match parts.next() {
+        Some(tok) if !tok.is_empty() => {
+            let index = parse_i64(tok)
+                .ok_or_else(|| Error::syntax(at(), "a texture coordinate index", corner))?;
+            let count = refs.texcoords.len();
+            resolve(index, count).ok_or(Error::IndexOutOfRange {
+                at: at(),
+                index,
+                count,
+            })?
+        }
+        _ => u32::MAX,
+    };
+    let vn = match parts.next() {
+        Some(tok) if !tok.is_empty() => {
+            let index =
+                parse_i64(tok).ok_or_else(|| Error::syntax(at(), "a normal index", corner))?;
+            let count = refs.normals.len();
+            resolve(index, count).ok_or(Error::IndexOutOfRange {
+                at: at(),
+                index,
+                count,
+            })?
+        }
+        _ => u32::MAX,
+    };
+    if vt != u32::MAX || !refs.texcoord_of.is_empty() {
+        let c = soup.polygons.indices.len() - 1;
+        refs.texcoord_of.resize(c, u32::MAX);
+        refs.texcoord_of.push(vt);
+    }
+    if vn != u32::MAX || !refs.normal_of.is_empty() {
+        let c = soup.polygons.indices.len() - 1;
+        refs.normal_of.resize(c, u32::MAX);
+        refs.normal_of.push(vn);
+    }
+    Ok(())
+}

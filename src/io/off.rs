@@ -1,0 +1,293 @@
+//! OFF (Object File Format, as geomview and CGAL write it).
+//!
+//! The parser is hand-written rather than taken from a crate: it keeps
+//! n-gons as they are, reads the header variants real files use
+//! (`[ST][C][N][4][n]OFF`, comments before and after the keyword, counts on
+//! the keyword line, an optional edge count), takes the optional colour at
+//! the end of a face line, and reports the line of every error. It is one
+//! pass over the bytes with the exact fast float path of the text scanner,
+//! and it never reserves space by the header's counts beyond what the
+//! remaining bytes could hold.
+//!
+//! Read: the first three coordinates of each vertex are its position (a
+//! `4OFF` file's fourth is dropped); a face line is `k i1 .. ik` followed by
+//! nothing, a colour map index, or an RGB(A) colour. Binary OFF is refused
+//! with [`Error::UnsupportedFormat`].
+//!
+//! ```
+//! let off = "OFF\n# a square\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+//! let mesh = meshloom::io::read_off(off.as_bytes())?;
+//! assert_eq!((mesh.vertex_count(), mesh.face_count()), (4, 1));
+//! let mut out = Vec::new();
+//! meshloom::io::write_off(&mesh, &mut out)?;
+//! assert!(out.starts_with(b"OFF\n4 1 0\n"));
+//! # Ok::<(), meshloom::io::Error>(())
+//! ```
+
+use std::io::{Read, Write};
+
+use super::error::{Error, Location};
+use super::soup::Soup;
+use super::text::{capped, next_count, next_f64, parse_i64, strip_comment, Lines, Tokens};
+use super::{emit, polygons_of, slurp, ReadOptions};
+use crate::mesh::Mesh;
+use crate::repair::RepairReport;
+
+/// Read an OFF mesh, strictly.
+///
+/// # Errors
+/// [`Error`] with the line: malformed header or numbers, too few vertices
+/// or faces, an index out of range, polygons that need repair.
+pub fn read_off(reader: impl Read) -> Result<Mesh, Error> {
+    read_off_with(reader, &ReadOptions::strict()).map(|(m, _)| m)
+}
+
+/// Read an OFF mesh with repair policies.
+///
+/// # Errors
+/// As [`read_off`], less what the policies repair.
+pub fn read_off_with(
+    reader: impl Read,
+    options: &ReadOptions,
+) -> Result<(Mesh, RepairReport), Error> {
+    let bytes = slurp(reader, options)?;
+    parse(&bytes)?.finish(options)
+}
+
+/// Write a mesh as ascii OFF: positions with every digit needed to read
+/// them back exactly, faces as index lists (holes are not written).
+///
+/// # Errors
+/// [`Error::Unwritable`] without positions; [`Error::Io`].
+pub fn write_off(mesh: &Mesh, writer: impl Write) -> Result<(), Error> {
+    let p = polygons_of(mesh)?;
+    let mut out = Vec::with_capacity(32 * (p.positions.len() + p.indices.len()));
+    writeln!(out, "OFF\n{} {} 0", p.positions.len(), p.face_count()).map_err(Error::io)?;
+    for q in &p.positions {
+        writeln!(out, "{} {} {}", q[0], q[1], q[2]).map_err(Error::io)?;
+    }
+    for f in p.faces() {
+        write!(out, "{}", f.len()).map_err(Error::io)?;
+        for i in f {
+            write!(out, " {i}").map_err(Error::io)?;
+        }
+        out.push(b'\n');
+    }
+    emit(writer, &out)
+}
+
+/// The header keyword's flags.
+struct Keyword {
+    dim: usize,
+    has_dim_token: bool,
+    colors: bool,
+    normals: bool,
+    texcoords: bool,
+}
+
+fn keyword(tok: &[u8]) -> Option<Keyword> {
+    let mut k = Keyword {
+        dim: 3,
+        has_dim_token: false,
+        colors: false,
+        normals: false,
+        texcoords: false,
+    };
+    let mut s = tok.strip_suffix(b"OFF")?;
+    if let Some(r) = s.strip_prefix(b"ST") {
+        k.texcoords = true;
+        s = r;
+    }
+    if let Some(r) = s.strip_prefix(b"C") {
+        k.colors = true;
+        s = r;
+    }
+    if let Some(r) = s.strip_prefix(b"N") {
+        k.normals = true;
+        s = r;
+    }
+    if let Some(r) = s.strip_prefix(b"4") {
+        k.dim = 4;
+        s = r;
+    }
+    if let Some(r) = s.strip_prefix(b"n") {
+        k.has_dim_token = true;
+        s = r;
+    }
+    s.is_empty().then_some(k)
+}
+
+/// The next line with something other than a comment, and its tokens.
+fn content<'a>(lines: &mut Lines<'a>) -> Option<&'a [u8]> {
+    for line in lines.by_ref() {
+        let s = strip_comment(line);
+        if !s.is_empty() {
+            return Some(s);
+        }
+    }
+    None
+}
+
+/// Make sure `tokens` has one more token, taking the next content line if
+/// it is used up.
+fn refill<'a>(lines: &mut Lines<'a>, tokens: &mut Tokens<'a>) -> Result<(), Error> {
+    if tokens.clone().next().is_none() {
+        let line = content(lines).ok_or_else(|| Error::Truncated {
+            at: lines.end(),
+            expected: "the vertex and face counts".into(),
+        })?;
+        *tokens = Tokens::new(line);
+    }
+    Ok(())
+}
+
+/// Parse OFF bytes into a soup.
+pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
+    let mut lines = Lines::new(bytes);
+    let Some(first) = content(&mut lines) else {
+        return Err(Error::Empty {
+            at: Location::whole(),
+        });
+    };
+    let mut tokens = Tokens::new(first);
+    let head = tokens.clone().next().unwrap_or_default();
+    let kw = match keyword(head) {
+        Some(k) => {
+            tokens.next();
+            k
+        }
+        None if parse_i64(head).is_some() => {
+            keyword(b"OFF").ok_or_else(|| Error::syntax(lines.here(), "an OFF keyword", head))?
+        }
+        None => {
+            return Err(Error::syntax(
+                lines.here(),
+                "an OFF keyword such as OFF, COFF, NOFF or 4OFF",
+                head,
+            ))
+        }
+    };
+    if tokens.clone().next() == Some(b"BINARY") {
+        return Err(Error::UnsupportedFormat {
+            at: lines.here(),
+            what: "binary OFF".into(),
+        });
+    }
+    // Counts may follow the keyword on its line, or come on later lines.
+    let mut dim = kw.dim;
+    let mut tokens: Tokens<'_> = tokens;
+    if kw.has_dim_token {
+        refill(&mut lines, &mut tokens)?;
+        let n = next_count(&mut tokens, || lines.here(), "the dimension of nOFF")?;
+        if !(1..=16).contains(&n) {
+            return Err(Error::Header {
+                at: lines.here(),
+                message: format!("dimension {n} is not between 1 and 16"),
+            });
+        }
+        dim = n + usize::from(kw.dim == 4);
+    }
+    refill(&mut lines, &mut tokens)?;
+    let nv = next_count(&mut tokens, || lines.here(), "the vertex count")?;
+    refill(&mut lines, &mut tokens)?;
+    let nf = next_count(&mut tokens, || lines.here(), "the face count")?;
+    let header_line = lines.line;
+    // A vertex takes at least `dim` one-digit numbers and separators; a
+    // face at least "1 0\n".
+    let least = (nv as u128) * (2 * dim as u128) + (nf as u128) * 4;
+    if least > lines.remaining() as u128 + 1 {
+        return Err(Error::Header {
+            at: Location::line(header_line),
+            message: format!(
+                "it announces {nv} vertices and {nf} faces, but only {} bytes follow",
+                lines.remaining()
+            ),
+        });
+    }
+
+    let mut soup = Soup::new();
+    let rest = lines.remaining();
+    soup.polygons.positions.reserve(capped(nv, rest, 2 * dim));
+    soup.polygons.offsets.reserve(capped(nf, rest, 4));
+    soup.face_at.reserve(capped(nf, rest, 4));
+    soup.polygons.indices.reserve(capped(3 * nf, rest, 2));
+    let _ = (kw.colors, kw.normals, kw.texcoords);
+
+    for i in 0..nv {
+        let line = content(&mut lines).ok_or_else(|| Error::Truncated {
+            at: lines.end(),
+            expected: format!("vertex {} of {nv}", i + 1),
+        })?;
+        let mut t = Tokens::new(line);
+        let at = || lines.here();
+        let x = next_f64(&mut t, at, "a vertex coordinate")?;
+        let y = if dim > 1 {
+            next_f64(&mut t, at, "a vertex coordinate")?
+        } else {
+            0.0
+        };
+        let z = if dim > 2 {
+            next_f64(&mut t, at, "a vertex coordinate")?
+        } else {
+            0.0
+        };
+        for _ in 3..dim {
+            next_f64(&mut t, at, "a vertex coordinate")?;
+        }
+        soup.polygons.positions.push([x, y, z]);
+    }
+    for i in 0..nf {
+        let line = content(&mut lines).ok_or_else(|| Error::Truncated {
+            at: lines.end(),
+            expected: format!("face {} of {nf}", i + 1),
+        })?;
+        let mut t = Tokens::new(line);
+        let at = || lines.here();
+        let k_tok = t.next().unwrap_or_default();
+        let k = match parse_i64(k_tok) {
+            Some(k) if k >= 1 => k as usize,
+            _ => {
+                return Err(Error::syntax(
+                    at(),
+                    "a face's corner count (at least 1)",
+                    k_tok,
+                ))
+            }
+        };
+        for _ in 0..k {
+            let tok = t.next().ok_or_else(|| {
+                Error::syntax(at(), format!("{k} vertex indices after the count"), b"")
+            })?;
+            let index = parse_i64(tok).ok_or_else(|| Error::syntax(at(), "a vertex index", tok))?;
+            if index < 0 || index as u64 >= nv as u64 {
+                return Err(Error::IndexOutOfRange {
+                    at: at(),
+                    index,
+                    count: nv,
+                });
+            }
+            soup.polygons.indices.push(index as u32);
+        }
+        // An optional colour: a map index, RGB or RGBA, ints or floats.
+        let mut extra = 0;
+        for tok in t.by_ref() {
+            if super::text::parse_f64(tok).is_none() {
+                return Err(Error::syntax(
+                    at(),
+                    "a colour component or the end of the line",
+                    tok,
+                ));
+            }
+            extra += 1;
+        }
+        if extra > 4 {
+            return Err(Error::syntax(
+                at(),
+                format!("{k} vertex indices and at most 4 colour components"),
+                line,
+            ));
+        }
+        soup.end_face(lines.line);
+    }
+    Ok(soup)
+}

@@ -1,0 +1,174 @@
+//! What every reader produces before a mesh exists: polygons, where each
+//! face was read, and the attribute values read beside them. `finish`
+//! repairs (by the caller's policies) and builds.
+
+use crate::build::Polygons;
+use crate::error::{BuildError, Error as MeshError};
+use crate::mesh::Mesh;
+use crate::repair::{repair, Provenance, RepairReport};
+
+use super::attrs::SoupAttrs;
+use super::error::{Error, Location};
+use super::ReadOptions;
+
+/// Polygons as read, with the line or byte offset of each face.
+#[derive(Default)]
+pub(crate) struct Soup {
+    pub(crate) polygons: Polygons,
+    /// Line (text) or byte offset (binary) each face was read at.
+    pub(crate) face_at: Vec<u64>,
+    /// Whether `face_at` holds byte offsets.
+    pub(crate) binary: bool,
+    /// Attribute values read with the elements, in file order.
+    pub(crate) attrs: SoupAttrs,
+}
+
+impl Soup {
+    pub(crate) fn new() -> Soup {
+        let mut s = Soup::default();
+        s.polygons.offsets.push(0);
+        s
+    }
+
+    /// End the face whose corners were pushed since the last one.
+    #[inline]
+    pub(crate) fn end_face(&mut self, at: u64) {
+        self.polygons
+            .offsets
+            .push(self.polygons.indices.len() as u32);
+        self.face_at.push(at);
+    }
+
+    fn location_of_face(&self, face: usize) -> Location {
+        match self.face_at.get(face) {
+            Some(&at) if self.binary => Location::byte(at),
+            Some(&at) => Location::line(at),
+            None => Location::whole(),
+        }
+    }
+
+    /// Repair by `options`, build, attach the attributes.
+    pub(crate) fn finish(mut self, options: &ReadOptions) -> Result<(Mesh, RepairReport), Error> {
+        if self.polygons.face_count() == 0 {
+            return Err(Error::Empty {
+                at: Location::whole(),
+            });
+        }
+        if self.polygons.indices.len() >= (1 << 29) {
+            return Err(Error::TooLarge {
+                at: Location::whole(),
+                what: "more than 2^29 face corners".into(),
+            });
+        }
+        let (report, prov) = if options.repair.any() {
+            repair(&mut self.polygons, &options.repair)
+        } else {
+            (RepairReport::default(), Provenance::default())
+        };
+        let built = match Mesh::build_buffers(&self.polygons) {
+            Ok(b) => b,
+            Err(MeshError::Build(e)) => return Err(self.build_error(e, &prov)),
+            Err(other) => {
+                return Err(Error::Header {
+                    at: Location::whole(),
+                    message: other.to_string(),
+                })
+            }
+        };
+        if built.unreferenced > 0 {
+            let first = built.vertices.iter().position(Option::is_none).unwrap_or(0);
+            return Err(Error::Unreferenced {
+                at: Location::whole(),
+                count: built.unreferenced,
+                first: source(&prov.vertex_source, first),
+            });
+        }
+        let mut mesh = built.mesh;
+        self.attrs
+            .attach(&mut mesh, &built.vertices, &built.faces, &prov);
+        Ok((mesh, report))
+    }
+
+    /// A builder error, its face and vertex numbers mapped back to the file.
+    fn build_error(&self, e: BuildError, prov: &Provenance) -> Error {
+        let f = |i: usize| source(&prov.face_source, i);
+        let v = |i: usize| source(&prov.vertex_source, i);
+        let (face, source) = match e {
+            BuildError::IndexOutOfRange {
+                face,
+                index,
+                vertex_count,
+            } => (
+                f(face),
+                BuildError::IndexOutOfRange {
+                    face: f(face),
+                    index,
+                    vertex_count,
+                },
+            ),
+            BuildError::TooFewVertices { face, degree } => (
+                f(face),
+                BuildError::TooFewVertices {
+                    face: f(face),
+                    degree,
+                },
+            ),
+            BuildError::RepeatedVertex { face, vertex } => (
+                f(face),
+                BuildError::RepeatedVertex {
+                    face: f(face),
+                    vertex: v(vertex),
+                },
+            ),
+            BuildError::NonManifoldEdge { a, b, faces } => (
+                f(faces[0]),
+                BuildError::NonManifoldEdge {
+                    a: v(a),
+                    b: v(b),
+                    faces: faces.map(f),
+                },
+            ),
+            BuildError::InconsistentOrientation { a, b, faces } => (
+                f(faces[1]),
+                BuildError::InconsistentOrientation {
+                    a: v(a),
+                    b: v(b),
+                    faces: faces.map(f),
+                },
+            ),
+            BuildError::NonManifoldVertex { vertex, face } => (
+                f(face),
+                BuildError::NonManifoldVertex {
+                    vertex: v(vertex),
+                    face: f(face),
+                },
+            ),
+            BuildError::NonFinitePosition { vertex, position } => {
+                return Error::Build {
+                    at: Location::whole(),
+                    face: 0,
+                    source: BuildError::NonFinitePosition {
+                        vertex: v(vertex),
+                        position,
+                    },
+                }
+            }
+            other => {
+                return Error::TooLarge {
+                    at: Location::whole(),
+                    what: other.to_string(),
+                }
+            }
+        };
+        Error::Build {
+            at: self.location_of_face(face),
+            face,
+            source,
+        }
+    }
+}
+
+/// `map[i]`, or `i` itself when no map was made (no repair ran).
+fn source(map: &[u32], i: usize) -> usize {
+    map.get(i).map_or(i, |&s| s as usize)
+}

@@ -1,0 +1,1 @@
+//! Each policy on a tiny soup.
