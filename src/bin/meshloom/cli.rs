@@ -1,0 +1,217 @@
+//! The command line: every command, its arguments and its help text.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+use meshloom::io::Format;
+use meshloom::render::View;
+
+const EXAMPLES: &str = "\
+Examples:
+  meshloom stats data/elephant.off
+  meshloom validate data/elephant.off
+  meshloom render data/elephant.off elephant.png --wireframe
+
+Exit codes: 0 success, 1 bad input, 2 usage.";
+
+/// Look at, check, convert, repair and render polygon mesh files
+/// (OBJ, OFF, PLY, STL; a trailing .gz is read and written as gzip).
+#[derive(Parser, Debug)]
+#[command(name = "meshloom", version, after_help = EXAMPLES)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The commands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Count vertices, edges, faces, holes, boundary loops and components;
+    /// Euler characteristic, genus where closed, face-degree histogram.
+    #[command(after_help = "\
+Example:
+  meshloom stats data/elephant.off
+  meshloom stats data/elephant.off --json")]
+    Stats(StatsArgs),
+    /// Check that a file reads as a valid half-edge mesh, without repairs.
+    /// Exit code 1 and a message naming the file and line if it does not.
+    #[command(after_help = "\
+Example:
+  meshloom validate data/elephant.off && echo clean")]
+    Validate(ValidateArgs),
+    /// Convert between formats, chosen by the file extensions.
+    #[command(after_help = "\
+Example:
+  meshloom convert data/elephant.off elephant.ply
+  meshloom convert scan.stl scan.obj.gz --repair")]
+    Convert(ConvertArgs),
+    /// Read with every repair on (weld, drop degenerate and duplicate
+    /// faces, orient, split non-manifold edges and vertices, drop unused
+    /// vertices), write the result and report what was done.
+    #[command(after_help = "\
+Example:
+  meshloom repair scan.ply fixed.ply
+  meshloom repair scan.ply fixed.off --json")]
+    Repair(RepairArgs),
+    /// Draw a shaded picture (orthographic, flat or smooth shading,
+    /// optional wireframe and boundary highlight) as PNG.
+    #[command(after_help = "\
+Example:
+  meshloom render data/elephant.off elephant.png
+  meshloom render part.obj part.png --view top --flat --wireframe --boundary --size 1024x768")]
+    Render(RenderArgs),
+}
+
+/// How to read an input file.
+#[derive(Args, Debug, Clone, Copy)]
+pub struct ReadArgs {
+    /// Repair the input while reading (as `meshloom repair` does) instead of
+    /// refusing what a half-edge mesh cannot hold.
+    #[arg(long)]
+    pub repair: bool,
+}
+
+/// `meshloom stats`.
+#[derive(Args, Debug)]
+pub struct StatsArgs {
+    /// The mesh file.
+    #[arg(value_parser = mesh_path)]
+    pub file: PathBuf,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
+/// `meshloom validate`.
+#[derive(Args, Debug)]
+pub struct ValidateArgs {
+    /// The mesh file.
+    #[arg(value_parser = mesh_path)]
+    pub file: PathBuf,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `meshloom convert`.
+#[derive(Args, Debug)]
+pub struct ConvertArgs {
+    /// The mesh file to read.
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// The mesh file to write (format from its extension).
+    #[arg(value_parser = mesh_path)]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
+/// `meshloom repair`.
+#[derive(Args, Debug)]
+pub struct RepairArgs {
+    /// The mesh file to read and repair.
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// The mesh file to write (format from its extension).
+    #[arg(value_parser = mesh_path)]
+    pub output: PathBuf,
+    /// Print the report as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `meshloom render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// The mesh file.
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// The picture to write (.png).
+    #[arg(value_parser = png_path)]
+    pub output: PathBuf,
+    /// Where to look from: iso, front, back, left, right, top, bottom, or a
+    /// direction x,y,z toward the eye (y is up).
+    #[arg(long, default_value = "iso", value_parser = view)]
+    pub view: View,
+    /// Flat shading (facets show) instead of smooth.
+    #[arg(long)]
+    pub flat: bool,
+    /// Draw every edge.
+    #[arg(long)]
+    pub wireframe: bool,
+    /// Highlight boundary edges (beside a hole) in red.
+    #[arg(long)]
+    pub boundary: bool,
+    /// Picture size in pixels, WIDTHxHEIGHT (or one number for a square).
+    #[arg(long, default_value = "800x600", value_parser = size)]
+    pub size: (u32, u32),
+    /// Samples per pixel along each axis, 1 to 4 (smoother edges, slower).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=4))]
+    pub supersample: u32,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
+/// A path whose extension names a mesh format.
+fn mesh_path(s: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(s);
+    match Format::from_path(&path) {
+        Some(_) => Ok(path),
+        None => Err("expected a file ending in .obj, .off, .ply or .stl (optionally + .gz)".into()),
+    }
+}
+
+/// A path ending in `.png`.
+fn png_path(s: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(s);
+    let is_png = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if is_png {
+        Ok(path)
+    } else {
+        Err("expected a file ending in .png".into())
+    }
+}
+
+fn view(s: &str) -> Result<View, String> {
+    s.parse()
+}
+
+/// `WIDTHxHEIGHT` or `SIDE`, each 1 to the renderer's largest side.
+fn size(s: &str) -> Result<(u32, u32), String> {
+    let max = meshloom::render::MAX_SIDE;
+    let side = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|n| (1..=max).contains(n))
+            .ok_or_else(|| format!("expected WIDTHxHEIGHT with sides 1 to {max}, got {s:?}"))
+    };
+    match s.split_once(['x', 'X']) {
+        Some((w, h)) => Ok((side(w)?, side(h)?)),
+        None => side(s).map(|n| (n, n)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn command_line_is_consistent() {
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn sizes_parse() {
+        assert_eq!(size("640x480"), Ok((640, 480)));
+        assert_eq!(size("256"), Ok((256, 256)));
+        assert!(size("0x10").is_err());
+        assert!(size("wide").is_err());
+    }
+}
