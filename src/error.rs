@@ -51,6 +51,15 @@ pub enum Error {
         /// The type stored.
         found: &'static str,
     },
+    /// Occurs when an attribute handle names a column that was removed, or
+    /// one of another mesh.
+    #[error("the {kind} attribute handle {name:?} is stale: its column was removed or belongs to another mesh")]
+    AttributeHandle {
+        /// The arena.
+        kind: ElementKind,
+        /// The name the handle was made for.
+        name: String,
+    },
     /// Occurs when an operator's preconditions fail. The mesh is unchanged.
     #[error("{op} refused on {key}: {reason}")]
     Refused {

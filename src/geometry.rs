@@ -1,1 +1,350 @@
-//! Geometry over positions: the point trait and measures (lengths, areas, normals).
+//! Geometry over positions: the [`Point`] trait and measures (edge length,
+//! face normal, area, centroid).
+//!
+//! Positions are an ordinary vertex attribute with the
+//! [`Interpolate`](crate::attr::Interpolate) rule. The standard column
+//! ([`attr::POSITION`](crate::attr::POSITION)) holds `[f64; 3]`; the `_in`
+//! measures read any vertex column whose type implements [`Point`], so a
+//! user can keep `[f32; 3]`, or with the optional features `mint` and
+//! `glam`, their types. (nalgebra is not a dependency: its `mint` feature
+//! converts its points to and from mint's.)
+
+use crate::attr::{Attr, Attribute, Rule};
+use crate::error::{Error, Result};
+use crate::keys::{EdgeKey, FaceKey, VertexKey};
+use crate::mesh::Mesh;
+
+/// A 3D point type that geometry code can read and write as `[f64; 3]`.
+///
+/// ```
+/// use meshloom::geometry::Point;
+/// let p = [1.0f32, 2.0, 3.0];
+/// assert_eq!(p.xyz(), [1.0, 2.0, 3.0]);
+/// assert_eq!(<[f32; 3]>::from_xyz([0.5, 0.0, 1.0]), [0.5, 0.0, 1.0]);
+/// ```
+pub trait Point: Copy {
+    /// The coordinates.
+    fn xyz(&self) -> [f64; 3];
+    /// A point from coordinates (rounded to the type's precision).
+    fn from_xyz(p: [f64; 3]) -> Self;
+}
+
+impl Point for [f64; 3] {
+    #[inline]
+    fn xyz(&self) -> [f64; 3] {
+        *self
+    }
+    #[inline]
+    fn from_xyz(p: [f64; 3]) -> Self {
+        p
+    }
+}
+
+impl Point for [f32; 3] {
+    #[inline]
+    fn xyz(&self) -> [f64; 3] {
+        self.map(f64::from)
+    }
+    #[inline]
+    fn from_xyz(p: [f64; 3]) -> Self {
+        p.map(|c| c as f32)
+    }
+}
+
+#[cfg(feature = "mint")]
+mod mint_points {
+    use super::Point;
+
+    macro_rules! mint_point {
+        ($($t:ty),*) => {$(
+            impl Point for $t {
+                #[inline]
+                fn xyz(&self) -> [f64; 3] {
+                    [self.x.into(), self.y.into(), self.z.into()]
+                }
+                #[inline]
+                #[allow(clippy::unnecessary_cast)]
+                fn from_xyz(p: [f64; 3]) -> Self {
+                    Self { x: p[0] as _, y: p[1] as _, z: p[2] as _ }
+                }
+            }
+        )*};
+    }
+    mint_point!(
+        mint::Point3<f64>,
+        mint::Point3<f32>,
+        mint::Vector3<f64>,
+        mint::Vector3<f32>
+    );
+}
+
+#[cfg(feature = "glam")]
+mod glam_points {
+    use super::Point;
+    use crate::attr::{Attribute, Interpolate, Linear, Value};
+
+    macro_rules! glam_point {
+        ($t:ty, $s:ty, $variant:ident) => {
+            impl Point for $t {
+                #[inline]
+                fn xyz(&self) -> [f64; 3] {
+                    [self.x.into(), self.y.into(), self.z.into()]
+                }
+                #[inline]
+                #[allow(clippy::unnecessary_cast)]
+                fn from_xyz(p: [f64; 3]) -> Self {
+                    <$t>::new(p[0] as $s, p[1] as $s, p[2] as $s)
+                }
+            }
+            impl Linear for $t {
+                #[inline]
+                fn zero() -> Self {
+                    <$t>::ZERO
+                }
+                #[inline]
+                #[allow(clippy::unnecessary_cast)]
+                fn add_scaled(&mut self, other: &Self, w: f64) {
+                    *self += *other * (w as $s);
+                }
+            }
+            impl Attribute for $t {
+                type Rule = Interpolate;
+                fn to_value(&self) -> Option<Value> {
+                    Some(Value::List(
+                        self.to_array()
+                            .iter()
+                            .map(|&c| Value::$variant(c))
+                            .collect(),
+                    ))
+                }
+                fn from_value(value: &Value) -> Option<Self> {
+                    <[$s; 3]>::from_value(value).map(<$t>::from_array)
+                }
+            }
+        };
+    }
+    glam_point!(glam::Vec3, f32, F32);
+    glam_point!(glam::DVec3, f64, F64);
+}
+
+#[inline]
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+#[inline]
+fn norm(a: [f64; 3]) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}
+
+impl Mesh {
+    /// The coordinates of vertex slot `v` in a point column.
+    fn point_in<P: Point + Attribute, R: Rule<P>>(
+        &self,
+        h: &Attr<VertexKey, P, R>,
+        v: u32,
+    ) -> Result<[f64; 3]> {
+        self.attr(h, self.vkey(v))?
+            .map(Point::xyz)
+            .ok_or(Error::NoPositions)
+    }
+
+    /// The Newell vector of a face: its direction is the normal, its length
+    /// twice the (projected) area.
+    fn newell_in<P: Point + Attribute, R: Rule<P>>(
+        &self,
+        h: &Attr<VertexKey, P, R>,
+        f: FaceKey,
+    ) -> Result<[f64; 3]> {
+        let fs = self.check_face(f)?;
+        let mut n = [0.0; 3];
+        for he in self.face_loop_raw(fs) {
+            let a = self.point_in(h, self.origin_of(he))?;
+            let b = self.point_in(h, self.dest_of(he))?;
+            n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+            n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+            n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+        }
+        Ok(n)
+    }
+
+    /// The length of edge `e` measured in the point column `h`.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`], [`Error::AttributeHandle`],
+    /// [`Error::NoPositions`] if an end has no value.
+    pub fn edge_length_in<P: Point + Attribute, R: Rule<P>>(
+        &self,
+        h: &Attr<VertexKey, P, R>,
+        e: EdgeKey,
+    ) -> Result<f64> {
+        let s = self.check_edge(e)?;
+        let a = self.point_in(h, self.origin_of(2 * s))?;
+        let b = self.point_in(h, self.origin_of(2 * s + 1))?;
+        Ok(norm(sub(a, b)))
+    }
+
+    /// The unit normal of face `f` (Newell's method, so non-planar polygons
+    /// get a best-fit normal) measured in the point column `h`; zero for a
+    /// degenerate face.
+    ///
+    /// # Errors
+    /// As [`Mesh::edge_length_in`].
+    pub fn face_normal_in<P: Point + Attribute, R: Rule<P>>(
+        &self,
+        h: &Attr<VertexKey, P, R>,
+        f: FaceKey,
+    ) -> Result<[f64; 3]> {
+        let n = self.newell_in(h, f)?;
+        let l = norm(n);
+        Ok(if l > 0.0 { n.map(|c| c / l) } else { [0.0; 3] })
+    }
+
+    /// The area of face `f` (exact for planar polygons) in the point column
+    /// `h`.
+    ///
+    /// # Errors
+    /// As [`Mesh::edge_length_in`].
+    pub fn face_area_in<P: Point + Attribute, R: Rule<P>>(
+        &self,
+        h: &Attr<VertexKey, P, R>,
+        f: FaceKey,
+    ) -> Result<f64> {
+        Ok(0.5 * norm(self.newell_in(h, f)?))
+    }
+
+    /// The centroid of face `f`'s corners in the point column `h`.
+    ///
+    /// # Errors
+    /// As [`Mesh::edge_length_in`].
+    pub fn face_centroid_in<P: Point + Attribute, R: Rule<P>>(
+        &self,
+        h: &Attr<VertexKey, P, R>,
+        f: FaceKey,
+    ) -> Result<[f64; 3]> {
+        let fs = self.check_face(f)?;
+        let mut c = [0.0; 3];
+        let mut n = 0usize;
+        for he in self.face_loop_raw(fs) {
+            let p = self.point_in(h, self.origin_of(he))?;
+            for k in 0..3 {
+                c[k] += p[k];
+            }
+            n += 1;
+        }
+        Ok(c.map(|x| x / n.max(1) as f64))
+    }
+
+    /// The length of edge `e`.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`], [`Error::NoPositions`].
+    ///
+    /// ```
+    /// let cube = meshloom::shapes::cube();
+    /// let e = cube.edges().next().unwrap();
+    /// assert_eq!(cube.edge_length(e)?, 1.0);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn edge_length(&self, e: EdgeKey) -> Result<f64> {
+        self.edge_length_in(&self.position_attr().ok_or(Error::NoPositions)?, e)
+    }
+
+    /// The unit normal of face `f` (zero for a degenerate face).
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`], [`Error::NoPositions`].
+    ///
+    /// ```
+    /// let cube = meshloom::shapes::cube();
+    /// let f = cube.faces().next().unwrap(); // the face at z = 0
+    /// assert_eq!(cube.face_normal(f)?, [0.0, 0.0, -1.0]);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn face_normal(&self, f: FaceKey) -> Result<[f64; 3]> {
+        self.face_normal_in(&self.position_attr().ok_or(Error::NoPositions)?, f)
+    }
+
+    /// The area of face `f` (exact for planar polygons).
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`], [`Error::NoPositions`].
+    ///
+    /// ```
+    /// let cube = meshloom::shapes::cube();
+    /// let total: f64 = cube.faces().map(|f| cube.face_area(f).unwrap()).sum();
+    /// assert!((total - 6.0).abs() < 1e-12);
+    /// ```
+    pub fn face_area(&self, f: FaceKey) -> Result<f64> {
+        self.face_area_in(&self.position_attr().ok_or(Error::NoPositions)?, f)
+    }
+
+    /// The centroid of face `f`'s corners.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`], [`Error::NoPositions`].
+    ///
+    /// ```
+    /// let cube = meshloom::shapes::cube();
+    /// let f = cube.faces().next().unwrap();
+    /// assert_eq!(cube.face_centroid(f)?, [0.5, 0.5, 0.0]);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn face_centroid(&self, f: FaceKey) -> Result<[f64; 3]> {
+        self.face_centroid_in(&self.position_attr().ok_or(Error::NoPositions)?, f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::VertexKey;
+
+    #[test]
+    fn f32_points_measure_like_f64() {
+        let mut cube = crate::shapes::cube();
+        let p32 = cube.add_vertex_attr::<[f32; 3]>("p32").unwrap();
+        let keys: Vec<VertexKey> = cube.vertices().collect();
+        for &v in &keys {
+            let p = cube.position(v).unwrap();
+            cube.set_attr(&p32, v, p.map(|c| c as f32)).unwrap();
+        }
+        for f in cube.faces().collect::<Vec<_>>() {
+            assert_eq!(
+                cube.face_area_in(&p32, f).unwrap(),
+                cube.face_area(f).unwrap()
+            );
+            assert_eq!(
+                cube.face_normal_in(&p32, f).unwrap(),
+                cube.face_normal(f).unwrap()
+            );
+        }
+        cube.clear_attr(&p32, keys[0]).unwrap();
+        let e = cube.vertex(keys[0]).unwrap().edges().next().unwrap();
+        assert!(cube.edge_length_in(&p32, e).is_err());
+    }
+
+    #[cfg(feature = "glam")]
+    #[test]
+    fn glam_positions() {
+        use crate::attr::Attribute;
+        use crate::geometry::Point;
+        let mut cube = crate::shapes::cube();
+        let g = cube.add_vertex_attr::<glam::DVec3>("g").unwrap();
+        for v in cube.vertices().collect::<Vec<_>>() {
+            let p = cube.position(v).unwrap();
+            cube.set_attr(&g, v, glam::DVec3::from_xyz(p)).unwrap();
+        }
+        let f = cube.faces().next().unwrap();
+        assert_eq!(cube.face_centroid_in(&g, f).unwrap(), [0.5, 0.5, 0.0]);
+        let v = glam::Vec3::new(1.0, 2.0, 3.0);
+        assert_eq!(glam::Vec3::from_value(&v.to_value().unwrap()), Some(v));
+    }
+
+    #[cfg(feature = "mint")]
+    #[test]
+    fn mint_points() {
+        use crate::geometry::Point;
+        let p = mint::Point3::<f32>::from_xyz([1.0, 2.0, 3.0]);
+        assert_eq!(p.xyz(), [1.0, 2.0, 3.0]);
+    }
+}

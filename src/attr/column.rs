@@ -3,7 +3,9 @@
 use std::any::Any;
 use std::marker::PhantomData;
 
+use super::attribute::Attribute;
 use super::rule::Rule;
+use super::value::Value;
 
 /// The values of one attribute for every slot of one arena.
 ///
@@ -75,8 +77,9 @@ impl<T: Default + Clone, R> Column<T, R> {
         }
     }
 
+    /// Whether slot `i` holds a value.
     #[inline]
-    fn has(&self, i: usize) -> bool {
+    pub(crate) fn has(&self, i: usize) -> bool {
         match &self.present {
             None => i < self.values.len(),
             Some(bits) => bits.get(i / 64).is_some_and(|w| w >> (i % 64) & 1 == 1),
@@ -110,6 +113,12 @@ impl<T: Default + Clone, R> Column<T, R> {
         &self.values
     }
 
+    /// The presence bits (`None`: every slot has a value).
+    #[inline]
+    pub(crate) fn present_bits(&self) -> Option<&[u64]> {
+        self.present.as_deref()
+    }
+
     /// The raw values, mutably.
     pub(crate) fn raw_mut(&mut self) -> &mut [T] {
         &mut self.values
@@ -140,6 +149,18 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     fn is_present(&self, i: usize) -> bool;
     /// Heap bytes held.
     fn heap_bytes(&self) -> usize;
+    /// Slot `i`'s value as a dynamic [`Value`] (`None`: absent, or the type
+    /// is not portable).
+    fn value_at(&self, i: usize) -> Option<Value>;
+    /// Set slot `i` from a dynamic value (`None` clears it). `false` if the
+    /// value does not convert to the column's type (nothing changes).
+    fn set_value(&mut self, i: usize, value: Option<&Value>) -> bool;
+    /// The [`ValueType`](super::ValueType) values convert to (for serde
+    /// and file formats); `None` if they do not convert.
+    fn portable_type(&self) -> Option<super::ValueType>;
+    /// `"value type/rule type"`: the key typed columns are registered under
+    /// for deserialization.
+    fn type_key(&self) -> String;
     /// A boxed deep copy.
     fn clone_box(&self) -> Box<dyn ErasedColumn>;
     /// The value type's name, for errors and listings.
@@ -152,7 +173,7 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
 
 impl<T, R> ErasedColumn for Column<T, R>
 where
-    T: Clone + Default + Send + Sync + 'static,
+    T: Attribute,
     R: Rule<T>,
 {
     fn len(&self) -> usize {
@@ -176,6 +197,12 @@ where
     fn clear(&mut self, i: usize) {
         if i < self.values.len() {
             self.values[i] = T::default();
+            // A dense column stays dense: a vacant slot's presence is never
+            // read (keys to it are stale), and every operation that reuses
+            // the slot runs the rule on it.
+            if let Some(bits) = &mut self.present {
+                bits[i / 64] &= !(1 << (i % 64));
+            }
         }
     }
 
@@ -235,6 +262,41 @@ where
     fn heap_bytes(&self) -> usize {
         self.values.capacity() * std::mem::size_of::<T>()
             + self.present.as_ref().map_or(0, |b| b.capacity() * 8)
+    }
+
+    fn value_at(&self, i: usize) -> Option<Value> {
+        self.get(i)?.to_value()
+    }
+
+    fn set_value(&mut self, i: usize, value: Option<&Value>) -> bool {
+        if i >= self.values.len() {
+            return false;
+        }
+        match value {
+            None => {
+                self.set(i, None);
+                true
+            }
+            Some(v) => match T::from_value(v) {
+                Some(t) => {
+                    self.set(i, Some(t));
+                    true
+                }
+                None => false,
+            },
+        }
+    }
+
+    fn portable_type(&self) -> Option<super::ValueType> {
+        T::default().to_value().map(|v| v.value_type())
+    }
+
+    fn type_key(&self) -> String {
+        format!(
+            "{}/{}",
+            std::any::type_name::<T>(),
+            std::any::type_name::<R>()
+        )
     }
 
     fn clone_box(&self) -> Box<dyn ErasedColumn> {

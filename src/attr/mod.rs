@@ -8,13 +8,41 @@
 //! column's [`Rule`]. Positions are the vertex column named
 //! [`POSITION`], with the [`Interpolate`] rule.
 
+mod api;
+mod attribute;
 pub(crate) mod column;
+mod handle;
+mod infer;
 pub mod rule;
+pub mod rules;
+mod value;
+mod view;
 
+pub use api::AttrInfo;
+pub use attribute::Attribute;
 pub use column::Column;
-pub use rule::{Interpolate, Linear, Rule};
+pub use handle::{Attr, EdgeAttr, Element, FaceAttr, HalfedgeAttr, VertexAttr};
+pub use rule::{Linear, Rule};
+pub use rules::{Conserved, Contagion, Discard, Incompatible, Interpolate, KeepFirst};
+pub use value::{Dynamic, Value, ValueType};
+pub use view::{AttrView, AttrViewMut};
 
-use column::ErasedColumn;
+pub(crate) use column::ErasedColumn;
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Column ids are unique in the process, so a handle never names a column
+/// of another mesh by accident (a clone shares its original's ids).
+static NEXT_COLUMN_ID: AtomicU64 = AtomicU64::new(1);
+
+/// What a column set knows about a column beside its values.
+#[derive(Clone, Debug)]
+pub(crate) struct ColumnMeta {
+    /// Unique id, checked by handles.
+    pub(crate) id: u64,
+    /// The declared type of a dynamic column.
+    pub(crate) value_type: Option<ValueType>,
+}
 
 /// The name of the position column.
 pub const POSITION: &str = "position";
@@ -23,6 +51,8 @@ pub const POSITION: &str = "position";
 #[derive(Default)]
 pub(crate) struct Columns {
     pub(crate) cols: Vec<(String, Box<dyn ErasedColumn>)>,
+    /// One entry per column, in the same order.
+    pub(crate) meta: Vec<ColumnMeta>,
 }
 
 impl Clone for Columns {
@@ -33,6 +63,7 @@ impl Clone for Columns {
                 .iter()
                 .map(|(n, c)| (n.clone(), c.clone_box()))
                 .collect(),
+            meta: self.meta.clone(),
         }
     }
 }
@@ -53,8 +84,38 @@ impl Columns {
 
     /// Add a column (the caller checked the name is free).
     pub(crate) fn push(&mut self, name: &str, col: Box<dyn ErasedColumn>) -> usize {
+        self.push_dynamic(name, col, None)
+    }
+
+    /// Add a column with its declared dynamic type.
+    pub(crate) fn push_dynamic(
+        &mut self,
+        name: &str,
+        col: Box<dyn ErasedColumn>,
+        value_type: Option<ValueType>,
+    ) -> usize {
         self.cols.push((name.to_owned(), col));
+        self.meta.push(ColumnMeta {
+            id: NEXT_COLUMN_ID.fetch_add(1, Ordering::Relaxed),
+            value_type,
+        });
         self.cols.len() - 1
+    }
+
+    /// Remove column `i`; later columns move down by one.
+    pub(crate) fn remove(&mut self, i: usize) {
+        self.cols.remove(i);
+        self.meta.remove(i);
+    }
+
+    /// The index of the column with this id.
+    #[inline]
+    pub(crate) fn find_id(&self, index: usize, id: u64) -> Option<usize> {
+        if self.meta.get(index).is_some_and(|m| m.id == id) {
+            Some(index)
+        } else {
+            self.meta.iter().position(|m| m.id == id)
+        }
     }
 
     /// Typed access to column `i`.

@@ -1,4 +1,7 @@
 //! The merge/split rule trait and the linear-value trait interpolation needs.
+//! The stock rules live in [`rules`](super::rules).
+
+pub use super::rules::Interpolate;
 
 /// What happens to an attribute value when elements merge or split.
 ///
@@ -31,6 +34,16 @@ pub trait Rule<T>: 'static {
     /// split edge, the faces of a split face). `share` is the piece's portion
     /// of the source, in `[0, 1]`; the shares of all pieces sum to 1.
     fn split(source: Option<&T>, share: f64) -> Option<T>;
+
+    /// A value for an element that has none, inferred on demand from its
+    /// neighbours' values (`(value, weight)`, in ring order; the weights are
+    /// equal and sum to 1). The default infers nothing; [`Interpolate`]
+    /// takes the mean of the present neighbours. Called by
+    /// [`Mesh::infer_attr`](crate::Mesh::infer_attr), never by operations.
+    fn infer(neighbours: &[(Option<&T>, f64)]) -> Option<T> {
+        let _ = neighbours;
+        None
+    }
 }
 
 /// Values that can be scaled and added: what interpolation and conserved
@@ -80,60 +93,5 @@ impl<T: Linear + Copy, const N: usize> Linear for [T; N] {
         for (a, b) in self.iter_mut().zip(other) {
             a.add_scaled(b, w);
         }
-    }
-}
-
-/// Interpolate: the weighted mean of the present values (weights
-/// renormalised over them; an unweighted mean if their weights are all
-/// zero); a split piece keeps the source value. Positions, UVs, colours,
-/// normals.
-#[derive(Copy, Clone, Debug, Default)]
-pub struct Interpolate;
-
-impl<T: Linear> Rule<T> for Interpolate {
-    fn merge(inputs: &[(Option<&T>, f64)]) -> Option<T> {
-        let total: f64 = inputs
-            .iter()
-            .filter(|(v, _)| v.is_some())
-            .map(|(_, w)| *w)
-            .sum();
-        let present = inputs.iter().filter(|(v, _)| v.is_some()).count();
-        if present == 0 {
-            return None;
-        }
-        let mut out = T::zero();
-        for (v, w) in inputs {
-            if let Some(v) = v {
-                let w = if total > 0.0 {
-                    *w / total
-                } else {
-                    1.0 / present as f64
-                };
-                out.add_scaled(v, w);
-            }
-        }
-        Some(out)
-    }
-
-    fn split(source: Option<&T>, _share: f64) -> Option<T> {
-        source.cloned()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn interpolate_renormalises_over_present_values() {
-        let a = [0.0, 0.0, 0.0];
-        let b = [2.0, 4.0, 6.0];
-        let m = <Interpolate as Rule<[f64; 3]>>::merge(&[(Some(&a), 0.25), (Some(&b), 0.75)]);
-        assert_eq!(m, Some([1.5, 3.0, 4.5]));
-        let m = <Interpolate as Rule<[f64; 3]>>::merge(&[(None, 0.5), (Some(&b), 0.5)]);
-        assert_eq!(m, Some(b));
-        let m = <Interpolate as Rule<[f64; 3]>>::merge(&[(Some(&a), 0.0), (Some(&b), 0.0)]);
-        assert_eq!(m, Some([1.0, 2.0, 3.0]));
-        assert_eq!(<Interpolate as Rule<f64>>::merge(&[(None, 1.0)]), None);
     }
 }

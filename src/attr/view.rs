@@ -1,0 +1,218 @@
+//! Borrowed views of one attribute column, for hot loops and whole-column
+//! passes: `get` is a generation compare, a presence test that costs nothing
+//! on a dense column, and a slice read.
+
+use std::any::Any;
+use std::marker::PhantomData;
+
+use super::attribute::Attribute;
+use super::handle::Element;
+use super::value::{Value, ValueType};
+use crate::error::{Error, Result};
+use crate::slots::Slots;
+
+#[inline]
+fn bit(bits: Option<&[u64]>, i: usize) -> bool {
+    match bits {
+        None => true,
+        Some(b) => b.get(i / 64).is_some_and(|w| w >> (i % 64) & 1 == 1),
+    }
+}
+
+/// A read-only view of one attribute column, from
+/// [`Mesh::attr_view`](crate::Mesh::attr_view).
+///
+/// ```
+/// let mut mesh = meshloom::shapes::tetrahedron();
+/// let w = mesh.add_vertex_attr::<f64>("weight")?;
+/// let v = mesh.vertices().next().unwrap();
+/// mesh.set_attr(&w, v, 0.5)?;
+/// let view = mesh.attr_view(&w)?;
+/// assert_eq!(view.get(v), Some(&0.5));
+/// assert_eq!(view.iter().count(), 1); // the other vertices have no value
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+pub struct AttrView<'m, K, T> {
+    pub(crate) values: &'m [T],
+    pub(crate) present: Option<&'m [u64]>,
+    pub(crate) slots: &'m Slots,
+    pub(crate) shift: u32,
+    pub(crate) marker: PhantomData<K>,
+}
+
+impl<'m, K: Element, T> AttrView<'m, K, T> {
+    /// The value of `key`'s element; `None` if it has none or the key is
+    /// stale.
+    #[inline]
+    pub fn get(&self, key: K) -> Option<&'m T> {
+        let i = key.slot();
+        if !self
+            .slots
+            .is_current(i >> self.shift, key.generation_of_key())
+        {
+            return None;
+        }
+        let i = i as usize;
+        if bit(self.present, i) {
+            self.values.get(i)
+        } else {
+            None
+        }
+    }
+
+    /// Every live element that has a value, with it, in slot order (faces:
+    /// holes included).
+    pub fn iter(&self) -> impl Iterator<Item = (K, &'m T)> + '_ {
+        let (slots, shift, present) = (self.slots, self.shift, self.present);
+        self.values.iter().enumerate().filter_map(move |(i, v)| {
+            let g = slots.generation((i >> shift) as usize)?;
+            (g & 1 == 1 && bit(present, i)).then(|| (K::from_parts(i as u32, g), v))
+        })
+    }
+}
+
+/// A mutable view of one attribute column, from
+/// [`Mesh::attr_view_mut`](crate::Mesh::attr_view_mut).
+///
+/// `get_mut` and `iter_mut` hand out the stored values: on a dynamic column
+/// they can change a value's type; writers then convert or skip it.
+///
+/// ```
+/// let mut mesh = meshloom::shapes::tetrahedron();
+/// let w = mesh.add_vertex_attr::<f64>("weight")?;
+/// let keys: Vec<_> = mesh.vertices().collect();
+/// let mut view = mesh.attr_view_mut(&w)?;
+/// for &v in &keys {
+///     view.set(v, Some(1.0))?;
+/// }
+/// for (_, x) in view.iter_mut() {
+///     *x *= 3.0;
+/// }
+/// assert_eq!(mesh.attr(&w, keys[2])?, Some(&3.0));
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+pub struct AttrViewMut<'m, K, T> {
+    pub(crate) values: &'m mut Vec<T>,
+    pub(crate) present: &'m mut Option<Vec<u64>>,
+    pub(crate) slots: &'m Slots,
+    pub(crate) shift: u32,
+    pub(crate) value_type: Option<ValueType>,
+    pub(crate) name: &'m str,
+    /// The position column: values must be finite.
+    pub(crate) finite: bool,
+    pub(crate) marker: PhantomData<K>,
+}
+
+impl<K: Element, T: Attribute> AttrViewMut<'_, K, T> {
+    #[inline]
+    fn live(&self, key: K) -> Option<usize> {
+        let i = key.slot();
+        self.slots
+            .is_current(i >> self.shift, key.generation_of_key())
+            .then_some(i as usize)
+    }
+
+    /// The value of `key`'s element; `None` if it has none or the key is
+    /// stale.
+    #[inline]
+    pub fn get(&self, key: K) -> Option<&T> {
+        let i = self.live(key)?;
+        if bit(self.present.as_deref(), i) {
+            self.values.get(i)
+        } else {
+            None
+        }
+    }
+
+    /// The value of `key`'s element, mutably.
+    #[inline]
+    pub fn get_mut(&mut self, key: K) -> Option<&mut T> {
+        let i = self.live(key)?;
+        if bit(self.present.as_deref(), i) {
+            self.values.get_mut(i)
+        } else {
+            None
+        }
+    }
+
+    /// Set (`Some`) or clear (`None`) the value of `key`'s element.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`]; [`Error::AttributeType`] for a value of another
+    /// type than a dynamic column declares.
+    pub fn set(&mut self, key: K, value: Option<T>) -> Result<()> {
+        let i = self.live(key).ok_or(Error::StaleKey(key.any_key()))?;
+        if let (Some(ty), Some(v)) = (self.value_type, value.as_ref()) {
+            check_dynamic(K::KIND, self.name, ty, v)?;
+        }
+        if self.finite {
+            if let Some(p) = value
+                .as_ref()
+                .and_then(|v| (v as &dyn Any).downcast_ref::<[f64; 3]>())
+            {
+                if !p.iter().all(|c| c.is_finite()) {
+                    return Err(Error::NonFinitePosition {
+                        key: key.any_key(),
+                        position: *p,
+                    });
+                }
+            }
+        }
+        let len = self.values.len();
+        match value {
+            Some(v) => {
+                self.values[i] = v;
+                if let Some(bits) = self.present.as_mut() {
+                    bits[i / 64] |= 1 << (i % 64);
+                }
+            }
+            None => {
+                self.values[i] = T::default();
+                let bits = self
+                    .present
+                    .get_or_insert_with(|| vec![u64::MAX; len.div_ceil(64)]);
+                bits[i / 64] &= !(1 << (i % 64));
+            }
+        }
+        Ok(())
+    }
+
+    /// Every live element that has a value, with it, in slot order.
+    pub fn iter(&self) -> impl Iterator<Item = (K, &T)> + '_ {
+        let (slots, shift, present) = (self.slots, self.shift, self.present.as_deref());
+        self.values.iter().enumerate().filter_map(move |(i, v)| {
+            let g = slots.generation((i >> shift) as usize)?;
+            (g & 1 == 1 && bit(present, i)).then(|| (K::from_parts(i as u32, g), v))
+        })
+    }
+
+    /// Every live element that has a value, with it mutably, in slot order.
+    pub fn iter_mut(&mut self) -> impl Iterator<Item = (K, &mut T)> + '_ {
+        let (slots, shift, present) = (self.slots, self.shift, self.present.as_deref());
+        self.values
+            .iter_mut()
+            .enumerate()
+            .filter_map(move |(i, v)| {
+                let g = slots.generation((i >> shift) as usize)?;
+                (g & 1 == 1 && bit(present, i)).then(|| (K::from_parts(i as u32, g), v))
+            })
+    }
+}
+
+/// A value stored in a dynamic column must have the declared type.
+pub(crate) fn check_dynamic<T: Any>(
+    kind: crate::keys::ElementKind,
+    name: &str,
+    declared: ValueType,
+    value: &T,
+) -> Result<()> {
+    match (value as &dyn Any).downcast_ref::<Value>() {
+        Some(v) if v.value_type() != declared => Err(Error::AttributeType {
+            kind,
+            name: name.to_owned(),
+            expected: declared.name(),
+            found: v.value_type().name(),
+        }),
+        _ => Ok(()),
+    }
+}
