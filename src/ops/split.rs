@@ -132,6 +132,9 @@ impl Mesh {
         if self.is_hole_raw(f) {
             return Err(refuse("split_face", fk, Refusal::Hole));
         }
+        if va == vb {
+            return Err(refuse("split_face", fk, Refusal::Adjacent));
+        }
         let (mut ha, mut hb, mut pa, mut pb) = (None, None, None, None);
         let start = self.face_halfedge_raw(f);
         let mut prev = self.prev_of(start);
@@ -149,7 +152,7 @@ impl Mesh {
         let (Some(ha), Some(hb), Some(pa), Some(pb)) = (ha, hb, pa, pb) else {
             return Err(refuse("split_face", fk, Refusal::NotInFace));
         };
-        if va == vb || self.next_of(ha) == hb || self.next_of(hb) == ha {
+        if self.next_of(ha) == hb || self.next_of(hb) == ha {
             return Err(refuse("split_face", fk, Refusal::Adjacent));
         }
         if self.find_halfedge_raw(va, vb).is_some() {
