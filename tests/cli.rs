@@ -326,7 +326,14 @@ fn every_command_has_help_with_an_example() {
     let o = run(&["--help"]);
     assert_eq!(code(&o), 0);
     assert!(stdout(&o).contains("Examples:"));
-    for command in ["stats", "validate", "convert", "repair", "render"] {
+    for command in [
+        "stats",
+        "validate",
+        "convert",
+        "repair",
+        "triangulate",
+        "render",
+    ] {
         assert!(
             stdout(&o).contains(command),
             "top-level help lists {command}"
@@ -384,5 +391,47 @@ fn render_writes_a_png_of_the_requested_size() {
     ]);
     assert_eq!(code(&o), 1);
     assert!(!bad.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn triangulate_cuts_polygons_into_triangles() {
+    let dir = scratch("triangulate");
+    // Mixed 4- to 7-gons with boundary; χ and the boundary stay.
+    let rel = "polygons/cgal_double-torus-3-holes.off";
+    let out = dir.join("tri.off");
+    let o = run(&["triangulate", &shared(rel), path_str(&out), "--json"]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let j = json(&o);
+    assert_eq!(j["faces_before"], 201);
+    assert_eq!(j["left_as_they_were"], 0);
+    assert_eq!(j["faces"], j["triangles"]);
+    let m = manifest(rel);
+    let s = json(&run(&["stats", "--json", path_str(&out)]));
+    let corners: i64 = m["face_sizes"]
+        .split(' ')
+        .filter_map(|p| p.split_once(':'))
+        .map(|(d, c)| (d.parse::<i64>().unwrap() - 2) * c.parse::<i64>().unwrap())
+        .sum();
+    assert_eq!(s["faces"].as_i64(), Some(corners), "n-gon -> n-2 triangles");
+    assert_eq!(
+        s["euler_characteristic"].as_i64(),
+        m["euler_char"].parse().ok()
+    );
+    assert_eq!(
+        s["boundary_loops"].as_i64(),
+        m["boundary_loops"].parse().ok()
+    );
+    assert_eq!(s["vertices"].as_i64(), m["V"].parse().ok());
+    let mut degrees = s["face_degrees"].as_object().unwrap().keys();
+    assert_eq!(degrees.next().map(String::as_str), Some("3"));
+    assert_eq!(degrees.next(), None);
+    let o = run(&["triangulate", BUNDLED, path_str(&dir.join("e.ply"))]);
+    assert_eq!(code(&o), 0);
+    assert!(
+        stdout(&o).contains("5558 faces became 5558"),
+        "{}",
+        stdout(&o)
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -54,6 +54,14 @@ Example:
   meshloom repair scan.ply fixed.ply
   meshloom repair scan.ply fixed.off --json")]
     Repair(RepairArgs),
+    /// Cut every face of more than three sides into triangles (ear
+    /// clipping, so non-convex faces stay inside their outline); attributes
+    /// split with the faces.
+    #[command(after_help = "\
+Example:
+  meshloom triangulate quads.obj triangles.obj
+  meshloom triangulate part.off part.stl --json")]
+    Triangulate(TriangulateArgs),
     /// Draw a shaded picture (orthographic, flat or smooth shading,
     /// optional wireframe and boundary highlight) as PNG.
     #[command(after_help = "\
@@ -121,6 +129,22 @@ pub struct RepairArgs {
     /// Print the report as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+}
+
+/// `meshloom triangulate`.
+#[derive(Args, Debug)]
+pub struct TriangulateArgs {
+    /// The mesh file to read.
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// The mesh file to write (format from its extension).
+    #[arg(value_parser = mesh_path)]
+    pub output: PathBuf,
+    /// Print the summary as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub read: ReadArgs,
 }
 
 /// `meshloom render`.

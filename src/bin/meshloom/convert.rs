@@ -1,9 +1,11 @@
-//! `meshloom convert IN OUT [--repair]` and `meshloom repair IN OUT [--json]`.
+//! `meshloom convert IN OUT [--repair]`, `meshloom repair IN OUT [--json]`
+//! and `meshloom triangulate IN OUT [--json]`: read, change, write.
 
 use serde_json::json;
 
-use crate::cli::{ConvertArgs, ReadArgs, RepairArgs};
+use crate::cli::{ConvertArgs, ReadArgs, RepairArgs, TriangulateArgs};
 use crate::output::{self, to_json};
+use crate::progress::Progress;
 use crate::{input, Failure};
 
 /// Read one format, write another.
@@ -46,4 +48,41 @@ pub fn repair(args: &RepairArgs) -> Result<(), Failure> {
         stats.holes,
         stats.components
     ))
+}
+
+/// Read, triangulate every face of more than three sides, write.
+pub fn triangulate(args: &TriangulateArgs) -> Result<(), Failure> {
+    let (mut mesh, _) = input::read(&args.input, args.read)?;
+    let faces_before = mesh.face_count();
+    let left = {
+        let _progress = Progress::spinner("triangulating");
+        mesh.triangulate_all()
+    };
+    input::write(&mesh, &args.output)?;
+    let triangles = mesh
+        .faces()
+        .filter(|&f| mesh.face(f).is_ok_and(|v| v.degree() == 3))
+        .count();
+    if args.json {
+        return output::json(&json!({
+            "input": args.input.display().to_string(),
+            "output": args.output.display().to_string(),
+            "faces_before": faces_before,
+            "faces": mesh.face_count(),
+            "triangles": triangles,
+            "left_as_they_were": left.len(),
+        }));
+    }
+    let mut text = format!(
+        "{faces_before} faces became {} ({triangles} triangles)\nwrote {}\n",
+        mesh.face_count(),
+        args.output.display()
+    );
+    if !left.is_empty() {
+        text.push_str(&format!(
+            "{} faces left as they were: every way to cut them needs an edge that exists already\n",
+            left.len()
+        ));
+    }
+    output::print(&text)
 }

@@ -63,6 +63,7 @@ fn main() -> ExitCode {
         Command::Validate(a) => validate::run(&a),
         Command::Convert(a) => convert::convert(&a),
         Command::Repair(a) => convert::repair(&a),
+        Command::Triangulate(a) => convert::triangulate(&a),
         Command::Render(a) => render::run(&a),
     };
     match done {
