@@ -28,7 +28,7 @@ impl Report {
 
     /// Time `work` (after one untimed warm-up run) `runs` times; `setup`
     /// runs before each, untimed, and its output is handed to `work`.
-    pub fn time<S, T, R>(&mut self, name: &str, peer: Option<Peer>, mut setup: impl FnMut() -> S, mut work: impl FnMut(S) -> R) -> f64 {
+    pub fn time<S, R>(&mut self, name: &str, peer: Option<Peer>, mut setup: impl FnMut() -> S, mut work: impl FnMut(S) -> R) -> f64 {
         std::hint::black_box(work(setup()));
         let mut samples = Vec::with_capacity(self.runs);
         for _ in 0..self.runs {
