@@ -12,7 +12,11 @@ use crate::harness::{Peer, Report};
 /// The 250k-vertex grid: 500 x 500 vertices, each quad split in two.
 fn grid() -> Polygons {
     let n = 500u32;
-    let mut p = Polygons { positions: Vec::new(), offsets: vec![0], indices: Vec::new() };
+    let mut p = Polygons {
+        positions: Vec::new(),
+        offsets: vec![0],
+        indices: Vec::new(),
+    };
     for j in 0..n {
         for i in 0..n {
             p.positions.push([f64::from(i), f64::from(j), 0.0]);
@@ -46,14 +50,22 @@ fn one_ring_sum(m: &Mesh) -> usize {
 fn workload(r: &mut Report, name: &str, poly: &Polygons, build_ms: f64, ring_ms: f64) {
     r.time(
         &format!("build from buffers, {name}"),
-        Some(Peer { name: "pmp-library", seconds: build_ms / 1e3, ratio: 0.8 }),
+        Some(Peer {
+            name: "pmp-library",
+            seconds: build_ms / 1e3,
+            ratio: 0.8,
+        }),
         || (),
         |()| Mesh::from_buffers(poly).expect("valid"),
     );
     let mesh = Mesh::from_buffers(poly).expect("valid");
     r.time(
         &format!("one-ring neighbour sums, {name}"),
-        Some(Peer { name: "pmp-library", seconds: ring_ms / 1e3, ratio: 1.0 }),
+        Some(Peer {
+            name: "pmp-library",
+            seconds: ring_ms / 1e3,
+            ratio: 1.0,
+        }),
         || (),
         |()| one_ring_sum(&mesh),
     );

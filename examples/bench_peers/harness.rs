@@ -22,13 +22,25 @@ pub struct Peer {
 impl Report {
     /// A report timing each row `runs` times.
     pub fn new(runs: usize) -> Report {
-        println!("{:<48} {:>11} {:>11} {:>8} {:>7}  verdict", "workload", "meshloom", "peer", "ratio", "target");
-        Report { runs: runs.max(1), failures: 0 }
+        println!(
+            "{:<48} {:>11} {:>11} {:>8} {:>7}  verdict",
+            "workload", "meshloom", "peer", "ratio", "target"
+        );
+        Report {
+            runs: runs.max(1),
+            failures: 0,
+        }
     }
 
     /// Time `work` (after one untimed warm-up run) `runs` times; `setup`
     /// runs before each, untimed, and its output is handed to `work`.
-    pub fn time<S, R>(&mut self, name: &str, peer: Option<Peer>, mut setup: impl FnMut() -> S, mut work: impl FnMut(S) -> R) -> f64 {
+    pub fn time<S, R>(
+        &mut self,
+        name: &str,
+        peer: Option<Peer>,
+        mut setup: impl FnMut() -> S,
+        mut work: impl FnMut(S) -> R,
+    ) -> f64 {
         std::hint::black_box(work(setup()));
         let mut samples = Vec::with_capacity(self.runs);
         for _ in 0..self.runs {
@@ -76,7 +88,15 @@ impl Report {
                 if !ok {
                     self.failures += 1;
                 }
-                println!("{:<48} {:>9.1}{unit} {:>9.1}{unit} {:>8.2} {:>7}  {} ({who})", name, value, bound, value / bound, "1.00", if ok { "meets" } else { "MISSES" });
+                println!(
+                    "{:<48} {:>9.1}{unit} {:>9.1}{unit} {:>8.2} {:>7}  {} ({who})",
+                    name,
+                    value,
+                    bound,
+                    value / bound,
+                    "1.00",
+                    if ok { "meets" } else { "MISSES" }
+                );
             }
             None => println!("{:<48} {:>9.1}{unit}", name, value),
         }
@@ -84,6 +104,9 @@ impl Report {
 
     /// Print the summary line.
     pub fn finish(self) {
-        println!("\n{} of the rows with a target miss it (medians of {} runs)", self.failures, self.runs);
+        println!(
+            "\n{} of the rows with a target miss it (medians of {} runs)",
+            self.failures, self.runs
+        );
     }
 }
