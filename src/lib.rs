@@ -65,3 +65,8 @@ pub use mesh::Mesh;
 pub use stats::Stats;
 pub use validate::ValidationError;
 pub use view::{EdgeView, FaceView, HalfedgeView, VertexView};
+
+/// The README's examples, compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -435,3 +435,25 @@ fn triangulate_cuts_polygons_into_triangles() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn readme_quickstart_output_is_what_the_tool_prints() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let readme = std::fs::read_to_string(format!("{root}/README.md")).expect("README.md");
+    let shown = readme
+        .split_once("The first prints:\n\n```text\n")
+        .and_then(|(_, rest)| rest.split_once("```"))
+        .map(|(block, _)| block)
+        .expect("the README shows the quickstart's output");
+    let o = Command::new(BIN)
+        .args(["stats", "data/elephant.off"])
+        .current_dir(root)
+        .output()
+        .expect("runs");
+    assert_eq!(code(&o), 0);
+    assert_eq!(stdout(&o), shown);
+    // The quickstart's commands are the two the README promises.
+    assert!(readme.contains(
+        "```sh\ncargo run --release -- stats data/elephant.off\ncargo test --all-features\n```"
+    ));
+}
