@@ -49,9 +49,10 @@ pub struct Stats {
 }
 
 impl Stats {
-    /// Whether the mesh has no boundary.
+    /// Whether the mesh has faces and no boundary (an empty mesh is not
+    /// called closed).
     pub fn is_closed(&self) -> bool {
-        self.holes == 0
+        self.holes == 0 && self.faces > 0
     }
 }
 
@@ -250,6 +251,8 @@ mod tests {
         assert_eq!(s.genus, None);
         assert_eq!(s.bounding_box, None);
         assert!(s.face_degrees.is_empty());
+        assert!(!s.is_closed());
+        assert!(s.to_string().contains("closed                no\n"));
     }
 
     #[test]
