@@ -243,10 +243,11 @@ fn build_buffers(polygons: &Polygons, want_keys: bool) -> Result<Built> {
         || p.offsets.windows(2).any(|w| w[1] < w[0])
         || p.offsets
             .last()
-            .is_some_and(|&o| o as usize != p.indices.len())
+            .map_or(!p.indices.is_empty(), |&o| o as usize != p.indices.len())
     {
-        return Err(Error::Build(BuildError::TooLarge {
-            what: "offsets are not a non-decreasing cut of the index array",
+        return Err(Error::Build(BuildError::MalformedOffsets {
+            offsets: p.offsets.len(),
+            indices: p.indices.len(),
         }));
     }
     let (positions, n) = if p.positions.is_empty() {
