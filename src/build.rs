@@ -243,10 +243,11 @@ fn build_buffers(polygons: &Polygons, want_keys: bool) -> Result<Built> {
         || p.offsets.windows(2).any(|w| w[1] < w[0])
         || p.offsets
             .last()
-            .is_some_and(|&o| o as usize != p.indices.len())
+            .map_or(!p.indices.is_empty(), |&o| o as usize != p.indices.len())
     {
-        return Err(Error::Build(BuildError::TooLarge {
-            what: "offsets are not a non-decreasing cut of the index array",
+        return Err(Error::Build(BuildError::MalformedOffsets {
+            offsets: p.offsets.len(),
+            indices: p.indices.len(),
         }));
     }
     let (positions, n) = if p.positions.is_empty() {
@@ -389,7 +390,10 @@ fn build_flat(
 
     // 2. Drop unreferenced vertices; remap to dense slots (only when some
     //    vertex is unreferenced: otherwise slots are the input indices).
-    let mut used = vec![0u64; n_in.div_ceil(64)];
+    // Sized by the largest index, not the vertex count: a caller may claim
+    // billions of vertices and use three.
+    let span = indices.iter().max().map_or(0, |&m| m as usize + 1);
+    let mut used = vec![0u64; span.div_ceil(64)];
     for &i in indices {
         used[i as usize / 64] |= 1 << (i % 64);
     }
@@ -397,7 +401,7 @@ fn build_flat(
     let unreferenced = n_in - nv;
     // Input index of each slot; `None` when it is the identity.
     let input_of_slot: Option<Vec<u32>> = (unreferenced > 0).then(|| {
-        (0..n_in as u32)
+        (0..span as u32)
             .filter(|&i| used[i as usize / 64] >> (i % 64) & 1 == 1)
             .collect()
     });
@@ -406,7 +410,7 @@ fn build_flat(
     let indices: Cow<'_, [u32]> = match &input_of_slot {
         None => Cow::Borrowed(indices),
         Some(map) => {
-            let mut slot_of = vec![NONE; n_in];
+            let mut slot_of = vec![NONE; span];
             for (slot, &i) in map.iter().enumerate() {
                 slot_of[i as usize] = slot as u32;
             }
@@ -637,6 +641,7 @@ fn build_flat(
     debug_assert_eq!(mesh.validate(), Ok(()));
 
     let (vertices, faces) = if want_keys {
+        // One entry per input vertex: the caller asked for this map.
         let mut vertices = vec![None; n_in];
         for slot in 0..nv as u32 {
             vertices[input(slot)] = Some(VertexKey::new(slot, 1));

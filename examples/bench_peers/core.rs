@@ -5,35 +5,10 @@
 //! one-ring <= 1.0x, memory <= 132 bytes per vertex (CGAL Surface_mesh with
 //! f64 and no stale-key detection).
 
+use meshloom::shapes::{self, GridFaces};
 use meshloom::{Mesh, Polygons};
 
 use crate::harness::{Peer, Report};
-
-/// The 250k-vertex grid: 500 x 500 vertices, each quad split in two.
-fn grid() -> Polygons {
-    let n = 500u32;
-    let mut p = Polygons {
-        positions: Vec::new(),
-        offsets: vec![0],
-        indices: Vec::new(),
-    };
-    for j in 0..n {
-        for i in 0..n {
-            p.positions.push([f64::from(i), f64::from(j), 0.0]);
-        }
-    }
-    for j in 0..n - 1 {
-        for i in 0..n - 1 {
-            let a = j * n + i;
-            let (b, c, d) = (a + 1, a + n + 1, a + n);
-            p.indices.extend_from_slice(&[a, b, c, a, c, d]);
-            let k = p.indices.len() as u32;
-            p.offsets.push(k - 3);
-            p.offsets.push(k);
-        }
-    }
-    p
-}
 
 fn one_ring_sum(m: &Mesh) -> usize {
     let mut s = 0usize;
@@ -79,5 +54,15 @@ fn workload(r: &mut Report, name: &str, poly: &Polygons, build_ms: f64, ring_ms:
 
 /// Run the core rows.
 pub fn run(r: &mut Report) {
-    workload(r, "grid 250k vertices", &grid(), 49.0, 2.5);
+    // 499 x 499 cells: 500 x 500 = 250,000 vertices, each quad split in two.
+    let grid = shapes::grid_polygons(499, 499, GridFaces::Triangles);
+    workload(r, "grid 250k vertices", &grid, 49.0, 2.5);
+    // 10 * 4^7 + 2 = 163,842 vertices.
+    workload(
+        r,
+        "icosphere(7) 164k vertices",
+        &shapes::icosphere_polygons(7),
+        33.0,
+        3.1,
+    );
 }
