@@ -23,6 +23,7 @@
 
 use std::io::{Read, Write};
 
+use super::attrs::{Data, SoupColumn};
 use super::error::Error;
 use super::soup::Soup;
 use super::text::{parse_f64, parse_i64, Lines, Tokens};
@@ -98,6 +99,9 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
     let mut soup = Soup::new();
     let mut refs = CornerRefs::default();
     let mut lines = Lines::new(bytes);
+    let mut groups = Names::new("group");
+    let mut objects = Names::new("object");
+    let mut materials = Names::new("material");
     // Reserve by the input's size only: about 30 bytes per statement.
     soup.polygons.positions.reserve(bytes.len() / 96);
     soup.polygons.indices.reserve(bytes.len() / 16);
@@ -145,10 +149,118 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                 }
                 soup.end_face(lines.line);
             }
+            b"g" | b"o" | b"usemtl" => {
+                let rest = line.trim_ascii();
+                let name = rest[key.len()..].trim_ascii();
+                let name = String::from_utf8_lossy(name).into_owned();
+                let face = soup.face_at.len();
+                match key {
+                    b"g" => groups.name(face, name),
+                    b"o" => objects.name(face, name),
+                    _ => materials.name(face, name),
+                }
+            }
             _ => {}
         }
     }
+    let nf = soup.face_at.len();
+    let nc = soup.polygons.indices.len();
+    let a = &mut soup.attrs;
+    a.face.extend(objects.finish(nf));
+    a.face.extend(groups.finish(nf));
+    a.face.extend(materials.finish(nf));
+    if !refs.texcoord_of.is_empty() {
+        a.corner.push(corner_column(
+            "texcoord",
+            &refs.texcoord_of,
+            &refs.texcoords,
+            nc,
+            Data::Vec2,
+        ));
+    }
+    if !refs.normal_of.is_empty() {
+        a.corner.push(corner_column(
+            "normal",
+            &refs.normal_of,
+            &refs.normals,
+            nc,
+            Data::Vec3,
+        ));
+    }
     Ok(soup)
+}
+
+/// A corner column from per-corner references into `values`.
+fn corner_column<T: Copy + Default>(
+    name: &str,
+    of: &[u32],
+    values: &[T],
+    corners: usize,
+    wrap: fn(Vec<T>) -> Data,
+) -> SoupColumn {
+    let mut present = vec![false; corners];
+    let mut data = vec![T::default(); corners];
+    for (c, &i) in of.iter().enumerate() {
+        if let Some(v) = values.get(i as usize) {
+            data[c] = *v;
+            present[c] = true;
+        }
+    }
+    let all = present.iter().all(|&p| p);
+    SoupColumn {
+        name: name.to_owned(),
+        data: wrap(data),
+        present: (!all).then_some(present),
+    }
+}
+
+/// The current name of a `g`, `o` or `usemtl` statement, per face.
+struct Names {
+    column: &'static str,
+    current: Option<String>,
+    values: Vec<String>,
+    present: Vec<bool>,
+    any: bool,
+}
+
+impl Names {
+    fn new(column: &'static str) -> Names {
+        Names {
+            column,
+            current: None,
+            values: Vec::new(),
+            present: Vec::new(),
+            any: false,
+        }
+    }
+
+    /// From face `face` on, the name is `name`.
+    fn name(&mut self, face: usize, name: String) {
+        self.fill(face);
+        self.current = Some(name);
+        self.any = true;
+    }
+
+    fn fill(&mut self, upto: usize) {
+        let current = self.current.clone();
+        while self.values.len() < upto {
+            self.present.push(current.is_some());
+            self.values.push(current.clone().unwrap_or_default());
+        }
+    }
+
+    fn finish(mut self, faces: usize) -> Option<SoupColumn> {
+        if !self.any {
+            return None;
+        }
+        self.fill(faces);
+        let all = self.present.iter().all(|&p| p);
+        Some(SoupColumn {
+            name: self.column.to_owned(),
+            data: Data::Text(self.values),
+            present: (!all).then_some(self.present),
+        })
+    }
 }
 
 /// One `v[/vt][/vn]` corner of an `f` statement.

@@ -26,9 +26,12 @@
 
 use std::io::{Read, Write};
 
+use super::attrs::{Collector, Data};
 use super::error::{Error, Location};
 use super::soup::Soup;
-use super::text::{capped, next_count, next_f64, parse_i64, strip_comment, Lines, Tokens};
+use super::text::{
+    capped, next_count, next_f64, parse_f64, parse_i64, strip_comment, Lines, Tokens,
+};
 use super::{emit, polygons_of, slurp, ReadOptions};
 use crate::mesh::Mesh;
 use crate::repair::RepairReport;
@@ -128,6 +131,28 @@ fn content<'a>(lines: &mut Lines<'a>) -> Option<&'a [u8]> {
     None
 }
 
+/// The first `N` numbers of `rest`, taken off it.
+fn take<const N: usize>(rest: &mut &[f64]) -> Option<[f64; N]> {
+    let (head, tail) = rest.split_first_chunk::<N>()?;
+    *rest = tail;
+    Some(*head)
+}
+
+/// An RGB or RGBA colour in 0..=1; integer components (any above 1) are
+/// read as 0..=255. `None` for other lengths.
+fn colour(c: &[f64]) -> Option<[f64; 4]> {
+    let scale = if c.iter().any(|&x| x > 1.0) && c.iter().all(|x| x.fract() == 0.0) {
+        255.0
+    } else {
+        1.0
+    };
+    match *c {
+        [r, g, b] => Some([r / scale, g / scale, b / scale, 1.0]),
+        [r, g, b, a] => Some([r / scale, g / scale, b / scale, a / scale]),
+        _ => None,
+    }
+}
+
 /// Make sure `tokens` has one more token, taking the next content line if
 /// it is used up.
 fn refill<'a>(lines: &mut Lines<'a>, tokens: &mut Tokens<'a>) -> Result<(), Error> {
@@ -211,8 +236,14 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
     soup.polygons.offsets.reserve(capped(nf, rest, 4));
     soup.face_at.reserve(capped(nf, rest, 4));
     soup.polygons.indices.reserve(capped(3 * nf, rest, 2));
-    let _ = (kw.colors, kw.normals, kw.texcoords);
 
+    let mut w_col = Collector::<f64>::new("w");
+    let mut normal_col = Collector::<[f64; 3]>::new("normal");
+    let mut vcolor_col = Collector::<[f64; 4]>::new("color");
+    let mut texcoord_col = Collector::<[f64; 2]>::new("texcoord");
+    let mut fcolor_col = Collector::<[f64; 4]>::new("color");
+    let mut findex_col = Collector::<f64>::new("color_index");
+    let mut extra: Vec<f64> = Vec::new();
     for i in 0..nv {
         let line = content(&mut lines).ok_or_else(|| Error::Truncated {
             at: lines.end(),
@@ -220,21 +251,41 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
         })?;
         let mut t = Tokens::new(line);
         let at = || lines.here();
-        let x = next_f64(&mut t, at, "a vertex coordinate")?;
-        let y = if dim > 1 {
-            next_f64(&mut t, at, "a vertex coordinate")?
-        } else {
-            0.0
-        };
-        let z = if dim > 2 {
-            next_f64(&mut t, at, "a vertex coordinate")?
-        } else {
-            0.0
-        };
-        for _ in 3..dim {
-            next_f64(&mut t, at, "a vertex coordinate")?;
+        let mut p = [0.0; 3];
+        for c in p.iter_mut().take(dim) {
+            *c = next_f64(&mut t, at, "a vertex coordinate")?;
         }
-        soup.polygons.positions.push([x, y, z]);
+        for k in 3..dim {
+            let x = next_f64(&mut t, at, "a vertex coordinate")?;
+            if k == 3 {
+                w_col.set(i, x);
+            }
+        }
+        soup.polygons.positions.push(p);
+        if kw.normals || kw.colors || kw.texcoords {
+            extra.clear();
+            for tok in t {
+                extra.push(parse_f64(tok).ok_or_else(|| Error::syntax(at(), "a number", tok))?);
+            }
+            let mut rest = &extra[..];
+            if kw.normals {
+                let [x, y, z] = take::<3>(&mut rest)
+                    .ok_or_else(|| Error::syntax(at(), "three normal coordinates (NOFF)", line))?;
+                normal_col.set(i, [x, y, z]);
+            }
+            if kw.colors {
+                let n = rest.len().saturating_sub(if kw.texcoords { 2 } else { 0 });
+                if let Some(c) = colour(&rest[..n]) {
+                    vcolor_col.set(i, c);
+                }
+                rest = &rest[n..];
+            }
+            if kw.texcoords {
+                let [s_, t_] = take::<2>(&mut rest)
+                    .ok_or_else(|| Error::syntax(at(), "two texture coordinates (STOFF)", line))?;
+                texcoord_col.set(i, [s_, t_]);
+            }
+        }
     }
     for i in 0..nf {
         let line = content(&mut lines).ok_or_else(|| Error::Truncated {
@@ -269,25 +320,37 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
             soup.polygons.indices.push(index as u32);
         }
         // An optional colour: a map index, RGB or RGBA, ints or floats.
-        let mut extra = 0;
+        extra.clear();
         for tok in t.by_ref() {
-            if super::text::parse_f64(tok).is_none() {
+            let x = parse_f64(tok).ok_or_else(|| {
+                Error::syntax(at(), "a colour component or the end of the line", tok)
+            })?;
+            extra.push(x);
+        }
+        match extra.len() {
+            0 => {}
+            1 => findex_col.set(i, extra[0]),
+            3 | 4 => {
+                if let Some(c) = colour(&extra) {
+                    fcolor_col.set(i, c);
+                }
+            }
+            _ => {
                 return Err(Error::syntax(
                     at(),
-                    "a colour component or the end of the line",
-                    tok,
-                ));
+                    format!("{k} vertex indices and a colour of 1, 3 or 4 components"),
+                    line,
+                ))
             }
-            extra += 1;
-        }
-        if extra > 4 {
-            return Err(Error::syntax(
-                at(),
-                format!("{k} vertex indices and at most 4 colour components"),
-                line,
-            ));
         }
         soup.end_face(lines.line);
     }
+    let a = &mut soup.attrs;
+    a.vertex.extend(w_col.finish(nv, Data::Scalar));
+    a.vertex.extend(normal_col.finish(nv, Data::Vec3));
+    a.vertex.extend(vcolor_col.finish(nv, Data::Vec4));
+    a.vertex.extend(texcoord_col.finish(nv, Data::Vec2));
+    a.face.extend(fcolor_col.finish(nf, Data::Vec4));
+    a.face.extend(findex_col.finish(nf, Data::Scalar));
     Ok(soup)
 }
