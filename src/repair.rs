@@ -389,12 +389,14 @@ impl Soup {
         for f in 0..self.face_count() {
             let r = self.face(f);
             let n = r.len();
-            // Keep corner i unless it repeats the corner before it (cyclically).
+            // Keep a corner unless the corner after it (cyclically) is the
+            // same vertex: the last of each run stays, the first corner of
+            // the face stays first.
             let corners: Vec<u32> = r
                 .clone()
                 .filter(|&c| {
-                    let prev = if c == r.start { r.end - 1 } else { c - 1 };
-                    n < 2 || self.indices[c] != self.indices[prev]
+                    let next = if c + 1 == r.end { r.start } else { c + 1 };
+                    n < 2 || self.indices[c] != self.indices[next]
                 })
                 .map(|c| c as u32)
                 .collect();

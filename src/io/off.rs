@@ -33,8 +33,10 @@ use super::text::{
     capped, next_count, next_f64, parse_f64, parse_i64, strip_comment, Lines, Tokens,
 };
 use super::{emit, polygons_of, slurp, ReadOptions};
+use crate::attr::Value;
 use crate::mesh::Mesh;
 use crate::repair::RepairReport;
+use crate::ElementKind;
 
 /// Read an OFF mesh, strictly.
 ///
@@ -58,25 +60,98 @@ pub fn read_off_with(
 }
 
 /// Write a mesh as ascii OFF: positions with every digit needed to read
-/// them back exactly, faces as index lists (holes are not written).
+/// them back exactly, faces as index lists (holes are not written). Vertex
+/// attributes `w` (a number), `normal`, `color` (RGBA) and `texcoord` make
+/// a `[ST][C][N][4]OFF` header with those on every vertex line; a face
+/// attribute `color` (RGBA) is written after each face's indices, and
+/// `color_index` where there is no colour.
 ///
 /// # Errors
 /// [`Error::Unwritable`] without positions; [`Error::Io`].
 pub fn write_off(mesh: &Mesh, writer: impl Write) -> Result<(), Error> {
-    let p = polygons_of(mesh)?;
+    let (p, maps) = polygons_of(mesh)?;
+    let io = Error::io;
+    let vertex_cols = |name: &str, len: usize| -> Option<Vec<Vec<f64>>> {
+        let has = mesh
+            .attr_info(ElementKind::Vertex)
+            .iter()
+            .any(|a| a.name == name);
+        has.then(|| {
+            maps.vertices
+                .iter()
+                .map(|&v| {
+                    numbers(mesh.attr_value(name, v), len).unwrap_or_else(|| {
+                        // No value: zeros (an opaque black colour).
+                        let mut z = vec![0.0; len];
+                        if len == 4 {
+                            z[3] = 1.0;
+                        }
+                        z
+                    })
+                })
+                .collect()
+        })
+    };
+    let w = vertex_cols("w", 1);
+    let normal = vertex_cols("normal", 3);
+    let color = vertex_cols("color", 4);
+    let texcoord = vertex_cols("texcoord", 2);
+    let face_has = |name: &str| {
+        mesh.attr_info(ElementKind::Face)
+            .iter()
+            .any(|a| a.name == name)
+    };
+    let (fcolor, findex) = (face_has("color"), face_has("color_index"));
     let mut out = Vec::with_capacity(32 * (p.positions.len() + p.indices.len()));
-    writeln!(out, "OFF\n{} {} 0", p.positions.len(), p.face_count()).map_err(Error::io)?;
-    for q in &p.positions {
-        writeln!(out, "{} {} {}", q[0], q[1], q[2]).map_err(Error::io)?;
+    let keyword = format!(
+        "{}{}{}{}OFF",
+        if texcoord.is_some() { "ST" } else { "" },
+        if color.is_some() { "C" } else { "" },
+        if normal.is_some() { "N" } else { "" },
+        if w.is_some() { "4" } else { "" },
+    );
+    writeln!(out, "{keyword}\n{} {} 0", p.positions.len(), p.face_count()).map_err(io)?;
+    for (i, q) in p.positions.iter().enumerate() {
+        write!(out, "{} {} {}", q[0], q[1], q[2]).map_err(io)?;
+        for col in [&w, &normal, &color, &texcoord].into_iter().flatten() {
+            for x in &col[i] {
+                write!(out, " {x}").map_err(io)?;
+            }
+        }
+        out.push(b'\n');
     }
-    for f in p.faces() {
-        write!(out, "{}", f.len()).map_err(Error::io)?;
-        for i in f {
-            write!(out, " {i}").map_err(Error::io)?;
+    for (i, f) in p.faces().enumerate() {
+        write!(out, "{}", f.len()).map_err(io)?;
+        for v in f {
+            write!(out, " {v}").map_err(io)?;
+        }
+        let key = maps.faces[i];
+        let colour = fcolor
+            .then(|| numbers(mesh.attr_value("color", key), 4))
+            .flatten()
+            .or_else(|| {
+                findex
+                    .then(|| numbers(mesh.attr_value("color_index", key), 1))
+                    .flatten()
+            });
+        for x in colour.unwrap_or_default() {
+            write!(out, " {x}").map_err(io)?;
         }
         out.push(b'\n');
     }
     emit(writer, &out)
+}
+
+/// `len` numbers from an attribute value (a number or a list), padded
+/// with zeros; `None` where the element has no value.
+fn numbers(value: crate::Result<Option<Value>>, len: usize) -> Option<Vec<f64>> {
+    let mut xs: Vec<f64> = match value {
+        Ok(Some(Value::List(items))) => items.iter().map(|x| x.as_f64().unwrap_or(0.0)).collect(),
+        Ok(Some(v)) => v.as_f64().into_iter().collect(),
+        _ => return None,
+    };
+    xs.resize(len, 0.0);
+    Some(xs)
 }
 
 /// The header keyword's flags.

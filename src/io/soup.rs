@@ -132,7 +132,7 @@ impl Soup {
                 },
             ),
             BuildError::NonManifoldEdge { a, b, faces } => (
-                f(faces[0]),
+                f(faces[2]),
                 BuildError::NonManifoldEdge {
                     a: v(a),
                     b: v(b),
