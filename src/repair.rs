@@ -201,6 +201,31 @@ pub struct Provenance {
 /// # Complexity
 /// O(C log C) for C corners (edges are grouped by sorting).
 pub fn repair(polygons: &mut Polygons, options: &RepairOptions) -> (RepairReport, Provenance) {
+    repair_with(polygons, options, &[])
+}
+
+/// [`repair`], where vertices weld only when their positions are identical
+/// and their `weld_class` is the same (one class per distinct set of
+/// attribute values, say); an empty `weld_class` puts every vertex in one.
+///
+/// ```
+/// use meshloom::repair::{repair_with, RepairOptions};
+/// use meshloom::Polygons;
+/// // Two triangles touching at two copies of one position, with different
+/// // colours: they stay apart.
+/// let mut p = Polygons {
+///     positions: vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0; 3], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]],
+///     offsets: vec![0, 3, 6],
+///     indices: vec![0, 1, 2, 3, 4, 5],
+/// };
+/// let (report, _) = repair_with(&mut p, &RepairOptions::all(), &[0, 0, 0, 1, 1, 1]);
+/// assert_eq!(report.welded_vertices, 0);
+/// ```
+pub fn repair_with(
+    polygons: &mut Polygons,
+    options: &RepairOptions,
+    weld_class: &[u32],
+) -> (RepairReport, Provenance) {
     let nv = if polygons.positions.is_empty() {
         polygons.indices.iter().max().map_or(0, |&m| m as usize + 1)
     } else {
@@ -224,7 +249,7 @@ pub fn repair(polygons: &mut Polygons, options: &RepairOptions) -> (RepairReport
     soup.prov.corner_source = (0..soup.indices.len() as u32).collect();
     let mut report = RepairReport::default();
     if options.weld_vertices {
-        report.welded_vertices = soup.weld();
+        report.welded_vertices = soup.weld(weld_class);
     }
     if options.drop_degenerate_faces {
         (report.collapsed_corners, report.degenerate_faces) = soup.drop_degenerate();
@@ -325,16 +350,19 @@ impl Soup {
         self.prov.corner_source = corner_source;
     }
 
-    fn weld(&mut self) -> usize {
+    fn weld(&mut self, class: &[u32]) -> usize {
         if self.positions.is_empty() {
             return 0;
         }
-        let mut first: HashMap<[u64; 3], u32> = HashMap::with_capacity(self.positions.len());
+        let mut first: HashMap<([u64; 3], u32), u32> = HashMap::with_capacity(self.positions.len());
         let mut new_of = vec![NONE; self.positions.len()];
         let mut n = 0u32;
         let mut rep = vec![0u32; self.positions.len()];
         for (v, p) in self.positions.iter().enumerate() {
-            let key = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
+            let key = (
+                [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()],
+                class.get(v).copied().unwrap_or(0),
+            );
             let r = *first.entry(key).or_insert(v as u32);
             rep[v] = r;
             if r == v as u32 {
@@ -361,12 +389,14 @@ impl Soup {
         for f in 0..self.face_count() {
             let r = self.face(f);
             let n = r.len();
-            // Keep corner i unless it repeats the corner before it (cyclically).
+            // Keep a corner unless the corner after it (cyclically) is the
+            // same vertex: the last of each run stays, the first corner of
+            // the face stays first.
             let corners: Vec<u32> = r
                 .clone()
                 .filter(|&c| {
-                    let prev = if c == r.start { r.end - 1 } else { c - 1 };
-                    n < 2 || self.indices[c] != self.indices[prev]
+                    let next = if c + 1 == r.end { r.start } else { c + 1 };
+                    n < 2 || self.indices[c] != self.indices[next]
                 })
                 .map(|c| c as u32)
                 .collect();

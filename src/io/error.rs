@@ -68,8 +68,10 @@ impl fmt::Display for Location {
 /// file and, where it can, the line (text) or byte offset (binary data).
 ///
 /// ```
-/// let err = meshloom::io::read_off("OFF\n3 1 0\n0 0 0\n1 0 0\n".as_bytes()).unwrap_err();
-/// assert_eq!(err.to_string(), "<input>:5: unexpected end of input: expected vertex 3 of 3");
+/// let off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
+/// let err = meshloom::io::read_off(off.as_bytes()).unwrap_err();
+/// assert_eq!(err.line(), Some(6));
+/// assert_eq!(err.to_string(), "<input>:6: vertex index 7 is out of range (there are 3 vertices)");
 /// ```
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]

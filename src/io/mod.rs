@@ -198,15 +198,15 @@ fn emit(mut writer: impl std::io::Write, bytes: &[u8]) -> Result<(), Error> {
         .map_err(Error::io)
 }
 
-/// The mesh's positions and faces as dense buffers, or an error if it has
-/// no positions.
-fn polygons_of(mesh: &Mesh) -> Result<crate::build::Polygons, Error> {
-    let (p, _) = mesh.to_polygons();
+/// The mesh's positions and faces as dense buffers with their keys, or an
+/// error if it has no positions.
+fn polygons_of(mesh: &Mesh) -> Result<(crate::build::Polygons, crate::build::IndexMaps), Error> {
+    let (p, maps) = mesh.to_polygons();
     if p.positions.len() != mesh.vertex_count() {
         return Err(Error::Unwritable {
             at: Location::whole(),
             what: "the mesh has no vertex positions".into(),
         });
     }
-    Ok(p)
+    Ok((p, maps))
 }

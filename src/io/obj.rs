@@ -21,12 +21,15 @@
 //! # Ok::<(), meshloom::io::Error>(())
 //! ```
 
+use std::collections::HashMap;
 use std::io::{Read, Write};
 
+use super::attrs::{Data, SoupColumn};
 use super::error::Error;
 use super::soup::Soup;
 use super::text::{parse_f64, parse_i64, Lines, Tokens};
 use super::{emit, polygons_of, slurp, ReadOptions};
+use crate::attr::Value;
 use crate::mesh::Mesh;
 use crate::repair::RepairReport;
 
@@ -53,24 +56,122 @@ pub fn read_obj_with(
 
 /// Write a mesh as OBJ: `v` lines with every digit needed to read the
 /// positions back exactly, `f` lines with 1-based indices (holes are not
-/// written).
+/// written). Half-edge attributes `texcoord` and `normal` (two and three
+/// numbers) become `vt` and `vn` lines, shared between corners with equal
+/// values; face attributes `object`, `group` and `material` (text) become
+/// `o`, `g` and `usemtl` statements where they change.
 ///
 /// # Errors
 /// [`Error::Unwritable`] without positions; [`Error::Io`].
 pub fn write_obj(mesh: &Mesh, writer: impl Write) -> Result<(), Error> {
-    let p = polygons_of(mesh)?;
+    let (p, maps) = polygons_of(mesh)?;
+    let io = Error::io;
     let mut out = Vec::with_capacity(32 * (p.positions.len() + p.indices.len()));
     for q in &p.positions {
-        writeln!(out, "v {} {} {}", q[0], q[1], q[2]).map_err(Error::io)?;
+        writeln!(out, "v {} {} {}", q[0], q[1], q[2]).map_err(io)?;
     }
-    for f in p.faces() {
+    let names = |name: &str| -> Vec<Option<String>> {
+        maps.faces
+            .iter()
+            .map(|&f| match mesh.attr_value(name, f) {
+                Ok(Some(Value::Text(s))) => Some(s),
+                _ => None,
+            })
+            .collect()
+    };
+    let statements = [
+        ("o", names("object")),
+        ("g", names("group")),
+        ("usemtl", names("material")),
+    ];
+    // Corner attributes, numbered by distinct value.
+    let has = |name: &str| {
+        mesh.attr_info(crate::ElementKind::Halfedge)
+            .iter()
+            .any(|a| a.name == name)
+    };
+    let (with_uv, with_n) = (has("texcoord"), has("normal"));
+    let mut uv = Numbering::default();
+    let mut nr = Numbering::default();
+    let mut corners: Vec<(u32, u32, u32)> = Vec::with_capacity(p.indices.len());
+    for &f in &maps.faces {
+        let Ok(view) = mesh.face(f) else { continue };
+        for h in view.halfedges() {
+            let v = mesh
+                .halfedge(h)
+                .ok()
+                .and_then(|h| maps.vertex_index(h.origin().key()))
+                .unwrap_or(0) as u32;
+            let t = if with_uv {
+                uv.number(mesh.attr_value("texcoord", h).ok().flatten(), 2)
+            } else {
+                0
+            };
+            let n = if with_n {
+                nr.number(mesh.attr_value("normal", h).ok().flatten(), 3)
+            } else {
+                0
+            };
+            corners.push((v, t, n));
+        }
+    }
+    for t in &uv.values {
+        writeln!(out, "vt {} {}", t[0], t[1]).map_err(io)?;
+    }
+    for n in &nr.values {
+        writeln!(out, "vn {} {} {}", n[0], n[1], n[2]).map_err(io)?;
+    }
+    let mut current: [Option<&String>; 3] = [None; 3];
+    let mut c = 0;
+    for (i, f) in p.faces().enumerate() {
+        for (k, (word, values)) in statements.iter().enumerate() {
+            let name = values[i].as_ref();
+            if name.is_some() && name != current[k] {
+                writeln!(out, "{word} {}", name.map_or("", |s| s.as_str())).map_err(io)?;
+                current[k] = name;
+            }
+        }
         out.push(b'f');
-        for i in f {
-            write!(out, " {}", i + 1).map_err(Error::io)?;
+        for _ in f {
+            let (v, t, n) = corners[c];
+            c += 1;
+            match (t, n) {
+                (0, 0) => write!(out, " {}", v + 1),
+                (t, 0) => write!(out, " {}/{t}", v + 1),
+                (0, n) => write!(out, " {}//{n}", v + 1),
+                (t, n) => write!(out, " {}/{t}/{n}", v + 1),
+            }
+            .map_err(io)?;
         }
         out.push(b'\n');
     }
     emit(writer, &out)
+}
+
+/// Distinct corner values, numbered from 1 (0: the corner has none).
+#[derive(Default)]
+struct Numbering {
+    values: Vec<Vec<f64>>,
+    index: HashMap<Vec<u64>, u32>,
+}
+
+impl Numbering {
+    fn number(&mut self, value: Option<Value>, len: usize) -> u32 {
+        let Some(Value::List(items)) = value else {
+            return 0;
+        };
+        let xs: Vec<f64> = items.iter().filter_map(Value::as_f64).collect();
+        if xs.len() != len {
+            return 0;
+        }
+        let key: Vec<u64> = xs.iter().map(|x| x.to_bits()).collect();
+        let next = self.values.len() as u32 + 1;
+        let i = *self.index.entry(key).or_insert(next);
+        if i == next {
+            self.values.push(xs);
+        }
+        i
+    }
 }
 
 /// Resolve a 1-based or negative OBJ index against `count` elements.
@@ -98,6 +199,9 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
     let mut soup = Soup::new();
     let mut refs = CornerRefs::default();
     let mut lines = Lines::new(bytes);
+    let mut groups = Names::new("group");
+    let mut objects = Names::new("object");
+    let mut materials = Names::new("material");
     // Reserve by the input's size only: about 30 bytes per statement.
     soup.polygons.positions.reserve(bytes.len() / 96);
     soup.polygons.indices.reserve(bytes.len() / 16);
@@ -145,10 +249,118 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                 }
                 soup.end_face(lines.line);
             }
+            b"g" | b"o" | b"usemtl" => {
+                let rest = line.trim_ascii();
+                let name = rest[key.len()..].trim_ascii();
+                let name = String::from_utf8_lossy(name).into_owned();
+                let face = soup.face_at.len();
+                match key {
+                    b"g" => groups.name(face, name),
+                    b"o" => objects.name(face, name),
+                    _ => materials.name(face, name),
+                }
+            }
             _ => {}
         }
     }
+    let nf = soup.face_at.len();
+    let nc = soup.polygons.indices.len();
+    let a = &mut soup.attrs;
+    a.face.extend(objects.finish(nf));
+    a.face.extend(groups.finish(nf));
+    a.face.extend(materials.finish(nf));
+    if !refs.texcoord_of.is_empty() {
+        a.corner.push(corner_column(
+            "texcoord",
+            &refs.texcoord_of,
+            &refs.texcoords,
+            nc,
+            Data::Vec2,
+        ));
+    }
+    if !refs.normal_of.is_empty() {
+        a.corner.push(corner_column(
+            "normal",
+            &refs.normal_of,
+            &refs.normals,
+            nc,
+            Data::Vec3,
+        ));
+    }
     Ok(soup)
+}
+
+/// A corner column from per-corner references into `values`.
+fn corner_column<T: Copy + Default>(
+    name: &str,
+    of: &[u32],
+    values: &[T],
+    corners: usize,
+    wrap: fn(Vec<T>) -> Data,
+) -> SoupColumn {
+    let mut present = vec![false; corners];
+    let mut data = vec![T::default(); corners];
+    for (c, &i) in of.iter().enumerate() {
+        if let Some(v) = values.get(i as usize) {
+            data[c] = *v;
+            present[c] = true;
+        }
+    }
+    let all = present.iter().all(|&p| p);
+    SoupColumn {
+        name: name.to_owned(),
+        data: wrap(data),
+        present: (!all).then_some(present),
+    }
+}
+
+/// The current name of a `g`, `o` or `usemtl` statement, per face.
+struct Names {
+    column: &'static str,
+    current: Option<String>,
+    values: Vec<String>,
+    present: Vec<bool>,
+    any: bool,
+}
+
+impl Names {
+    fn new(column: &'static str) -> Names {
+        Names {
+            column,
+            current: None,
+            values: Vec::new(),
+            present: Vec::new(),
+            any: false,
+        }
+    }
+
+    /// From face `face` on, the name is `name`.
+    fn name(&mut self, face: usize, name: String) {
+        self.fill(face);
+        self.current = Some(name);
+        self.any = true;
+    }
+
+    fn fill(&mut self, upto: usize) {
+        let current = self.current.clone();
+        while self.values.len() < upto {
+            self.present.push(current.is_some());
+            self.values.push(current.clone().unwrap_or_default());
+        }
+    }
+
+    fn finish(mut self, faces: usize) -> Option<SoupColumn> {
+        if !self.any {
+            return None;
+        }
+        self.fill(faces);
+        let all = self.present.iter().all(|&p| p);
+        Some(SoupColumn {
+            name: self.column.to_owned(),
+            data: Data::Text(self.values),
+            present: (!all).then_some(self.present),
+        })
+    }
 }
 
 /// One `v[/vt][/vn]` corner of an `f` statement.

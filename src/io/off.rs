@@ -26,12 +26,17 @@
 
 use std::io::{Read, Write};
 
+use super::attrs::{Collector, Data};
 use super::error::{Error, Location};
 use super::soup::Soup;
-use super::text::{capped, next_count, next_f64, parse_i64, strip_comment, Lines, Tokens};
+use super::text::{
+    capped, next_count, next_f64, parse_f64, parse_i64, strip_comment, Lines, Tokens,
+};
 use super::{emit, polygons_of, slurp, ReadOptions};
+use crate::attr::Value;
 use crate::mesh::Mesh;
 use crate::repair::RepairReport;
+use crate::ElementKind;
 
 /// Read an OFF mesh, strictly.
 ///
@@ -55,25 +60,98 @@ pub fn read_off_with(
 }
 
 /// Write a mesh as ascii OFF: positions with every digit needed to read
-/// them back exactly, faces as index lists (holes are not written).
+/// them back exactly, faces as index lists (holes are not written). Vertex
+/// attributes `w` (a number), `normal`, `color` (RGBA) and `texcoord` make
+/// a `[ST][C][N][4]OFF` header with those on every vertex line; a face
+/// attribute `color` (RGBA) is written after each face's indices, and
+/// `color_index` where there is no colour.
 ///
 /// # Errors
 /// [`Error::Unwritable`] without positions; [`Error::Io`].
 pub fn write_off(mesh: &Mesh, writer: impl Write) -> Result<(), Error> {
-    let p = polygons_of(mesh)?;
+    let (p, maps) = polygons_of(mesh)?;
+    let io = Error::io;
+    let vertex_cols = |name: &str, len: usize| -> Option<Vec<Vec<f64>>> {
+        let has = mesh
+            .attr_info(ElementKind::Vertex)
+            .iter()
+            .any(|a| a.name == name);
+        has.then(|| {
+            maps.vertices
+                .iter()
+                .map(|&v| {
+                    numbers(mesh.attr_value(name, v), len).unwrap_or_else(|| {
+                        // No value: zeros (an opaque black colour).
+                        let mut z = vec![0.0; len];
+                        if len == 4 {
+                            z[3] = 1.0;
+                        }
+                        z
+                    })
+                })
+                .collect()
+        })
+    };
+    let w = vertex_cols("w", 1);
+    let normal = vertex_cols("normal", 3);
+    let color = vertex_cols("color", 4);
+    let texcoord = vertex_cols("texcoord", 2);
+    let face_has = |name: &str| {
+        mesh.attr_info(ElementKind::Face)
+            .iter()
+            .any(|a| a.name == name)
+    };
+    let (fcolor, findex) = (face_has("color"), face_has("color_index"));
     let mut out = Vec::with_capacity(32 * (p.positions.len() + p.indices.len()));
-    writeln!(out, "OFF\n{} {} 0", p.positions.len(), p.face_count()).map_err(Error::io)?;
-    for q in &p.positions {
-        writeln!(out, "{} {} {}", q[0], q[1], q[2]).map_err(Error::io)?;
+    let keyword = format!(
+        "{}{}{}{}OFF",
+        if texcoord.is_some() { "ST" } else { "" },
+        if color.is_some() { "C" } else { "" },
+        if normal.is_some() { "N" } else { "" },
+        if w.is_some() { "4" } else { "" },
+    );
+    writeln!(out, "{keyword}\n{} {} 0", p.positions.len(), p.face_count()).map_err(io)?;
+    for (i, q) in p.positions.iter().enumerate() {
+        write!(out, "{} {} {}", q[0], q[1], q[2]).map_err(io)?;
+        for col in [&w, &normal, &color, &texcoord].into_iter().flatten() {
+            for x in &col[i] {
+                write!(out, " {x}").map_err(io)?;
+            }
+        }
+        out.push(b'\n');
     }
-    for f in p.faces() {
-        write!(out, "{}", f.len()).map_err(Error::io)?;
-        for i in f {
-            write!(out, " {i}").map_err(Error::io)?;
+    for (i, f) in p.faces().enumerate() {
+        write!(out, "{}", f.len()).map_err(io)?;
+        for v in f {
+            write!(out, " {v}").map_err(io)?;
+        }
+        let key = maps.faces[i];
+        let colour = fcolor
+            .then(|| numbers(mesh.attr_value("color", key), 4))
+            .flatten()
+            .or_else(|| {
+                findex
+                    .then(|| numbers(mesh.attr_value("color_index", key), 1))
+                    .flatten()
+            });
+        for x in colour.unwrap_or_default() {
+            write!(out, " {x}").map_err(io)?;
         }
         out.push(b'\n');
     }
     emit(writer, &out)
+}
+
+/// `len` numbers from an attribute value (a number or a list), padded
+/// with zeros; `None` where the element has no value.
+fn numbers(value: crate::Result<Option<Value>>, len: usize) -> Option<Vec<f64>> {
+    let mut xs: Vec<f64> = match value {
+        Ok(Some(Value::List(items))) => items.iter().map(|x| x.as_f64().unwrap_or(0.0)).collect(),
+        Ok(Some(v)) => v.as_f64().into_iter().collect(),
+        _ => return None,
+    };
+    xs.resize(len, 0.0);
+    Some(xs)
 }
 
 /// The header keyword's flags.
@@ -126,6 +204,28 @@ fn content<'a>(lines: &mut Lines<'a>) -> Option<&'a [u8]> {
         }
     }
     None
+}
+
+/// The first `N` numbers of `rest`, taken off it.
+fn take<const N: usize>(rest: &mut &[f64]) -> Option<[f64; N]> {
+    let (head, tail) = rest.split_first_chunk::<N>()?;
+    *rest = tail;
+    Some(*head)
+}
+
+/// An RGB or RGBA colour in 0..=1; integer components (any above 1) are
+/// read as 0..=255. `None` for other lengths.
+fn colour(c: &[f64]) -> Option<[f64; 4]> {
+    let scale = if c.iter().any(|&x| x > 1.0) && c.iter().all(|x| x.fract() == 0.0) {
+        255.0
+    } else {
+        1.0
+    };
+    match *c {
+        [r, g, b] => Some([r / scale, g / scale, b / scale, 1.0]),
+        [r, g, b, a] => Some([r / scale, g / scale, b / scale, a / scale]),
+        _ => None,
+    }
 }
 
 /// Make sure `tokens` has one more token, taking the next content line if
@@ -211,8 +311,14 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
     soup.polygons.offsets.reserve(capped(nf, rest, 4));
     soup.face_at.reserve(capped(nf, rest, 4));
     soup.polygons.indices.reserve(capped(3 * nf, rest, 2));
-    let _ = (kw.colors, kw.normals, kw.texcoords);
 
+    let mut w_col = Collector::<f64>::new("w");
+    let mut normal_col = Collector::<[f64; 3]>::new("normal");
+    let mut vcolor_col = Collector::<[f64; 4]>::new("color");
+    let mut texcoord_col = Collector::<[f64; 2]>::new("texcoord");
+    let mut fcolor_col = Collector::<[f64; 4]>::new("color");
+    let mut findex_col = Collector::<f64>::new("color_index");
+    let mut extra: Vec<f64> = Vec::new();
     for i in 0..nv {
         let line = content(&mut lines).ok_or_else(|| Error::Truncated {
             at: lines.end(),
@@ -220,21 +326,41 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
         })?;
         let mut t = Tokens::new(line);
         let at = || lines.here();
-        let x = next_f64(&mut t, at, "a vertex coordinate")?;
-        let y = if dim > 1 {
-            next_f64(&mut t, at, "a vertex coordinate")?
-        } else {
-            0.0
-        };
-        let z = if dim > 2 {
-            next_f64(&mut t, at, "a vertex coordinate")?
-        } else {
-            0.0
-        };
-        for _ in 3..dim {
-            next_f64(&mut t, at, "a vertex coordinate")?;
+        let mut p = [0.0; 3];
+        for c in p.iter_mut().take(dim) {
+            *c = next_f64(&mut t, at, "a vertex coordinate")?;
         }
-        soup.polygons.positions.push([x, y, z]);
+        for k in 3..dim {
+            let x = next_f64(&mut t, at, "a vertex coordinate")?;
+            if k == 3 {
+                w_col.set(i, x);
+            }
+        }
+        soup.polygons.positions.push(p);
+        if kw.normals || kw.colors || kw.texcoords {
+            extra.clear();
+            for tok in t {
+                extra.push(parse_f64(tok).ok_or_else(|| Error::syntax(at(), "a number", tok))?);
+            }
+            let mut rest = &extra[..];
+            if kw.normals {
+                let [x, y, z] = take::<3>(&mut rest)
+                    .ok_or_else(|| Error::syntax(at(), "three normal coordinates (NOFF)", line))?;
+                normal_col.set(i, [x, y, z]);
+            }
+            if kw.colors {
+                let n = rest.len().saturating_sub(if kw.texcoords { 2 } else { 0 });
+                if let Some(c) = colour(&rest[..n]) {
+                    vcolor_col.set(i, c);
+                }
+                rest = &rest[n..];
+            }
+            if kw.texcoords {
+                let [s_, t_] = take::<2>(&mut rest)
+                    .ok_or_else(|| Error::syntax(at(), "two texture coordinates (STOFF)", line))?;
+                texcoord_col.set(i, [s_, t_]);
+            }
+        }
     }
     for i in 0..nf {
         let line = content(&mut lines).ok_or_else(|| Error::Truncated {
@@ -269,25 +395,37 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
             soup.polygons.indices.push(index as u32);
         }
         // An optional colour: a map index, RGB or RGBA, ints or floats.
-        let mut extra = 0;
+        extra.clear();
         for tok in t.by_ref() {
-            if super::text::parse_f64(tok).is_none() {
+            let x = parse_f64(tok).ok_or_else(|| {
+                Error::syntax(at(), "a colour component or the end of the line", tok)
+            })?;
+            extra.push(x);
+        }
+        match extra.len() {
+            0 => {}
+            1 => findex_col.set(i, extra[0]),
+            3 | 4 => {
+                if let Some(c) = colour(&extra) {
+                    fcolor_col.set(i, c);
+                }
+            }
+            _ => {
                 return Err(Error::syntax(
                     at(),
-                    "a colour component or the end of the line",
-                    tok,
-                ));
+                    format!("{k} vertex indices and a colour of 1, 3 or 4 components"),
+                    line,
+                ))
             }
-            extra += 1;
-        }
-        if extra > 4 {
-            return Err(Error::syntax(
-                at(),
-                format!("{k} vertex indices and at most 4 colour components"),
-                line,
-            ));
         }
         soup.end_face(lines.line);
     }
+    let a = &mut soup.attrs;
+    a.vertex.extend(w_col.finish(nv, Data::Scalar));
+    a.vertex.extend(normal_col.finish(nv, Data::Vec3));
+    a.vertex.extend(vcolor_col.finish(nv, Data::Vec4));
+    a.vertex.extend(texcoord_col.finish(nv, Data::Vec2));
+    a.face.extend(fcolor_col.finish(nf, Data::Vec4));
+    a.face.extend(findex_col.finish(nf, Data::Scalar));
     Ok(soup)
 }

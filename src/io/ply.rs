@@ -25,10 +25,12 @@
 
 use std::io::{Read, Write};
 
+use super::attrs::{Data, SoupColumn};
 use super::error::{Error, Location};
 use super::soup::Soup;
 use super::text::{capped, parse_f64, Lines, Tokens};
 use super::{emit, polygons_of, slurp, ReadOptions};
+use crate::attr::{Value, ValueType};
 use crate::mesh::Mesh;
 use crate::repair::RepairReport;
 
@@ -66,12 +68,19 @@ pub fn read_ply_with(
 }
 
 /// Write a mesh as PLY: `vertex` with `double x y z`, `face` with a
-/// `vertex_indices` list (holes are not written).
+/// `vertex_indices` list (holes are not written), and every vertex and face
+/// attribute with a PLY type as a property of that type: dynamic columns
+/// keep their declared type, `f64` columns are `double`, arrays and lists
+/// are list properties, `i64`/`u64` go as `double` and `bool` as `uchar`.
+/// Text columns and half-edge and edge attributes have no place in PLY and
+/// are left out. An element without a value writes 0 (an empty list).
 ///
 /// # Errors
 /// [`Error::Unwritable`] without positions; [`Error::Io`].
 pub fn write_ply(mesh: &Mesh, writer: impl Write, encoding: PlyEncoding) -> Result<(), Error> {
-    let p = polygons_of(mesh)?;
+    let (p, maps) = polygons_of(mesh)?;
+    let vcols = out_columns(mesh, &maps.vertices);
+    let fcols = out_columns(mesh, &maps.faces);
     let wide = p.faces().any(|f| f.len() > 255);
     let mut out = Vec::with_capacity(24 * p.positions.len() + 5 * p.indices.len() + 256);
     let format = match encoding {
@@ -79,51 +88,156 @@ pub fn write_ply(mesh: &Mesh, writer: impl Write, encoding: PlyEncoding) -> Resu
         PlyEncoding::BinaryLittleEndian => "binary_little_endian",
         PlyEncoding::BinaryBigEndian => "binary_big_endian",
     };
+    let io = Error::io;
     write!(
         out,
         "ply\nformat {format} 1.0\ncomment written by meshloom\nelement vertex {}\n\
-         property double x\nproperty double y\nproperty double z\nelement face {}\n\
-         property list {} int vertex_indices\nend_header\n",
-        p.positions.len(),
+         property double x\nproperty double y\nproperty double z\n",
+        p.positions.len()
+    )
+    .map_err(io)?;
+    for c in &vcols {
+        c.declare(&mut out).map_err(io)?;
+    }
+    writeln!(
+        out,
+        "element face {}\nproperty list {} int vertex_indices",
         p.face_count(),
         if wide { "uint" } else { "uchar" }
     )
-    .map_err(Error::io)?;
-    let be = encoding == PlyEncoding::BinaryBigEndian;
-    match encoding {
-        PlyEncoding::Ascii => {
-            for q in &p.positions {
-                writeln!(out, "{} {} {}", q[0], q[1], q[2]).map_err(Error::io)?;
-            }
-            for f in p.faces() {
-                write!(out, "{}", f.len()).map_err(Error::io)?;
-                for i in f {
-                    write!(out, " {i}").map_err(Error::io)?;
-                }
-                out.push(b'\n');
-            }
+    .map_err(io)?;
+    for c in &fcols {
+        c.declare(&mut out).map_err(io)?;
+    }
+    out.extend_from_slice(b"end_header\n");
+    let ascii = encoding == PlyEncoding::Ascii;
+    let sep = |out: &mut Vec<u8>| {
+        if ascii {
+            out.push(b' ');
         }
-        _ => {
-            for q in &p.positions {
-                for x in q {
-                    out.extend_from_slice(&if be { x.to_be_bytes() } else { x.to_le_bytes() });
-                }
+    };
+    for (i, q) in p.positions.iter().enumerate() {
+        for (k, &x) in q.iter().enumerate() {
+            if k > 0 {
+                sep(&mut out);
             }
-            for f in p.faces() {
-                if wide {
-                    let n = f.len() as u32;
-                    out.extend_from_slice(&if be { n.to_be_bytes() } else { n.to_le_bytes() });
-                } else {
-                    out.push(f.len() as u8);
-                }
-                for &i in f {
-                    let i = i as i32;
-                    out.extend_from_slice(&if be { i.to_be_bytes() } else { i.to_le_bytes() });
+            Scalar::F64.put(&mut out, x, encoding);
+        }
+        for c in &vcols {
+            sep(&mut out);
+            c.put(&mut out, i, encoding);
+        }
+        if ascii {
+            out.push(b'\n');
+        }
+    }
+    let count = if wide { Scalar::U32 } else { Scalar::U8 };
+    for (i, f) in p.faces().enumerate() {
+        count.put(&mut out, f.len() as f64, encoding);
+        for &v in f {
+            sep(&mut out);
+            Scalar::I32.put(&mut out, f64::from(v), encoding);
+        }
+        for c in &fcols {
+            sep(&mut out);
+            c.put(&mut out, i, encoding);
+        }
+        if ascii {
+            out.push(b'\n');
+        }
+    }
+    emit(writer, &out)
+}
+
+/// One attribute column on its way out: its PLY type and every element's
+/// value in dense order.
+struct OutColumn {
+    name: String,
+    item: Scalar,
+    /// `Some(count type)` for a list property.
+    list: Option<Scalar>,
+    values: Vec<Option<Value>>,
+}
+
+impl OutColumn {
+    fn declare(&self, out: &mut Vec<u8>) -> std::io::Result<()> {
+        match self.list {
+            Some(c) => writeln!(
+                out,
+                "property list {} {} {}",
+                c.name(),
+                self.item.name(),
+                self.name
+            ),
+            None => writeln!(out, "property {} {}", self.item.name(), self.name),
+        }
+    }
+
+    fn put(&self, out: &mut Vec<u8>, i: usize, encoding: PlyEncoding) {
+        let v = self.values[i].as_ref();
+        match self.list {
+            None => self
+                .item
+                .put(out, v.and_then(Value::as_f64).unwrap_or(0.0), encoding),
+            Some(c) => {
+                let items: &[Value] = match v {
+                    Some(Value::List(items)) => items,
+                    _ => &[],
+                };
+                c.put(out, items.len() as f64, encoding);
+                for x in items {
+                    if encoding == PlyEncoding::Ascii {
+                        out.push(b' ');
+                    }
+                    self.item.put(out, x.as_f64().unwrap_or(0.0), encoding);
                 }
             }
         }
     }
-    emit(writer, &out)
+}
+
+/// The columns of `keys`' arena that PLY can hold (positions excepted).
+fn out_columns<K: crate::attr::Element>(mesh: &Mesh, keys: &[K]) -> Vec<OutColumn> {
+    let mut cols = Vec::new();
+    for info in mesh.attr_info(K::KIND) {
+        if K::KIND == crate::ElementKind::Vertex && info.name == crate::attr::POSITION {
+            continue;
+        }
+        let Some(ty) = info.value_type else { continue };
+        let values: Vec<Option<Value>> = keys
+            .iter()
+            .map(|&k| mesh.attr_value(&info.name, k).ok().flatten())
+            .collect();
+        let name: String = info
+            .name
+            .chars()
+            .map(|c| if c.is_whitespace() { '_' } else { c })
+            .collect();
+        let (item, list) = if ty == ValueType::List {
+            let first = values.iter().flatten().find_map(|v| match v {
+                Value::List(items) => items.first().map(Value::value_type),
+                _ => None,
+            });
+            let item = first.and_then(Scalar::of).unwrap_or(Scalar::F64);
+            let long = values
+                .iter()
+                .flatten()
+                .any(|v| matches!(v, Value::List(items) if items.len() > 255));
+            (item, Some(if long { Scalar::U32 } else { Scalar::U8 }))
+        } else {
+            match Scalar::of(ty) {
+                Some(item) => (item, None),
+                None => continue,
+            }
+        };
+        cols.push(OutColumn {
+            name,
+            item,
+            list,
+            values,
+        });
+    }
+    cols
 }
 
 /// A scalar type of the PLY header.
@@ -165,6 +279,94 @@ impl Scalar {
 
     fn is_integer(self) -> bool {
         !matches!(self, Scalar::F32 | Scalar::F64)
+    }
+
+    /// A value read as `f64` (exact for every PLY type) in its own type.
+    fn value(self, v: f64) -> Value {
+        match self {
+            Scalar::I8 => Value::I8(v as i8),
+            Scalar::U8 => Value::U8(v as u8),
+            Scalar::I16 => Value::I16(v as i16),
+            Scalar::U16 => Value::U16(v as u16),
+            Scalar::I32 => Value::I32(v as i32),
+            Scalar::U32 => Value::U32(v as u32),
+            Scalar::F32 => Value::F32(v as f32),
+            Scalar::F64 => Value::F64(v),
+        }
+    }
+
+    fn value_type(self) -> ValueType {
+        match self {
+            Scalar::I8 => ValueType::I8,
+            Scalar::U8 => ValueType::U8,
+            Scalar::I16 => ValueType::I16,
+            Scalar::U16 => ValueType::U16,
+            Scalar::I32 => ValueType::I32,
+            Scalar::U32 => ValueType::U32,
+            Scalar::F32 => ValueType::F32,
+            Scalar::F64 => ValueType::F64,
+        }
+    }
+
+    /// The PLY type that holds values of `ty` (`None`: none does).
+    fn of(ty: ValueType) -> Option<Scalar> {
+        Some(match ty {
+            ValueType::Bool | ValueType::U8 => Scalar::U8,
+            ValueType::I8 => Scalar::I8,
+            ValueType::I16 => Scalar::I16,
+            ValueType::U16 => Scalar::U16,
+            ValueType::I32 => Scalar::I32,
+            ValueType::U32 => Scalar::U32,
+            ValueType::F32 => Scalar::F32,
+            ValueType::F64 | ValueType::I64 | ValueType::U64 => Scalar::F64,
+            ValueType::Text | ValueType::List => return None,
+        })
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Scalar::I8 => "char",
+            Scalar::U8 => "uchar",
+            Scalar::I16 => "short",
+            Scalar::U16 => "ushort",
+            Scalar::I32 => "int",
+            Scalar::U32 => "uint",
+            Scalar::F32 => "float",
+            Scalar::F64 => "double",
+        }
+    }
+
+    /// Append `v` in this type.
+    fn put(self, out: &mut Vec<u8>, v: f64, encoding: PlyEncoding) {
+        let be = encoding == PlyEncoding::BinaryBigEndian;
+        macro_rules! bin {
+            ($x:expr) => {
+                out.extend_from_slice(&if be {
+                    $x.to_be_bytes()
+                } else {
+                    $x.to_le_bytes()
+                })
+            };
+        }
+        match (encoding, self) {
+            (PlyEncoding::Ascii, Scalar::F32) => {
+                let _ = write!(out, "{}", v as f32);
+            }
+            (PlyEncoding::Ascii, Scalar::F64) => {
+                let _ = write!(out, "{v}");
+            }
+            (PlyEncoding::Ascii, _) => {
+                let _ = write!(out, "{}", v as i64);
+            }
+            (_, Scalar::I8) => bin!(v as i8),
+            (_, Scalar::U8) => bin!(v as u8),
+            (_, Scalar::I16) => bin!(v as i16),
+            (_, Scalar::U16) => bin!(v as u16),
+            (_, Scalar::I32) => bin!(v as i32),
+            (_, Scalar::U32) => bin!(v as u32),
+            (_, Scalar::F32) => bin!(v as f32),
+            (_, Scalar::F64) => bin!(v),
+        }
     }
 }
 
@@ -467,8 +669,9 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
             });
         }
         let is_vertex = element.name == "vertex";
-        let list = if element.name == "face" {
-            element
+        let is_face = element.name == "face";
+        let list = if is_face {
+            let i = element
                 .props
                 .iter()
                 .position(|p| {
@@ -476,15 +679,28 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                 })
                 .ok_or_else(|| {
                     header_error(element.line, "the face element has no vertex_indices list")
-                })
-                .map(Some)?
+                })?;
+            Some(i)
         } else {
             None
         };
+        // Where each property goes: positions, the face list, a kept
+        // attribute column, or nowhere (elements other than vertex and face).
+        let keep = |k: usize, p: &Property| {
+            (is_vertex && !(p.count.is_none() && ["x", "y", "z"].contains(&p.name.as_str())))
+                || (is_face && Some(k) != list)
+        };
+        let mut extra: Vec<(usize, Vec<Value>)> = element
+            .props
+            .iter()
+            .enumerate()
+            .filter(|&(k, p)| keep(k, p))
+            .map(|(k, _)| (k, Vec::with_capacity(room)))
+            .collect();
         if is_vertex {
             soup.polygons.positions.reserve(room);
         }
-        if list.is_some() {
+        if is_face {
             soup.polygons.offsets.reserve(room);
             soup.face_at.reserve(room);
             soup.polygons
@@ -497,10 +713,23 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                 Body::Binary { pos, base, .. } => (base + pos) as u64,
             };
             values.clear();
+            let mut next_extra = 0;
             for (k, prop) in element.props.iter().enumerate() {
-                let what = || format!("{} {} of {} {}", prop.name, i, element.name, element.count);
+                let what = || {
+                    format!(
+                        "{} of {} {i} (of {})",
+                        prop.name, element.name, element.count
+                    )
+                };
+                let kept = extra.get(next_extra).is_some_and(|e| e.0 == k);
                 match prop.count {
-                    None => values.push(body.value(prop.item, &what)?),
+                    None => {
+                        let v = body.value(prop.item, &what)?;
+                        values.push(v);
+                        if kept {
+                            extra[next_extra].1.push(prop.item.value(v));
+                        }
+                    }
                     Some(cs) => {
                         let at = body.at();
                         let n = body.value(cs, &what)?;
@@ -526,11 +755,21 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                                 soup.polygons.indices.push(v as u32);
                             }
                         } else {
+                            let mut items = Vec::new();
                             for _ in 0..n {
-                                body.value(prop.item, &what)?;
+                                let v = body.value(prop.item, &what)?;
+                                if kept {
+                                    items.push(prop.item.value(v));
+                                }
+                            }
+                            if kept {
+                                extra[next_extra].1.push(Value::List(items));
                             }
                         }
                     }
+                }
+                if kept {
+                    next_extra += 1;
                 }
             }
             if is_vertex {
@@ -538,8 +777,22 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                     .positions
                     .push([values[xyz[0]], values[xyz[1]], values[xyz[2]]]);
             }
-            if list.is_some() {
+            if is_face {
                 soup.end_face(start);
+            }
+        }
+        for (k, column) in extra {
+            let prop = &element.props[k];
+            let ty = if prop.count.is_some() {
+                ValueType::List
+            } else {
+                prop.item.value_type()
+            };
+            let col = SoupColumn::dense(&prop.name, Data::Dynamic(ty, column));
+            if is_vertex {
+                soup.attrs.vertex.push(col);
+            } else {
+                soup.attrs.face.push(col);
             }
         }
     }

@@ -5,7 +5,7 @@
 use crate::build::Polygons;
 use crate::error::{BuildError, Error as MeshError};
 use crate::mesh::Mesh;
-use crate::repair::{repair, Provenance, RepairReport};
+use crate::repair::{repair_with, Provenance, RepairReport};
 
 use super::attrs::SoupAttrs;
 use super::error::{Error, Location};
@@ -61,7 +61,8 @@ impl Soup {
             });
         }
         let (report, prov) = if options.repair.any() {
-            repair(&mut self.polygons, &options.repair)
+            let classes = self.attrs.weld_classes(self.polygons.positions.len());
+            repair_with(&mut self.polygons, &options.repair, &classes)
         } else {
             (RepairReport::default(), Provenance::default())
         };
@@ -83,9 +84,19 @@ impl Soup {
                 first: source(&prov.vertex_source, first),
             });
         }
+        if built.faces.is_empty() {
+            return Err(Error::Empty {
+                at: Location::whole(),
+            });
+        }
         let mut mesh = built.mesh;
-        self.attrs
-            .attach(&mut mesh, &built.vertices, &built.faces, &prov);
+        self.attrs.attach(
+            &mut mesh,
+            &built.vertices,
+            &built.faces,
+            &self.polygons.offsets,
+            &prov,
+        )?;
         Ok((mesh, report))
     }
 
@@ -121,7 +132,7 @@ impl Soup {
                 },
             ),
             BuildError::NonManifoldEdge { a, b, faces } => (
-                f(faces[0]),
+                f(faces[2]),
                 BuildError::NonManifoldEdge {
                     a: v(a),
                     b: v(b),

@@ -70,7 +70,7 @@ pub fn read_stl_with(
 /// [`Error::Unwritable`] without positions or with more than 2^32
 /// triangles; [`Error::Io`].
 pub fn write_stl(mesh: &Mesh, writer: impl Write, encoding: StlEncoding) -> Result<(), Error> {
-    let p = polygons_of(mesh)?;
+    let (p, _) = polygons_of(mesh)?;
     let tris: Vec<[u32; 3]> = p
         .faces()
         .flat_map(|f| (1..f.len() - 1).map(move |i| [f[0], f[i], f[i + 1]]))
@@ -168,7 +168,11 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
         let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]);
         84 + 50 * n as u64 == bytes.len() as u64
     };
-    let ascii = bytes.trim_ascii_start().starts_with(b"solid");
+    // Ascii STL has no NUL bytes; binary STL nearly always has some early
+    // (small floats, the zero attribute count), even when its 80-byte
+    // header starts with "solid".
+    let ascii = bytes.trim_ascii_start().starts_with(b"solid")
+        && !bytes[..bytes.len().min(1024)].contains(&0);
     if !exact_binary && ascii {
         parse_ascii(bytes)
     } else {
