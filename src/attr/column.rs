@@ -160,6 +160,7 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     fn portable_type(&self) -> Option<super::ValueType>;
     /// `"value type/rule type"`: the key typed columns are registered under
     /// for deserialization.
+    #[cfg(feature = "serde")]
     fn type_key(&self) -> String;
     /// A boxed deep copy.
     fn clone_box(&self) -> Box<dyn ErasedColumn>;
@@ -291,12 +292,9 @@ where
         T::default().to_value().map(|v| v.value_type())
     }
 
+    #[cfg(feature = "serde")]
     fn type_key(&self) -> String {
-        format!(
-            "{}/{}",
-            std::any::type_name::<T>(),
-            std::any::type_name::<R>()
-        )
+        super::registry::type_key::<T, R>()
     }
 
     fn clone_box(&self) -> Box<dyn ErasedColumn> {

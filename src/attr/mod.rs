@@ -13,6 +13,8 @@ mod attribute;
 pub(crate) mod column;
 mod handle;
 mod infer;
+#[cfg(feature = "serde")]
+pub(crate) mod registry;
 pub mod rule;
 pub mod rules;
 mod value;
@@ -22,6 +24,8 @@ pub use api::AttrInfo;
 pub use attribute::Attribute;
 pub use column::Column;
 pub use handle::{Attr, EdgeAttr, Element, FaceAttr, HalfedgeAttr, VertexAttr};
+#[cfg(feature = "serde")]
+pub use registry::register;
 pub use rule::{Linear, Rule};
 pub use rules::{Conserved, Contagion, Discard, Incompatible, Interpolate, KeepFirst};
 pub use value::{Dynamic, Value, ValueType};
