@@ -1,1 +1,224 @@
 //! Low-level reflecting setters, for people writing their own operators.
+//!
+//! [`Mesh::raw_edit`] hands out a [`RawEdit`] guard. Its setters write one
+//! link each and *reflect* it where the mesh keeps a back link:
+//! [`set_origin`](RawEdit::set_origin) also points the vertex at the
+//! half-edge, [`set_face`](RawEdit::set_face) also points the face at it.
+//! `next` is the only face-order link (there is no `prev`);
+//! [`link(a, b)`](RawEdit::link) sets `next(a) = b`. Between setters the
+//! mesh may break its rules; call [`RawEdit::validate`] (or
+//! [`RawEdit::finish`]) when done, and do not use views on a mesh that does
+//! not validate. Attribute columns follow new and removed elements (new
+//! elements hold default values), but no merge or split rule runs: that is
+//! the operator writer's choice.
+//!
+//! ```
+//! use meshloom::Mesh;
+//! // Flip the diagonal of a square by hand.
+//! let mut mesh = Mesh::from_faces(4, &[[0u32, 1, 2], [0, 2, 3]])?;
+//! let v: Vec<_> = mesh.vertices().collect();
+//! let h = mesh.find_halfedge(v[0], v[2])?.unwrap(); // 0 -> 2, in face (0, 2, 3)
+//! let t = mesh.halfedge(h)?.twin().key();            // 2 -> 0, in face (0, 1, 2)
+//! let (h1, t1) = (mesh.halfedge(h)?.next().key(), mesh.halfedge(t)?.next().key());
+//! let (h2, t2) = (mesh.halfedge(h1)?.next().key(), mesh.halfedge(t1)?.next().key());
+//! let (f0, f1) = (mesh.halfedge(h)?.face().key(), mesh.halfedge(t)?.face().key());
+//! let mut edit = mesh.raw_edit();
+//! edit.set_origin(h, v[3])?;      // h: 3 -> 1
+//! edit.set_origin(t, v[1])?;      // t: 1 -> 3
+//! edit.set_origin(t1, v[0])?;     // 0 and 2 point at half-edges they keep
+//! edit.set_origin(h1, v[2])?;
+//! edit.link(h, t2)?; edit.link(t2, h1)?; edit.link(h1, h)?; // (3, 1, 2)
+//! edit.link(t, h2)?; edit.link(h2, t1)?; edit.link(t1, t)?; // (1, 3, 0)
+//! edit.set_face(t2, f0)?; edit.set_face(h1, f0)?; edit.set_face(h, f0)?;
+//! edit.set_face(h2, f1)?; edit.set_face(t1, f1)?; edit.set_face(t, f1)?;
+//! edit.finish()?;
+//! assert!(mesh.find_halfedge(v[1], v[3])?.is_some());
+//! # Ok::<(), meshloom::Error>(())
+//! ```
+
+use crate::error::{Error, Result};
+use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
+use crate::mesh::{Mesh, NONE};
+
+/// A guard for raw link edits; see the [module docs](self).
+pub struct RawEdit<'m> {
+    mesh: &'m mut Mesh,
+}
+
+impl Mesh {
+    /// Start raw link edits (see [`link`](crate::link)).
+    pub fn raw_edit(&mut self) -> RawEdit<'_> {
+        RawEdit { mesh: self }
+    }
+}
+
+impl RawEdit<'_> {
+    /// The origin link of `h`, if set.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`].
+    pub fn origin(&self, h: HalfedgeKey) -> Result<Option<VertexKey>> {
+        let h = self.mesh.check_halfedge(h)?;
+        let o = self.mesh.he[h as usize].origin;
+        Ok(self.live_vertex(o))
+    }
+
+    /// The next link of `h`, if set.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`].
+    pub fn next(&self, h: HalfedgeKey) -> Result<Option<HalfedgeKey>> {
+        let h = self.mesh.check_halfedge(h)?;
+        let n = self.mesh.he[h as usize].next;
+        Ok((n != NONE && self.mesh.e_slots.is_live((n >> 1) as usize)).then(|| self.mesh.hkey(n)))
+    }
+
+    /// The face link of `h`, if set.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`].
+    pub fn face(&self, h: HalfedgeKey) -> Result<Option<FaceKey>> {
+        let h = self.mesh.check_halfedge(h)?;
+        let f = self.mesh.he[h as usize].face;
+        Ok((f != NONE && self.mesh.f_slots.is_live(f as usize)).then(|| self.mesh.fkey(f)))
+    }
+
+    fn live_vertex(&self, v: u32) -> Option<VertexKey> {
+        (v != NONE && self.mesh.v_slots.is_live(v as usize)).then(|| self.mesh.vkey(v))
+    }
+
+    /// Set `origin(h) = v` and reflect it: `v`'s half-edge becomes `h`.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`].
+    pub fn set_origin(&mut self, h: HalfedgeKey, v: VertexKey) -> Result<()> {
+        let h = self.mesh.check_halfedge(h)?;
+        let v = self.mesh.check_vertex(v)?;
+        self.mesh.he[h as usize].origin = v;
+        self.mesh.v_halfedge[v as usize] = h;
+        Ok(())
+    }
+
+    /// Set `face(h) = f` and reflect it: `f`'s half-edge becomes `h` (its
+    /// hole flag is kept).
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`].
+    pub fn set_face(&mut self, h: HalfedgeKey, f: FaceKey) -> Result<()> {
+        let h = self.mesh.check_halfedge(h)?;
+        let f = self.mesh.check_face(f)?;
+        self.mesh.he[h as usize].face = f;
+        self.mesh.set_face_link(f, h);
+        Ok(())
+    }
+
+    /// Set `next(a) = b`.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`].
+    pub fn link(&mut self, a: HalfedgeKey, b: HalfedgeKey) -> Result<()> {
+        let a = self.mesh.check_halfedge(a)?;
+        let b = self.mesh.check_halfedge(b)?;
+        self.mesh.set_next(a, b);
+        Ok(())
+    }
+
+    /// Point vertex `v` at half-edge `h` (which should leave it), without
+    /// touching `h`.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`].
+    pub fn set_vertex_halfedge(&mut self, v: VertexKey, h: HalfedgeKey) -> Result<()> {
+        let h = self.mesh.check_halfedge(h)?;
+        let v = self.mesh.check_vertex(v)?;
+        self.mesh.v_halfedge[v as usize] = h;
+        Ok(())
+    }
+
+    /// Point face `f` at half-edge `h` (which should be in it), without
+    /// touching `h`.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`].
+    pub fn set_face_halfedge(&mut self, f: FaceKey, h: HalfedgeKey) -> Result<()> {
+        let h = self.mesh.check_halfedge(h)?;
+        let f = self.mesh.check_face(f)?;
+        self.mesh.set_face_link(f, h);
+        Ok(())
+    }
+
+    /// Flag face `f` as a hole, or not.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`].
+    pub fn set_hole(&mut self, f: FaceKey, hole: bool) -> Result<()> {
+        let f = self.mesh.check_face(f)?;
+        self.mesh.set_hole_raw(f, hole);
+        Ok(())
+    }
+
+    /// A new vertex with no links yet.
+    pub fn new_vertex(&mut self) -> VertexKey {
+        let v = self.mesh.alloc_vertex();
+        self.mesh.vkey(v)
+    }
+
+    /// A new edge (two half-edges, [`EdgeKey::halfedge_key`]) with no links
+    /// yet.
+    pub fn new_edge(&mut self) -> EdgeKey {
+        let e = self.mesh.alloc_edge();
+        self.mesh.ekey(e)
+    }
+
+    /// A new face (a hole if `hole`) with no links yet.
+    pub fn new_face(&mut self, hole: bool) -> FaceKey {
+        let f = self.mesh.alloc_face(hole);
+        self.mesh.fkey(f)
+    }
+
+    /// Remove a vertex slot (links to it are the caller's to fix).
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`].
+    pub fn remove_vertex(&mut self, v: VertexKey) -> Result<()> {
+        let v = self.mesh.check_vertex(v)?;
+        self.mesh.free_vertex(v);
+        Ok(())
+    }
+
+    /// Remove an edge and both its half-edges.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`].
+    pub fn remove_edge(&mut self, e: EdgeKey) -> Result<()> {
+        let e = self.mesh.check_edge(e)?;
+        self.mesh.free_edge(e);
+        Ok(())
+    }
+
+    /// Remove a face or hole.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`].
+    pub fn remove_face(&mut self, f: FaceKey) -> Result<()> {
+        let f = self.mesh.check_face(f)?;
+        self.mesh.free_face(f);
+        Ok(())
+    }
+
+    /// Check every structural rule on the edited mesh.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] with the first broken rule.
+    pub fn validate(&self) -> Result<()> {
+        self.mesh.validate().map_err(Error::Invalid)
+    }
+
+    /// End the edit: [`validate`](RawEdit::validate), consuming the guard.
+    ///
+    /// # Errors
+    /// As `validate`.
+    pub fn finish(self) -> Result<()> {
+        self.validate()
+    }
+}

@@ -1,1 +1,301 @@
 //! Topological editing operators: checked, all-or-nothing, attribute-aware.
+//!
+//! # Index
+//!
+//! | operator | file | returns | χ = V − E + F changes by |
+//! |---|---|---|---|
+//! | [`Mesh::split_edge`] | `split.rs` | the new vertex | 0 |
+//! | [`Mesh::split_face`] | `split.rs` | the new half-edge `a → b` | 0 |
+//! | [`Mesh::insert_edge`] | `split.rs` | the new half-edge `a → b` | 0 |
+//! | [`Mesh::poke_face`] | `split.rs` | the new centre vertex | 0 |
+//! | [`Mesh::collapse_edge`] | `collapse.rs` | the surviving vertex | 0, or +1 when a triangular hole closes |
+//! | [`Mesh::flip_edge`] | `flip.rs` | the same edge, turned | 0 |
+//! | [`Mesh::remove_edge`] | `remove.rs` | the merged face (or hole) | 0 |
+//! | [`Mesh::merge_faces`] | `remove.rs` | the merged face | 0 |
+//! | [`Mesh::remove_vertex`] | `remove.rs` | the merged face | 0 |
+//! | [`Mesh::remove_face`] | `holes.rs` | the holes now covering it | −1 + edges removed − vertices removed |
+//! | [`Mesh::fill_hole`] | `holes.rs` | the new face | +1 |
+//! | [`Mesh::triangulate`] | `triangulate.rs` | the triangles | 0 |
+//! | [`Mesh::triangulate_all`] | `triangulate.rs` | faces left as they were | 0 |
+//! | [`Mesh::compact`] | `compact.rs` | old → new key maps | 0 |
+//!
+//! # Check, then commit
+//!
+//! Every operator `x` has a twin `check_x` taking the same arguments that
+//! returns `Ok(())` exactly when `x` would succeed and never changes the
+//! mesh. Inside, `x` runs a private planning phase (`&self`: gather every
+//! element into role-named locals named after the doc diagram, and refuse
+//! with [`Error::Refused`](crate::Error::Refused) or
+//! [`Error::StaleKey`](crate::Error::StaleKey)); then a commit phase
+//! (`&mut self`) that cannot fail; then the attribute rules; then, in debug
+//! builds, [`Mesh::validate`]. On any error the mesh is exactly as it was.
+//!
+//! # Attribute rules per operator
+//!
+//! Every column of every arena runs its rule ([`attr::Rule`](crate::attr::Rule)):
+//!
+//! - **split_edge** at `t`: new vertex = `interpolate(a: 1−t, b: t)`; the old
+//!   edge splits into its two halves with shares `1−t` (the half at `b`) and
+//!   `t` (the half at `a`); corner values (half-edge columns: a half-edge's
+//!   value belongs to the corner at its origin) of the new corners are
+//!   interpolated along the edge, the old corners keep theirs.
+//! - **split_face**, **poke_face**, **triangulate**: the face splits; each
+//!   piece's share is its area when positions are present (equal shares
+//!   otherwise). New edges get `interpolate` of nothing (absent for
+//!   [`Interpolate`](crate::attr::Interpolate)). A new corner copies the
+//!   corner of the same vertex in the old face; the centre of `poke_face`
+//!   interpolates all corners with equal weights (positions: the centroid).
+//! - **collapse_edge** (`a` into `b`): `b = merge(a: 0, b: 1)`
+//!   (`collapse_edge_at` takes `t`: `merge(a: 1−t, b: t)`); where a triangle
+//!   disappears its two merging edges `merge` with equal weights and the
+//!   triangle's values merge into the face that receives the kept edge with
+//!   weight 0 (conserved totals are kept, interpolated values unchanged).
+//! - **flip_edge**: both faces merge (equal weights) and split again (equal
+//!   shares); the edge keeps its values; the two new corners copy the
+//!   corners they replace at the same vertex.
+//! - **remove_edge**, **merge_faces**, **remove_vertex**: the kept face =
+//!   `merge` of all merged faces, equal weights; removed edges and vertices
+//!   lose their values.
+//! - **remove_face**: the face's values are dropped (it becomes a hole).
+//!   **fill_hole**: the new face gets `interpolate` of nothing.
+//!
+//! Conserved quantities (sum on merge, share on split) thus keep their totals
+//! through every operator except `remove_face`, which deletes.
+
+mod collapse;
+mod compact;
+mod flip;
+mod holes;
+mod remove;
+mod split;
+mod triangulate;
+
+pub use compact::KeyMaps;
+
+use crate::error::{Error, Refusal};
+use crate::keys::AnyKey;
+use crate::mesh::{Mesh, HOLE_BIT};
+
+/// A refusal error.
+#[inline]
+pub(crate) fn refuse(op: &'static str, key: impl Into<AnyKey>, reason: Refusal) -> Error {
+    Error::Refused {
+        op,
+        key: key.into(),
+        reason,
+    }
+}
+
+/// What [`Mesh::remove_edge_raw`] did to the faces.
+pub(crate) struct EdgeRemoval {
+    /// A face that was freed (merged into the survivor, or emptied).
+    pub(crate) freed_face: Option<u32>,
+    /// A face made for the second loop when one loop split in two.
+    pub(crate) new_face: Option<u32>,
+}
+
+impl Mesh {
+    #[inline]
+    pub(crate) fn set_next(&mut self, h: u32, n: u32) {
+        self.he[h as usize].next = n;
+    }
+
+    /// Point face `f` at half-edge `h`, keeping its hole flag.
+    #[inline]
+    pub(crate) fn set_face_link(&mut self, f: u32, h: u32) {
+        let bit = self.f_halfedge[f as usize] & HOLE_BIT;
+        self.f_halfedge[f as usize] = bit | h;
+    }
+
+    /// Number of half-edges in the loop of face `f`.
+    #[inline]
+    pub(crate) fn face_degree_raw(&self, f: u32) -> usize {
+        self.face_loop_raw(f).count()
+    }
+
+    /// Give every half-edge of the `next` cycle through `start` the face `f`
+    /// and point `f` at `start`.
+    pub(crate) fn relabel_loop(&mut self, start: u32, f: u32) {
+        let mut h = start;
+        for _ in 0..self.he.len() {
+            self.he[h as usize].face = f;
+            h = self.he[h as usize].next;
+            if h == start {
+                break;
+            }
+        }
+        self.set_face_link(f, start);
+    }
+
+    /// Twice the vector area (Newell) of the `next` cycle through `start`.
+    pub(crate) fn loop_normal(&self, start: u32) -> Option<[f64; 3]> {
+        let p = self.position_slots()?;
+        let mut n = [0.0; 3];
+        for h in crate::circulate::FaceHalfedges::from_halfedge(self, start) {
+            let a = p[self.origin_of(h) as usize];
+            let b = p[self.dest_of(h) as usize];
+            n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+            n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+            n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+        }
+        Some(n)
+    }
+
+    /// Area of the `next` cycle through `start`, if positions exist.
+    pub(crate) fn loop_area(&self, start: u32) -> Option<f64> {
+        self.loop_normal(start)
+            .map(|n| 0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt())
+    }
+
+    /// Split face `src`'s attribute values over `pieces` (faces, `src` among
+    /// them or not), by area when positions give a positive total, else in
+    /// equal shares.
+    pub(crate) fn split_face_values(&mut self, src: u32, pieces: &[u32]) {
+        if self.attrs.face.cols.is_empty() || pieces.is_empty() {
+            return;
+        }
+        let areas: Option<Vec<f64>> = pieces
+            .iter()
+            .map(|&f| self.loop_area(self.face_halfedge_raw(f)))
+            .collect();
+        let total: f64 = areas.as_ref().map_or(0.0, |a| a.iter().sum());
+        let shares: Vec<(usize, f64)> = match areas {
+            Some(a) if total > 0.0 && total.is_finite() => pieces
+                .iter()
+                .zip(a)
+                .map(|(&f, x)| (f as usize, x / total))
+                .collect(),
+            _ => pieces
+                .iter()
+                .map(|&f| (f as usize, 1.0 / pieces.len() as f64))
+                .collect(),
+        };
+        self.attrs.face.split(src as usize, &shares);
+    }
+
+    /// Cut face `f` with a new edge from `a = origin(ha)` to `b = origin(hb)`,
+    /// where `pa` and `pb` are the half-edges before `ha` and `hb` in `f`.
+    /// The new half-edge `a → b` (returned first) lies in a new face (returned
+    /// second) with `hb .. pa`; its twin stays in `f` with `ha .. pb`. Corner
+    /// and edge rules run; the face rule is the caller's.
+    pub(crate) fn split_face_raw(&mut self, pa: u32, ha: u32, pb: u32, hb: u32) -> (u32, u32) {
+        let f = self.face_of(ha);
+        let a = self.origin_of(ha);
+        let b = self.origin_of(hb);
+        let e = self.alloc_edge();
+        let g = self.alloc_face(false);
+        let (n0, n1) = (2 * e, 2 * e + 1);
+        self.he[n0 as usize] = crate::mesh::HalfedgeRecord {
+            origin: a,
+            next: hb,
+            face: g,
+        };
+        self.he[n1 as usize] = crate::mesh::HalfedgeRecord {
+            origin: b,
+            next: ha,
+            face: f,
+        };
+        self.set_next(pa, n0);
+        self.set_next(pb, n1);
+        self.relabel_loop(n0, g);
+        self.set_face_link(f, n1);
+        self.attrs.edge.interpolate(e as usize, &[]);
+        self.attrs.halfedge.copy(ha as usize, n0 as usize);
+        self.attrs.halfedge.copy(hb as usize, n1 as usize);
+        (n0, g)
+    }
+
+    /// Take edge `e` out of the `next` structure. Where its two sides lie in
+    /// different faces they merge and `survivor` (one of them) is kept;
+    /// where they lie in the same loop it splits in two (a new face with the
+    /// same hole flag takes the second), and vertices left without edges are
+    /// removed. Attribute values of the freed elements are dropped: run the
+    /// merge rules before. Must be called on a consistent mesh.
+    pub(crate) fn remove_edge_raw(&mut self, e: u32, survivor: u32) -> EdgeRemoval {
+        let (x, y) = (2 * e, 2 * e + 1);
+        let (fx, fy) = (self.face_of(x), self.face_of(y));
+        let (a, b) = (self.origin_of(x), self.origin_of(y));
+        let (nx, ny) = (self.next_of(x), self.next_of(y));
+        let mut out = EdgeRemoval {
+            freed_face: None,
+            new_face: None,
+        };
+        if nx == y && ny == x {
+            // An isolated edge: everything goes.
+            self.free_face(fx);
+            out.freed_face = Some(fx);
+            self.free_vertex(a);
+            self.free_vertex(b);
+            self.free_edge(e);
+            return out;
+        }
+        if nx == y {
+            // b has degree 1: ... px -> x -> y -> ny ...
+            let px = self.prev_of(x);
+            self.set_next(px, ny);
+            self.free_vertex(b);
+            if self.v_halfedge[a as usize] == x {
+                self.v_halfedge[a as usize] = ny;
+            }
+            let fl = self.face_halfedge_raw(fx);
+            if fl == x || fl == y {
+                self.set_face_link(fx, ny);
+            }
+            self.free_edge(e);
+            return out;
+        }
+        if ny == x {
+            let py = self.prev_of(y);
+            self.set_next(py, nx);
+            self.free_vertex(a);
+            if self.v_halfedge[b as usize] == y {
+                self.v_halfedge[b as usize] = nx;
+            }
+            let fl = self.face_halfedge_raw(fy);
+            if fl == x || fl == y {
+                self.set_face_link(fy, nx);
+            }
+            self.free_edge(e);
+            return out;
+        }
+        let px = self.prev_of(x);
+        let py = self.prev_of(y);
+        self.set_next(px, ny);
+        self.set_next(py, nx);
+        if self.v_halfedge[a as usize] == x {
+            self.v_halfedge[a as usize] = ny;
+        }
+        if self.v_halfedge[b as usize] == y {
+            self.v_halfedge[b as usize] = nx;
+        }
+        if fx != fy {
+            let gone = if survivor == fx { fy } else { fx };
+            self.relabel_loop(nx, survivor);
+            self.free_face(gone);
+            out.freed_face = Some(gone);
+        } else {
+            self.set_face_link(fx, nx);
+            let g = self.alloc_face(self.is_hole_raw(fx));
+            self.relabel_loop(ny, g);
+            self.attrs.face.copy(fx as usize, g as usize);
+            out.new_face = Some(g);
+        }
+        self.free_edge(e);
+        out
+    }
+
+    /// Whether vertex slot `v` touches a hole.
+    #[inline]
+    pub(crate) fn is_boundary_vertex_raw(&self, v: u32) -> bool {
+        self.outgoing_raw(v).any(|h| self.in_hole_raw(h))
+    }
+
+    /// Debug check after every operator.
+    #[inline]
+    pub(crate) fn debug_validate(&self) {
+        #[cfg(debug_assertions)]
+        if let Err(e) = self.validate() {
+            panic!("operator broke the mesh: {e}");
+        }
+    }
+}

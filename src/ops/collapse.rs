@@ -1,0 +1,254 @@
+//! `collapse_edge`: merge a half-edge's origin into its destination.
+
+use super::refuse;
+use crate::error::{Refusal, Result};
+use crate::keys::{HalfedgeKey, VertexKey};
+use crate::mesh::Mesh;
+
+struct CollapsePlan {
+    h: u32,
+    /// Whether the face of `h` (resp. its twin) is a triangle (or a
+    /// triangular hole) that disappears.
+    left_goes: bool,
+    right_goes: bool,
+}
+
+impl Mesh {
+    fn plan_collapse(&self, hk: HalfedgeKey) -> Result<CollapsePlan> {
+        const OP: &str = "collapse_edge";
+        let h = self.check_halfedge(hk)?;
+        let t = h ^ 1;
+        let (a, b) = (self.origin_of(h), self.origin_of(t));
+        let (f_left, f_right) = (self.face_of(h), self.face_of(t));
+        let left_goes = self.face_degree_raw(f_left) == 3;
+        let right_goes = self.face_degree_raw(f_right) == 3;
+        let c = self.dest_of(self.next_of(h));
+        let d = self.dest_of(self.next_of(t));
+        if left_goes && right_goes && c == d {
+            return Err(refuse(OP, hk, Refusal::LinkCondition));
+        }
+        // Link condition: the common neighbours of a and b are exactly the
+        // apexes of the triangles that disappear.
+        let mut around_a: Vec<u32> = self.outgoing_raw(a).map(|o| self.dest_of(o)).collect();
+        around_a.sort_unstable();
+        for o in self.outgoing_raw(b) {
+            let w = self.dest_of(o);
+            if w == a || around_a.binary_search(&w).is_err() {
+                continue;
+            }
+            let allowed = (left_goes && w == c) || (right_goes && w == d);
+            if !allowed {
+                return Err(refuse(OP, hk, Refusal::LinkCondition));
+            }
+        }
+        // An interior edge between two boundary vertices would pinch.
+        if !self.is_hole_raw(f_left)
+            && !self.is_hole_raw(f_right)
+            && self.is_boundary_vertex_raw(a)
+            && self.is_boundary_vertex_raw(b)
+        {
+            return Err(refuse(OP, hk, Refusal::NonManifold));
+        }
+        // No other face or hole may hold both a and b.
+        for o in self.outgoing_raw(a) {
+            let f = self.face_of(o);
+            if f != f_left && f != f_right && self.face_loop_raw(f).any(|x| self.origin_of(x) == b)
+            {
+                return Err(refuse(OP, hk, Refusal::NonManifold));
+            }
+        }
+        // A disappearing triangle must not leave an edge with holes on both
+        // sides.
+        for (goes, x) in [(left_goes, h), (right_goes, t)] {
+            if goes && !self.in_hole_raw(x) {
+                let n = self.next_of(x);
+                let p = self.next_of(n);
+                if self.in_hole_raw(n ^ 1) && self.in_hole_raw(p ^ 1) {
+                    return Err(refuse(OP, hk, Refusal::NonManifold));
+                }
+            }
+        }
+        Ok(CollapsePlan {
+            h,
+            left_goes,
+            right_goes,
+        })
+    }
+
+    /// Whether [`collapse_edge`](Mesh::collapse_edge) would succeed;
+    /// changes nothing.
+    ///
+    /// # Errors
+    /// As [`collapse_edge`](Mesh::collapse_edge).
+    pub fn check_collapse_edge(&self, h: HalfedgeKey) -> Result<()> {
+        self.plan_collapse(h).map(|_| ())
+    }
+
+    /// Merge `a = origin(h)` into `b = dest(h)`: the edge disappears, every
+    /// edge of `a` now ends at `b`. A triangle beside the edge (face or
+    /// hole) disappears and its two other edges become one; a larger face
+    /// loses one side.
+    ///
+    /// ```text
+    ///        c                  c
+    ///      / | \                |
+    ///     x  |  \               |
+    ///      \ |   \      =>      |
+    ///        a -h-> b      x -- b
+    ///      /   \   /            |
+    ///           \ /             |
+    ///            d              d
+    /// ```
+    ///
+    /// Returns `b`, which keeps its key. Attributes: `b = merge(a: 0,
+    /// b: 1)` (positions: `b` stays where it was; see
+    /// [`collapse_edge_at`](Mesh::collapse_edge_at)); merging edges merge
+    /// with equal weights; a disappearing triangle's values merge (weight 0)
+    /// into the face that receives its kept edge. χ is unchanged, except that
+    /// it grows by 1 when a triangular hole closes.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey);
+    /// [`Refusal::LinkCondition`] when `a` and `b` have a common neighbour
+    /// other than the apex of a disappearing triangle (the result would have
+    /// two edges between the same vertices), or both sides are triangles on
+    /// the same apex; [`Refusal::NonManifold`] when the edge is interior but
+    /// both ends lie on a boundary, when another face holds both ends, or a
+    /// triangle would leave an edge with holes on both sides.
+    ///
+    /// # Complexity
+    /// O(Σ degree of the faces around `a` + degree of `b` · log degree of `a`).
+    ///
+    /// # Examples
+    /// ```
+    /// let mut mesh = meshloom::shapes::icosahedron();
+    /// let h = mesh.halfedges().next().unwrap();
+    /// let b = mesh.halfedge(h)?.dest().key();
+    /// assert_eq!(mesh.collapse_edge(h)?, b);
+    /// assert_eq!((mesh.vertex_count(), mesh.face_count()), (11, 18));
+    /// assert_eq!(mesh.euler_characteristic(), 2);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn collapse_edge(&mut self, h: HalfedgeKey) -> Result<VertexKey> {
+        self.collapse_edge_at(h, 1.0)
+    }
+
+    /// Whether [`collapse_edge_at`](Mesh::collapse_edge_at) would succeed.
+    ///
+    /// # Errors
+    /// As [`collapse_edge_at`](Mesh::collapse_edge_at).
+    pub fn check_collapse_edge_at(&self, h: HalfedgeKey, t: f64) -> Result<()> {
+        if !(0.0..=1.0).contains(&t) {
+            return Err(refuse(
+                "collapse_edge",
+                h,
+                Refusal::Parameter("t must lie in 0..=1"),
+            ));
+        }
+        self.check_collapse_edge(h)
+    }
+
+    /// [`collapse_edge`](Mesh::collapse_edge) with the merged vertex at
+    /// parameter `t` from `a` to `b`: `b = merge(a: 1−t, b: t)` (t = 0.5
+    /// puts it at the midpoint).
+    ///
+    /// # Errors
+    /// As `collapse_edge`, and [`Refusal::Parameter`] when `t` is not in
+    /// `0..=1`.
+    ///
+    /// # Complexity
+    /// As `collapse_edge`.
+    pub fn collapse_edge_at(&mut self, hk: HalfedgeKey, t: f64) -> Result<VertexKey> {
+        self.check_collapse_edge_at(hk, t)?;
+        let CollapsePlan {
+            h,
+            left_goes,
+            right_goes,
+        } = self.plan_collapse(hk)?;
+        let tw = h ^ 1;
+        let (a, b) = (self.origin_of(h), self.origin_of(tw));
+        let (f_left, f_right) = (self.face_of(h), self.face_of(tw));
+        let ph = self.prev_of(h);
+        let pt = self.prev_of(tw);
+        let nh = self.next_of(h);
+        let nt = self.next_of(tw);
+        self.attrs
+            .vertex
+            .merge(b as usize, &[(a as usize, 1.0 - t), (b as usize, t)]);
+        // Every half-edge leaving a now leaves b (the ring of a is walked by
+        // next/twin, which the origins do not affect).
+        let mut o = h;
+        for _ in 0..self.he.len() {
+            self.he[o as usize].origin = b;
+            o = self.next_of(o ^ 1);
+            if o == h {
+                break;
+            }
+        }
+        self.set_next(ph, nh);
+        self.set_next(pt, nt);
+        if self.face_halfedge_raw(f_left) == h {
+            self.set_face_link(f_left, nh);
+        }
+        if self.face_halfedge_raw(f_right) == tw {
+            self.set_face_link(f_right, nt);
+        }
+        self.v_halfedge[b as usize] = nh;
+        self.free_edge(h >> 1);
+        self.free_vertex(a);
+        if left_goes {
+            // Two-sided loop (ph: c -> b, nh: b -> c): keep nh.
+            self.dissolve_two_gon(ph, nh);
+        }
+        if right_goes {
+            // Two-sided loop (pt: d -> b, nt: b -> d): keep pt.
+            self.dissolve_two_gon(nt, pt);
+        }
+        self.debug_validate();
+        Ok(self.vkey(b))
+    }
+
+    /// A face (or hole) left with the two half-edges `p` and `n` (parallel
+    /// edges between the same vertices) disappears: `n` takes the place of
+    /// `twin(p)` in its face and `p`'s edge goes. The mesh must be consistent
+    /// apart from this two-sided loop.
+    fn dissolve_two_gon(&mut self, p: u32, n: u32) {
+        let f = self.face_of(p);
+        let tp = p ^ 1;
+        let g = self.face_of(tp);
+        let q = self.prev_of(tp);
+        let r = self.next_of(tp);
+        self.set_next(q, n);
+        self.set_next(n, r);
+        self.he[n as usize].face = g;
+        if self.face_halfedge_raw(g) == tp {
+            self.set_face_link(g, n);
+        }
+        let u = self.origin_of(p);
+        let w = self.origin_of(tp);
+        if self.v_halfedge[u as usize] == p {
+            self.v_halfedge[u as usize] = n ^ 1;
+        }
+        if self.v_halfedge[w as usize] == tp {
+            self.v_halfedge[w as usize] = n;
+        }
+        self.attrs.edge.merge(
+            (n >> 1) as usize,
+            &[((n >> 1) as usize, 0.5), ((p >> 1) as usize, 0.5)],
+        );
+        if !self.is_hole_raw(f) {
+            // The triangle's values go to a real face beside the kept edge.
+            let k = if self.is_hole_raw(g) {
+                self.face_of(n ^ 1)
+            } else {
+                g
+            };
+            self.attrs
+                .face
+                .merge(k as usize, &[(k as usize, 1.0), (f as usize, 0.0)]);
+        }
+        self.attrs.halfedge.copy(tp as usize, n as usize);
+        self.free_face(f);
+        self.free_edge(p >> 1);
+    }
+}

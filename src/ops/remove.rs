@@ -1,0 +1,285 @@
+//! Operators that merge faces: `remove_edge`, `merge_faces`,
+//! `remove_vertex`.
+
+use super::refuse;
+use crate::error::{Refusal, Result};
+use crate::keys::{EdgeKey, FaceKey, VertexKey};
+use crate::mesh::Mesh;
+
+impl Mesh {
+    fn plan_remove_edge(&self, ek: EdgeKey) -> Result<u32> {
+        const OP: &str = "remove_edge";
+        let e = self.check_edge(ek)?;
+        let (h, t) = (2 * e, 2 * e + 1);
+        let (f_left, f_right) = (self.face_of(h), self.face_of(t));
+        match (self.is_hole_raw(f_left), self.is_hole_raw(f_right)) {
+            (false, false) => {
+                // The merged face must not meet a vertex twice.
+                let (a, b) = (self.origin_of(h), self.origin_of(t));
+                let mut corners: Vec<u32> = self
+                    .face_loop_raw(f_left)
+                    .map(|x| self.origin_of(x))
+                    .collect();
+                corners.sort_unstable();
+                for x in self.face_loop_raw(f_right) {
+                    let v = self.origin_of(x);
+                    if v != a && v != b && corners.binary_search(&v).is_ok() {
+                        return Err(refuse(OP, ek, Refusal::NonManifold));
+                    }
+                }
+            }
+            (hole_left, _) => {
+                // The face beside the hole joins it; none of its other
+                // edges may be on a boundary too (they would dangle).
+                let x = if hole_left { t } else { h };
+                if crate::circulate::FaceHalfedges::from_halfedge(self, x)
+                    .any(|y| y != x && self.in_hole_raw(y ^ 1))
+                {
+                    return Err(refuse(OP, ek, Refusal::Bridge));
+                }
+            }
+        }
+        Ok(e)
+    }
+
+    /// Whether [`remove_edge`](Mesh::remove_edge) would succeed; changes
+    /// nothing.
+    ///
+    /// # Errors
+    /// As [`remove_edge`](Mesh::remove_edge).
+    pub fn check_remove_edge(&self, e: EdgeKey) -> Result<()> {
+        self.plan_remove_edge(e).map(|_| ())
+    }
+
+    /// Remove edge `e`; the faces on its two sides become one. On a
+    /// boundary edge the face joins the hole, which grows.
+    ///
+    /// ```text
+    ///   x ---- a ---- y        x ---- a ---- y
+    ///   |      |      |        |             |
+    ///   |  fl  e  fr  |   =>   |     fl      |
+    ///   |      |      |        |             |
+    ///   z ---- b ---- w        z ---- b ---- w
+    /// ```
+    ///
+    /// Returns the merged face: the face of `e`'s first half-edge, or the
+    /// hole when one side is a hole. Attributes: the kept face = `merge` of
+    /// both, equal weights (a face that joins a hole loses its values). χ is
+    /// unchanged.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey);
+    /// [`Refusal::NonManifold`] when the two faces share a corner other than
+    /// the edge's ends (the merged face would meet it twice);
+    /// [`Refusal::Bridge`] on a boundary edge whose face has another
+    /// boundary edge: removing it would leave a dangling edge or cut the
+    /// mesh apart (use [`remove_face`](Mesh::remove_face) for that).
+    ///
+    /// # Complexity
+    /// O(degree of both faces · log degree + degree of `a` and `b`).
+    ///
+    /// # Examples
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// let e = mesh.edges().next().unwrap();
+    /// let f = mesh.remove_edge(e)?;
+    /// assert_eq!(mesh.face(f)?.degree(), 6);
+    /// assert_eq!(mesh.euler_characteristic(), 2);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn remove_edge(&mut self, ek: EdgeKey) -> Result<FaceKey> {
+        let e = self.plan_remove_edge(ek)?;
+        let (h, t) = (2 * e, 2 * e + 1);
+        let (f_left, f_right) = (self.face_of(h), self.face_of(t));
+        let survivor = if self.is_hole_raw(f_right) {
+            f_right
+        } else if self.is_hole_raw(f_left) {
+            f_left
+        } else {
+            let pair = [(f_left as usize, 0.5), (f_right as usize, 0.5)];
+            self.attrs.face.merge(f_left as usize, &pair);
+            f_left
+        };
+        self.remove_edge_raw(e, survivor);
+        self.debug_validate();
+        Ok(self.fkey(survivor))
+    }
+
+    fn plan_merge_faces(&self, f: FaceKey, g: FaceKey) -> Result<u32> {
+        const OP: &str = "merge_faces";
+        let fi = self.check_face(f)?;
+        let gi = self.check_face(g)?;
+        if self.is_hole_raw(fi) {
+            return Err(refuse(OP, f, Refusal::Hole));
+        }
+        if self.is_hole_raw(gi) {
+            return Err(refuse(OP, g, Refusal::Hole));
+        }
+        if fi == gi {
+            return Err(refuse(OP, f, Refusal::Adjacent));
+        }
+        let mut shared = self
+            .face_loop_raw(fi)
+            .filter(|&x| self.face_of(x ^ 1) == gi);
+        let Some(x) = shared.next() else {
+            return Err(refuse(OP, f, Refusal::NotAdjacent));
+        };
+        if shared.next().is_some() {
+            return Err(refuse(OP, f, Refusal::NonManifold));
+        }
+        let e = self.ekey(x >> 1);
+        self.plan_remove_edge(e)
+            .map_err(|_| refuse(OP, f, Refusal::NonManifold))?;
+        Ok(x)
+    }
+
+    /// Whether [`merge_faces`](Mesh::merge_faces) would succeed; changes
+    /// nothing.
+    ///
+    /// # Errors
+    /// As [`merge_faces`](Mesh::merge_faces).
+    pub fn check_merge_faces(&self, f: FaceKey, g: FaceKey) -> Result<()> {
+        self.plan_merge_faces(f, g).map(|_| ())
+    }
+
+    /// Merge two faces that share exactly one edge, by removing it (see
+    /// [`remove_edge`](Mesh::remove_edge) for the diagram).
+    ///
+    /// Returns `f`, now the merged face. Attributes: `f = merge(f, g)`,
+    /// equal weights. χ is unchanged.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey); [`Refusal::Hole`];
+    /// [`Refusal::Adjacent`] when `f == g`; [`Refusal::NotAdjacent`] when
+    /// they share no edge; [`Refusal::NonManifold`] when they share more
+    /// than one edge or another corner.
+    ///
+    /// # Complexity
+    /// O(degree of both faces · log degree).
+    ///
+    /// # Examples
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// let f: Vec<_> = mesh.faces().collect();
+    /// let g = mesh.face(f[0])?.neighbors().next().unwrap();
+    /// assert_eq!(mesh.merge_faces(f[0], g)?, f[0]);
+    /// assert_eq!(mesh.face_count(), 5);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn merge_faces(&mut self, f: FaceKey, g: FaceKey) -> Result<FaceKey> {
+        let x = self.plan_merge_faces(f, g)?;
+        let (fi, gi) = (self.face_of(x), self.face_of(x ^ 1));
+        let pair = [(fi as usize, 0.5), (gi as usize, 0.5)];
+        self.attrs.face.merge(fi as usize, &pair);
+        self.remove_edge_raw(x >> 1, fi);
+        self.debug_validate();
+        Ok(f)
+    }
+
+    /// The ring of an interior vertex and the last half-edge of each face's
+    /// segment, checked for `remove_vertex`.
+    fn plan_remove_vertex(&self, vk: VertexKey) -> Result<(Vec<u32>, Vec<u32>)> {
+        const OP: &str = "remove_vertex";
+        let v = self.check_vertex(vk)?;
+        let outs: Vec<u32> = self.outgoing_raw(v).collect();
+        if outs.iter().any(|&o| self.in_hole_raw(o)) {
+            return Err(refuse(OP, vk, Refusal::Boundary));
+        }
+        let k = outs.len();
+        let mut lasts = Vec::with_capacity(k);
+        let mut corners = Vec::new();
+        for i in 0..k {
+            let stop = outs[(i + k - 1) % k] ^ 1;
+            let mut x = outs[i];
+            for _ in 0..self.he.len() {
+                let n = self.next_of(x);
+                if n == stop {
+                    break;
+                }
+                x = n;
+                corners.push(self.origin_of(x));
+            }
+            lasts.push(x);
+        }
+        if corners.len() < 3 {
+            return Err(refuse(OP, vk, Refusal::Degenerate));
+        }
+        corners.sort_unstable();
+        if corners.windows(2).any(|w| w[0] == w[1]) {
+            return Err(refuse(OP, vk, Refusal::NonManifold));
+        }
+        Ok((outs, lasts))
+    }
+
+    /// Whether [`remove_vertex`](Mesh::remove_vertex) would succeed; changes
+    /// nothing.
+    ///
+    /// # Errors
+    /// As [`remove_vertex`](Mesh::remove_vertex).
+    pub fn check_remove_vertex(&self, v: VertexKey) -> Result<()> {
+        self.plan_remove_vertex(v).map(|_| ())
+    }
+
+    /// Remove an interior vertex and its edges; the faces around it merge
+    /// into one.
+    ///
+    /// ```text
+    ///   x ---- y        x ---- y
+    ///   | \  / |        |      |
+    ///   |  v   |   =>   |  f   |
+    ///   | /  \ |        |      |
+    ///   w ---- z        w ---- z
+    /// ```
+    ///
+    /// Returns the merged face (the face of `v`'s first outgoing
+    /// half-edge). Attributes: it is the `merge` of all the faces, equal
+    /// weights; `v` and its edges lose their values. χ is unchanged.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey); [`Refusal::Boundary`]
+    /// when a hole touches `v`; [`Refusal::NonManifold`] when the merged face
+    /// would meet a vertex twice; [`Refusal::Degenerate`] when it would have
+    /// fewer than three sides.
+    ///
+    /// # Complexity
+    /// O(Σ degree of the faces around `v`).
+    ///
+    /// # Examples
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// let f = mesh.faces().next().unwrap();
+    /// let c = mesh.poke_face(f)?;
+    /// let merged = mesh.remove_vertex(c)?;
+    /// assert_eq!(mesh.face(merged)?.degree(), 4);
+    /// assert_eq!(mesh.face_count(), 6);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn remove_vertex(&mut self, vk: VertexKey) -> Result<FaceKey> {
+        let (outs, lasts) = self.plan_remove_vertex(vk)?;
+        let v = self.origin_of(outs[0]);
+        let k = outs.len();
+        let faces: Vec<u32> = outs.iter().map(|&o| self.face_of(o)).collect();
+        let firsts: Vec<u32> = outs.iter().map(|&o| self.next_of(o)).collect();
+        let keep = faces[0];
+        let w = 1.0 / k as f64;
+        let inputs: Vec<(usize, f64)> = faces.iter().map(|&f| (f as usize, w)).collect();
+        self.attrs.face.merge(keep as usize, &inputs);
+        for i in 0..k {
+            self.set_next(lasts[i], firsts[(i + k - 1) % k]);
+            let u = self.dest_of(outs[i]);
+            if self.v_halfedge[u as usize] == outs[i] ^ 1 {
+                self.v_halfedge[u as usize] = firsts[i];
+            }
+        }
+        self.relabel_loop(firsts[0], keep);
+        for &f in &faces[1..] {
+            self.free_face(f);
+        }
+        for &o in &outs {
+            self.free_edge(o >> 1);
+        }
+        self.free_vertex(v);
+        self.debug_validate();
+        Ok(self.fkey(keep))
+    }
+}

@@ -1,0 +1,355 @@
+//! Operators that add elements inside an edge or a face: `split_edge`,
+//! `split_face` / `insert_edge`, `poke_face`.
+
+use super::refuse;
+use crate::error::{Refusal, Result};
+use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
+use crate::mesh::{HalfedgeRecord, Mesh};
+
+struct SplitEdgePlan {
+    h: u32,
+    t: u32,
+    /// The half-edge before `h` in its face.
+    ph: u32,
+}
+
+struct SplitFacePlan {
+    pa: u32,
+    ha: u32,
+    pb: u32,
+    hb: u32,
+}
+
+impl Mesh {
+    fn plan_split_edge(&self, e: EdgeKey, t: f64) -> Result<SplitEdgePlan> {
+        let e = self.check_edge(e)?;
+        if !(0.0..=1.0).contains(&t) {
+            return Err(refuse(
+                "split_edge",
+                self.ekey(e),
+                Refusal::Parameter("t must lie in 0..=1"),
+            ));
+        }
+        let h = 2 * e;
+        Ok(SplitEdgePlan {
+            h,
+            t: h ^ 1,
+            ph: self.prev_of(h),
+        })
+    }
+
+    /// Whether [`split_edge`](Mesh::split_edge) would succeed; changes
+    /// nothing.
+    ///
+    /// # Errors
+    /// As [`split_edge`](Mesh::split_edge).
+    pub fn check_split_edge(&self, e: EdgeKey, t: f64) -> Result<()> {
+        self.plan_split_edge(e, t).map(|_| ())
+    }
+
+    /// Put a new vertex `m` on edge `e`, at parameter `t` from `a` (the
+    /// origin of `e`'s first half-edge, [`EdgeKey::halfedge_key`]`(0)`) to
+    /// `b`. Both faces (or holes) beside the edge gain a side.
+    ///
+    /// ```text
+    ///        c                    c
+    ///      /   \                /   \
+    ///     a --h-> b    =>      a -> m -h-> b
+    ///      \   /                \   /
+    ///        d                    d
+    /// ```
+    ///
+    /// Returns `m`. The old edge's half-edge `h` now runs `m → b`; the new
+    /// edge joins `a` and `m`. Attributes: `m = interpolate(a: 1−t, b: t)`;
+    /// the edge splits with share `1−t` to `m–b` and `t` to `a–m`; the new
+    /// corners at `m` interpolate the corners at `a` and `b` of the same
+    /// face. χ is unchanged.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey);
+    /// [`Refusal::Parameter`] when `t` is not in `0..=1` (NaN included).
+    ///
+    /// # Complexity
+    /// O(degree of `a`) (to find the half-edge before `h`).
+    ///
+    /// # Examples
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let e = mesh.edges().next().unwrap();
+    /// let m = mesh.split_edge(e, 0.5)?;
+    /// assert_eq!(mesh.vertex(m)?.degree(), 2);
+    /// assert_eq!((mesh.vertex_count(), mesh.edge_count(), mesh.euler_characteristic()), (5, 7, 2));
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn split_edge(&mut self, e: EdgeKey, t: f64) -> Result<VertexKey> {
+        let SplitEdgePlan { h, t: tw, ph } = self.plan_split_edge(e, t)?;
+        let a = self.origin_of(h);
+        let b = self.origin_of(tw);
+        let nh = self.next_of(h);
+        let nt = self.next_of(tw);
+        let m = self.alloc_vertex();
+        let ne = self.alloc_edge();
+        // n0: a -> m (in h's face), n1: m -> a (in tw's face).
+        let (n0, n1) = (2 * ne, 2 * ne + 1);
+        self.he[n0 as usize] = HalfedgeRecord {
+            origin: a,
+            next: h,
+            face: self.face_of(h),
+        };
+        self.he[n1 as usize] = HalfedgeRecord {
+            origin: m,
+            next: nt,
+            face: self.face_of(tw),
+        };
+        self.he[h as usize].origin = m;
+        self.set_next(ph, n0);
+        self.set_next(tw, n1);
+        self.v_halfedge[m as usize] = h;
+        if self.v_halfedge[a as usize] == h {
+            self.v_halfedge[a as usize] = n0;
+        }
+        // Attributes.
+        self.attrs
+            .vertex
+            .interpolate(m as usize, &[(a as usize, 1.0 - t), (b as usize, t)]);
+        self.attrs.edge.split(
+            (h >> 1) as usize,
+            &[(ne as usize, t), ((h >> 1) as usize, 1.0 - t)],
+        );
+        let hc = &mut self.attrs.halfedge;
+        hc.copy(h as usize, n0 as usize);
+        hc.interpolate(h as usize, &[(n0 as usize, 1.0 - t), (nh as usize, t)]);
+        hc.interpolate(n1 as usize, &[(nt as usize, 1.0 - t), (tw as usize, t)]);
+        self.debug_validate();
+        Ok(self.vkey(m))
+    }
+
+    fn plan_split_face(&self, f: FaceKey, a: VertexKey, b: VertexKey) -> Result<SplitFacePlan> {
+        let f = self.check_face(f)?;
+        let va = self.check_vertex(a)?;
+        let vb = self.check_vertex(b)?;
+        let fk = self.fkey(f);
+        if self.is_hole_raw(f) {
+            return Err(refuse("split_face", fk, Refusal::Hole));
+        }
+        let (mut ha, mut hb, mut pa, mut pb) = (None, None, None, None);
+        let start = self.face_halfedge_raw(f);
+        let mut prev = self.prev_of(start);
+        for h in self.face_loop_raw(f) {
+            let o = self.origin_of(h);
+            if o == va {
+                ha = Some(h);
+                pa = Some(prev);
+            } else if o == vb {
+                hb = Some(h);
+                pb = Some(prev);
+            }
+            prev = h;
+        }
+        let (Some(ha), Some(hb), Some(pa), Some(pb)) = (ha, hb, pa, pb) else {
+            return Err(refuse("split_face", fk, Refusal::NotInFace));
+        };
+        if va == vb || self.next_of(ha) == hb || self.next_of(hb) == ha {
+            return Err(refuse("split_face", fk, Refusal::Adjacent));
+        }
+        if self.find_halfedge_raw(va, vb).is_some() {
+            return Err(refuse("split_face", fk, Refusal::EdgeExists));
+        }
+        Ok(SplitFacePlan { pa, ha, pb, hb })
+    }
+
+    /// Whether [`split_face`](Mesh::split_face) would succeed; changes
+    /// nothing.
+    ///
+    /// # Errors
+    /// As [`split_face`](Mesh::split_face).
+    pub fn check_split_face(&self, f: FaceKey, a: VertexKey, b: VertexKey) -> Result<()> {
+        self.plan_split_face(f, a, b).map(|_| ())
+    }
+
+    /// Cut face `f` in two with a new edge between its corners `a` and `b`.
+    ///
+    /// ```text
+    ///   a ----- x          a ----- x
+    ///   |       |          | \  g  |
+    ///   |   f   |    =>    |  \    |
+    ///   |       |          | f \   |
+    ///   y ----- b          y ----- b
+    /// ```
+    ///
+    /// Returns the new half-edge `a → b`; it lies in the new face `g` (the
+    /// part of `f` from `b` round to `a`), its twin in `f`. Attributes: the
+    /// face splits by area (equal shares without positions); the new
+    /// corners copy the corners of `a` and `b` in `f`. χ is unchanged.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey); [`Refusal::Hole`] on a
+    /// hole; [`Refusal::NotInFace`] unless both are corners of `f`;
+    /// [`Refusal::Adjacent`] when `a == b` or they are neighbours in `f`;
+    /// [`Refusal::EdgeExists`] when an edge `a–b` exists elsewhere.
+    ///
+    /// # Complexity
+    /// O(degree of `f` + degree of `a`).
+    ///
+    /// # Examples
+    /// ```
+    /// use meshloom::Mesh;
+    /// let mut quad = Mesh::from_faces(4, &[[0u32, 1, 2, 3]])?;
+    /// let f = quad.faces().next().unwrap();
+    /// let v: Vec<_> = quad.face(f)?.vertices().collect();
+    /// let h = quad.split_face(f, v[0], v[2])?;
+    /// assert_eq!(quad.face_count(), 2);
+    /// assert_eq!(quad.halfedge(h)?.face().degree(), 3);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn split_face(&mut self, f: FaceKey, a: VertexKey, b: VertexKey) -> Result<HalfedgeKey> {
+        let SplitFacePlan { pa, ha, pb, hb } = self.plan_split_face(f, a, b)?;
+        let f = self.face_of(ha);
+        let (n0, g) = self.split_face_raw(pa, ha, pb, hb);
+        self.split_face_values(f, &[f, g]);
+        self.debug_validate();
+        Ok(self.hkey(n0))
+    }
+
+    fn common_face(&self, a: VertexKey, b: VertexKey) -> Result<FaceKey> {
+        let va = self.check_vertex(a)?;
+        let vb = self.check_vertex(b)?;
+        for o in self.outgoing_raw(va) {
+            let f = self.face_of(o);
+            if !self.is_hole_raw(f) && self.face_loop_raw(f).any(|h| self.origin_of(h) == vb) {
+                return Ok(self.fkey(f));
+            }
+        }
+        Err(refuse("insert_edge", a, Refusal::NotInFace))
+    }
+
+    /// Whether [`insert_edge`](Mesh::insert_edge) would succeed; changes
+    /// nothing.
+    ///
+    /// # Errors
+    /// As [`insert_edge`](Mesh::insert_edge).
+    pub fn check_insert_edge(&self, a: VertexKey, b: VertexKey) -> Result<()> {
+        let f = self.common_face(a, b)?;
+        self.check_split_face(f, a, b)
+    }
+
+    /// [`split_face`](Mesh::split_face) on the first face (not a hole) that
+    /// has both `a` and `b` as corners. Returns the new half-edge `a → b`.
+    ///
+    /// # Errors
+    /// [`Refusal::NotInFace`] when no face has both; otherwise as
+    /// `split_face`.
+    ///
+    /// # Complexity
+    /// O(Σ degree of the faces around `a`).
+    pub fn insert_edge(&mut self, a: VertexKey, b: VertexKey) -> Result<HalfedgeKey> {
+        let f = self.common_face(a, b)?;
+        self.split_face(f, a, b)
+    }
+
+    fn plan_poke_face(&self, f: FaceKey) -> Result<u32> {
+        let f = self.check_face(f)?;
+        if self.is_hole_raw(f) {
+            return Err(refuse("poke_face", self.fkey(f), Refusal::Hole));
+        }
+        Ok(f)
+    }
+
+    /// Whether [`poke_face`](Mesh::poke_face) would succeed; changes nothing.
+    ///
+    /// # Errors
+    /// As [`poke_face`](Mesh::poke_face).
+    pub fn check_poke_face(&self, f: FaceKey) -> Result<()> {
+        self.plan_poke_face(f).map(|_| ())
+    }
+
+    /// Put a new vertex `c` inside face `f` and fan it to every corner: a
+    /// face of degree `n` becomes `n` triangles.
+    ///
+    /// ```text
+    ///   v3 ------ v2        v3 ------ v2
+    ///   |          |        |  \    /  |
+    ///   |    f     |   =>   |    c     |
+    ///   |          |        |  /    \  |
+    ///   v0 ------ v1        v0 ------ v1
+    /// ```
+    ///
+    /// Returns `c`; `f` becomes the triangle on `f`'s first half-edge.
+    /// Attributes: `c = interpolate(corners, equal weights)` (positions: the
+    /// centroid); the face splits over the triangles by area; corners at `c`
+    /// interpolate the old corners, the others copy theirs. χ is unchanged.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey); [`Refusal::Hole`].
+    ///
+    /// # Complexity
+    /// O(degree of `f`).
+    ///
+    /// # Examples
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// let f = mesh.faces().next().unwrap();
+    /// let c = mesh.poke_face(f)?;
+    /// assert_eq!(mesh.vertex(c)?.degree(), 4);
+    /// assert_eq!(mesh.face_count(), 9);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn poke_face(&mut self, f: FaceKey) -> Result<VertexKey> {
+        let f = self.plan_poke_face(f)?;
+        let ring: Vec<u32> = self.face_loop_raw(f).collect();
+        let n = ring.len() as u32;
+        let c = self.alloc_vertex();
+        // Spoke i joins c and corner v_i = origin(ring[i]):
+        // out_i = c -> v_i (even), in_i = v_i -> c (odd).
+        let mut spokes = Vec::with_capacity(ring.len());
+        for _ in 0..n {
+            spokes.push(self.alloc_edge());
+        }
+        let mut faces = Vec::with_capacity(ring.len());
+        faces.push(f);
+        for _ in 1..n {
+            faces.push(self.alloc_face(false));
+        }
+        for i in 0..n as usize {
+            let j = (i + 1) % n as usize;
+            let h = ring[i];
+            let face = faces[i];
+            let out_i = 2 * spokes[i];
+            let in_j = 2 * spokes[j] + 1;
+            self.he[h as usize].next = in_j;
+            self.he[h as usize].face = face;
+            self.he[in_j as usize] = HalfedgeRecord {
+                origin: self.origin_of(ring[j]),
+                next: out_i,
+                face,
+            };
+            self.he[out_i as usize] = HalfedgeRecord {
+                origin: c,
+                next: h,
+                face,
+            };
+            self.set_face_link(face, h);
+        }
+        self.v_halfedge[c as usize] = 2 * spokes[0];
+        // Attributes.
+        let w = 1.0 / f64::from(n);
+        let corners: Vec<(usize, f64)> = ring
+            .iter()
+            .map(|&h| (self.origin_of(h) as usize, w))
+            .collect();
+        self.attrs.vertex.interpolate(c as usize, &corners);
+        let old_corners: Vec<(usize, f64)> = ring.iter().map(|&h| (h as usize, w)).collect();
+        for (i, &s) in spokes.iter().enumerate() {
+            self.attrs.edge.interpolate(s as usize, &[]);
+            self.attrs
+                .halfedge
+                .interpolate(2 * s as usize, &old_corners);
+            self.attrs
+                .halfedge
+                .copy(ring[i] as usize, 2 * s as usize + 1);
+        }
+        self.split_face_values(f, &faces);
+        self.debug_validate();
+        Ok(self.vkey(c))
+    }
+}

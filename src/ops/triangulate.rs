@@ -1,0 +1,303 @@
+//! `triangulate` and `triangulate_all`: ear clipping with positions, a fan
+//! without.
+
+use super::refuse;
+use crate::error::{Refusal, Result};
+use crate::keys::FaceKey;
+use crate::mesh::Mesh;
+
+/// One ear: corners `l, m, r` (indices into the face's corner list) and the
+/// corner before `l` in what remains; the diagonal `r → l` is cut.
+#[derive(Clone, Copy)]
+struct Ear {
+    pl: u32,
+    l: u32,
+    m: u32,
+    r: u32,
+}
+
+impl Mesh {
+    /// The ears that triangulate face `f`, in cutting order.
+    fn plan_triangulate(
+        &self,
+        fk: FaceKey,
+        sides: &mut Vec<u32>,
+        ears: &mut Vec<Ear>,
+    ) -> Result<()> {
+        const OP: &str = "triangulate";
+        let f = self.check_face(fk)?;
+        if self.is_hole_raw(f) {
+            return Err(refuse(OP, fk, Refusal::Hole));
+        }
+        sides.clear();
+        ears.clear();
+        sides.extend(self.face_loop_raw(f));
+        let n = sides.len();
+        if n <= 3 {
+            return Ok(());
+        }
+        let corner = |i: u32| self.origin_of(sides[i as usize]);
+        let joined = |i: u32, j: u32| self.find_halfedge_raw(corner(i), corner(j)).is_some();
+        match self.position_slots() {
+            Some(p) if n == 4 => {
+                // The diagonal from the reflex corner (if any) is the only
+                // valid one; for a convex quad take the shorter.
+                let q: [[f64; 2]; 4] = {
+                    let pts: Vec<[f64; 3]> = (0..4).map(|i| p[corner(i) as usize]).collect();
+                    let proj = projector(&pts);
+                    [proj(pts[0]), proj(pts[1]), proj(pts[2]), proj(pts[3])]
+                };
+                let turn = |i: usize| cross(q[(i + 3) % 4], q[i], q[(i + 1) % 4]);
+                let reflex_13 = turn(1) < 0.0 || turn(3) < 0.0;
+                let reflex_02 = turn(0) < 0.0 || turn(2) < 0.0;
+                let d02 = dist2(p[corner(0) as usize], p[corner(2) as usize]);
+                let d13 = dist2(p[corner(1) as usize], p[corner(3) as usize]);
+                let mut prefer_02 = if reflex_02 != reflex_13 {
+                    reflex_02
+                } else {
+                    d02 <= d13
+                };
+                if prefer_02 && joined(0, 2) || !prefer_02 && joined(1, 3) {
+                    prefer_02 = !prefer_02;
+                }
+                if prefer_02 && joined(0, 2) || !prefer_02 && joined(1, 3) {
+                    return Err(refuse(OP, fk, Refusal::EdgeExists));
+                }
+                // Ear at 1 cuts 2 -> 0; ear at 0 cuts 1 -> 3.
+                ears.push(if prefer_02 {
+                    Ear {
+                        pl: 3,
+                        l: 0,
+                        m: 1,
+                        r: 2,
+                    }
+                } else {
+                    Ear {
+                        pl: 2,
+                        l: 3,
+                        m: 0,
+                        r: 1,
+                    }
+                });
+                Ok(())
+            }
+            Some(p) => {
+                let pts: Vec<[f64; 3]> = (0..n as u32).map(|i| p[corner(i) as usize]).collect();
+                let proj = projector(&pts);
+                let q: Vec<[f64; 2]> = pts.iter().map(|&x| proj(x)).collect();
+                let mut rest: Vec<u32> = (0..n as u32).collect();
+                while rest.len() > 3 {
+                    let k = rest.len();
+                    let at = |i: usize| rest[i % k];
+                    let is_ear = |i: usize, strict: bool| {
+                        let (l, m, r) = (at(i + k - 1), at(i), at(i + 1));
+                        let turn = cross(q[l as usize], q[m as usize], q[r as usize]);
+                        if strict && turn <= 0.0 || !strict && turn < 0.0 {
+                            return false;
+                        }
+                        if joined(l, r) {
+                            return false;
+                        }
+                        !strict
+                            || !rest.iter().any(|&o| {
+                                o != l
+                                    && o != m
+                                    && o != r
+                                    && inside(
+                                        q[o as usize],
+                                        q[l as usize],
+                                        q[m as usize],
+                                        q[r as usize],
+                                    )
+                            })
+                    };
+                    let found = (0..k)
+                        .find(|&i| is_ear(i, true))
+                        .or_else(|| (0..k).find(|&i| is_ear(i, false)))
+                        .or_else(|| (0..k).find(|&i| !joined(at(i + k - 1), at(i + 1))));
+                    let Some(i) = found else {
+                        return Err(refuse(OP, fk, Refusal::EdgeExists));
+                    };
+                    ears.push(Ear {
+                        pl: at(i + k - 2),
+                        l: at(i + k - 1),
+                        m: at(i),
+                        r: at(i + 1),
+                    });
+                    rest.remove(i % k);
+                }
+                Ok(())
+            }
+            None => {
+                // A fan from the first corner whose diagonals are all new.
+                let apex = (0..n as u32)
+                    .find(|&k| (2..n as u32 - 1).all(|j| !joined(k, (k + j) % n as u32)))
+                    .ok_or_else(|| refuse(OP, fk, Refusal::EdgeExists))?;
+                let at = |j: u32| (apex + j) % n as u32;
+                for j in 1..n as u32 - 2 {
+                    ears.push(Ear {
+                        pl: at(n as u32 - 1),
+                        l: apex,
+                        m: at(j),
+                        r: at(j + 1),
+                    });
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// Whether [`triangulate`](Mesh::triangulate) would succeed; changes
+    /// nothing.
+    ///
+    /// # Errors
+    /// As [`triangulate`](Mesh::triangulate).
+    pub fn check_triangulate(&self, f: FaceKey) -> Result<()> {
+        self.plan_triangulate(f, &mut Vec::new(), &mut Vec::new())
+    }
+
+    /// Cut face `f` into triangles. With positions, by ear clipping in the
+    /// plane of the face's (Newell) normal, so a non-convex polygon gives
+    /// triangles that do not overlap; a quad is cut along the diagonal at its
+    /// reflex corner, or the shorter one if convex. Without positions, a fan
+    /// from the first corner whose diagonals are all new edges.
+    ///
+    /// ```text
+    ///   v3 ------ v2        v3 ------ v2
+    ///   |          |        |  .       |
+    ///   |    f     |   =>   |     .    |
+    ///   |          |        |        . |
+    ///   v0 ------ v1        v0 ------ v1
+    /// ```
+    ///
+    /// Returns the triangles, `f` first (a triangle is returned as it is).
+    /// Attributes: the face splits over the triangles by area; each new
+    /// corner copies the corner of its vertex in `f`. χ is unchanged.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey); [`Refusal::Hole`];
+    /// [`Refusal::EdgeExists`] when every way to cut needs a diagonal that
+    /// is an edge already.
+    ///
+    /// # Complexity
+    /// O(n²) for a face of degree n with positions (O(n³) worst case for
+    /// non-convex ones), plus the degree of the corners.
+    ///
+    /// # Examples
+    /// ```
+    /// use meshloom::Mesh;
+    /// // An L-shaped hexagon: a fan from corner 0 would leave the polygon.
+    /// let p = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, 2.0, 0.0], [0.0, 2.0, 0.0]];
+    /// let mut mesh = Mesh::from_polygons(&p, &[[0u32, 1, 2, 3, 4, 5]])?;
+    /// let f = mesh.faces().next().unwrap();
+    /// let tris = mesh.triangulate(f)?;
+    /// assert_eq!(tris.len(), 4);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn triangulate(&mut self, f: FaceKey) -> Result<Vec<FaceKey>> {
+        let mut sides = Vec::new();
+        let mut ears = Vec::new();
+        self.plan_triangulate(f, &mut sides, &mut ears)?;
+        let mut pieces = Vec::new();
+        self.cut_ears(&mut sides, &ears, &mut pieces);
+        self.debug_validate();
+        Ok(pieces.into_iter().map(|g| self.fkey(g)).collect())
+    }
+
+    /// Apply planned ears; `sides[i]` is the half-edge leaving corner `i` in
+    /// what remains of the face. `pieces` receives the triangles.
+    fn cut_ears(&mut self, sides: &mut [u32], ears: &[Ear], pieces: &mut Vec<u32>) {
+        let f = self.face_of(sides[0]);
+        pieces.clear();
+        pieces.push(f);
+        for ear in ears {
+            let (pa, ha) = (sides[ear.m as usize], sides[ear.r as usize]);
+            let (pb, hb) = (sides[ear.pl as usize], sides[ear.l as usize]);
+            let (n0, g) = self.split_face_raw(pa, ha, pb, hb);
+            sides[ear.l as usize] = n0 ^ 1;
+            pieces.push(g);
+        }
+        if ears.is_empty() {
+            return;
+        }
+        self.split_face_values(f, pieces);
+    }
+
+    /// Triangulate every face of degree above three (see
+    /// [`triangulate`](Mesh::triangulate)).
+    ///
+    /// Returns the faces that could not be cut (every way needed an existing
+    /// edge); they are left as they were. χ is unchanged.
+    ///
+    /// # Complexity
+    /// O(Σ cost of `triangulate` per face).
+    ///
+    /// # Examples
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// assert!(mesh.triangulate_all().is_empty());
+    /// assert_eq!(mesh.face_count(), 12);
+    /// ```
+    pub fn triangulate_all(&mut self) -> Vec<FaceKey> {
+        let faces: Vec<FaceKey> = self
+            .faces()
+            .filter(|&f| self.face_degree_raw(f.index) > 3)
+            .collect();
+        let mut left = Vec::new();
+        let (mut sides, mut ears, mut pieces) = (Vec::new(), Vec::new(), Vec::new());
+        for f in faces {
+            if self.plan_triangulate(f, &mut sides, &mut ears).is_err() {
+                left.push(f);
+                continue;
+            }
+            self.cut_ears(&mut sides, &ears, &mut pieces);
+        }
+        self.debug_validate();
+        left
+    }
+}
+
+/// A map from 3D points to the plane of their Newell normal, keeping the
+/// polygon's orientation counter-clockwise.
+fn projector(pts: &[[f64; 3]]) -> impl Fn([f64; 3]) -> [f64; 2] {
+    let mut n = [0.0f64; 3];
+    for i in 0..pts.len() {
+        let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    let k = if n[0].abs() >= n[1].abs() && n[0].abs() >= n[2].abs() {
+        0
+    } else if n[1].abs() >= n[2].abs() {
+        1
+    } else {
+        2
+    };
+    let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+    let flip = n[k] < 0.0;
+    move |p: [f64; 3]| {
+        if flip {
+            [p[v], p[u]]
+        } else {
+            [p[u], p[v]]
+        }
+    }
+}
+
+#[inline]
+fn cross(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+#[inline]
+fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
+}
+
+/// Whether `p` lies in triangle `a, b, c` (counter-clockwise) or on its
+/// sides.
+#[inline]
+fn inside(p: [f64; 2], a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
+    cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0
+}
