@@ -67,16 +67,6 @@ impl<T: Default + Clone, R> Column<T, R> {
         }
     }
 
-    /// Mutable access to slot `i`'s value, if it has one.
-    #[inline]
-    pub(crate) fn get_mut(&mut self, i: usize) -> Option<&mut T> {
-        if self.has(i) {
-            self.values.get_mut(i)
-        } else {
-            None
-        }
-    }
-
     /// Whether slot `i` holds a value.
     #[inline]
     pub(crate) fn has(&self, i: usize) -> bool {
@@ -145,8 +135,6 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     fn copy(&mut self, from: usize, to: usize);
     /// Reorder: slot `i` of the result holds old slot `order[i]`.
     fn permute(&mut self, order: &[u32]);
-    /// Whether slot `i` holds a value.
-    fn is_present(&self, i: usize) -> bool;
     /// Heap bytes held.
     fn heap_bytes(&self) -> usize;
     /// Slot `i`'s value as a dynamic [`Value`] (`None`: absent, or the type
@@ -254,10 +242,6 @@ where
         });
         self.values = values;
         self.present = present;
-    }
-
-    fn is_present(&self, i: usize) -> bool {
-        self.has(i)
     }
 
     fn heap_bytes(&self) -> usize {
