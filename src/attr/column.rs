@@ -67,16 +67,6 @@ impl<T: Default + Clone, R> Column<T, R> {
         }
     }
 
-    /// Mutable access to slot `i`'s value, if it has one.
-    #[inline]
-    pub(crate) fn get_mut(&mut self, i: usize) -> Option<&mut T> {
-        if self.has(i) {
-            self.values.get_mut(i)
-        } else {
-            None
-        }
-    }
-
     /// Whether slot `i` holds a value.
     #[inline]
     pub(crate) fn has(&self, i: usize) -> bool {
@@ -145,8 +135,6 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     fn copy(&mut self, from: usize, to: usize);
     /// Reorder: slot `i` of the result holds old slot `order[i]`.
     fn permute(&mut self, order: &[u32]);
-    /// Whether slot `i` holds a value.
-    fn is_present(&self, i: usize) -> bool;
     /// Heap bytes held.
     fn heap_bytes(&self) -> usize;
     /// Slot `i`'s value as a dynamic [`Value`] (`None`: absent, or the type
@@ -160,6 +148,7 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     fn portable_type(&self) -> Option<super::ValueType>;
     /// `"value type/rule type"`: the key typed columns are registered under
     /// for deserialization.
+    #[cfg(feature = "serde")]
     fn type_key(&self) -> String;
     /// A boxed deep copy.
     fn clone_box(&self) -> Box<dyn ErasedColumn>;
@@ -255,10 +244,6 @@ where
         self.present = present;
     }
 
-    fn is_present(&self, i: usize) -> bool {
-        self.has(i)
-    }
-
     fn heap_bytes(&self) -> usize {
         self.values.capacity() * std::mem::size_of::<T>()
             + self.present.as_ref().map_or(0, |b| b.capacity() * 8)
@@ -291,12 +276,9 @@ where
         T::default().to_value().map(|v| v.value_type())
     }
 
+    #[cfg(feature = "serde")]
     fn type_key(&self) -> String {
-        format!(
-            "{}/{}",
-            std::any::type_name::<T>(),
-            std::any::type_name::<R>()
-        )
+        super::registry::type_key::<T, R>()
     }
 
     fn clone_box(&self) -> Box<dyn ErasedColumn> {

@@ -77,8 +77,11 @@ pub struct Attr<K, T: Attribute, R = <T as Attribute>::Rule> {
     pub(crate) index: usize,
     pub(crate) id: u64,
     pub(crate) name: String,
-    marker: PhantomData<fn() -> (K, T, R)>,
+    marker: Marker<K, T, R>,
 }
+
+/// Ties a handle to its key, value and rule types without owning any.
+type Marker<K, T, R> = PhantomData<fn() -> (K, T, R)>;
 
 /// A vertex attribute handle.
 pub type VertexAttr<T, R = <T as Attribute>::Rule> = Attr<VertexKey, T, R>;

@@ -13,6 +13,8 @@ mod attribute;
 pub(crate) mod column;
 mod handle;
 mod infer;
+#[cfg(feature = "serde")]
+pub(crate) mod registry;
 pub mod rule;
 pub mod rules;
 mod value;
@@ -22,6 +24,8 @@ pub use api::AttrInfo;
 pub use attribute::Attribute;
 pub use column::Column;
 pub use handle::{Attr, EdgeAttr, Element, FaceAttr, HalfedgeAttr, VertexAttr};
+#[cfg(feature = "serde")]
+pub use registry::register;
 pub use rule::{Linear, Rule};
 pub use rules::{Conserved, Contagion, Discard, Incompatible, Interpolate, KeepFirst};
 pub use value::{Dynamic, Value, ValueType};
@@ -223,5 +227,41 @@ impl AttrStore {
     pub(crate) fn positions_mut(&mut self) -> Option<&mut PositionColumn> {
         let i = self.position?;
         self.vertex.typed_mut(i)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::keys::VertexKey;
+
+    #[test]
+    fn columns_follow_alloc_and_free() {
+        let mut mesh = crate::shapes::tetrahedron();
+        let name = mesh.add_vertex_attr::<String>("name").unwrap();
+        let w = mesh.add_vertex_attr::<f64>("w").unwrap();
+        let v = mesh.vertices().next().unwrap();
+        mesh.set_attr(&name, v, "apex".into()).unwrap();
+        mesh.set_attr(&w, v, 2.0).unwrap();
+        let slot = mesh.alloc_vertex();
+        assert_eq!(slot, 4);
+        for (_, c) in &mesh.attrs.vertex.cols {
+            assert_eq!(c.len(), 5);
+        }
+        mesh.free_vertex(v.index);
+        // The value is gone (and its heap memory with it), not just hidden.
+        let col = mesh
+            .attrs
+            .vertex
+            .typed::<String, crate::attr::Incompatible>(1)
+            .unwrap();
+        assert!(col.raw()[v.index()].is_empty());
+        assert!(!col.has(v.index()));
+        // The slot comes back under a new generation, without a value.
+        let again = mesh.alloc_vertex();
+        assert_eq!(again, v.index);
+        let k = VertexKey::new(again, mesh.v_slots.generation_of(again));
+        assert_eq!(mesh.attr(&name, k).unwrap(), None);
+        assert_eq!(mesh.attr(&w, k).unwrap(), None);
+        assert!(mesh.attr(&name, v).is_err());
     }
 }

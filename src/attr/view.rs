@@ -65,7 +65,7 @@ impl<'m, K: Element, T> AttrView<'m, K, T> {
     pub fn iter(&self) -> impl Iterator<Item = (K, &'m T)> + '_ {
         let (slots, shift, present) = (self.slots, self.shift, self.present);
         self.values.iter().enumerate().filter_map(move |(i, v)| {
-            let g = slots.generation((i >> shift) as usize)?;
+            let g = slots.generation(i >> shift)?;
             (g & 1 == 1 && bit(present, i)).then(|| (K::from_parts(i as u32, g), v))
         })
     }
@@ -181,7 +181,7 @@ impl<K: Element, T: Attribute> AttrViewMut<'_, K, T> {
     pub fn iter(&self) -> impl Iterator<Item = (K, &T)> + '_ {
         let (slots, shift, present) = (self.slots, self.shift, self.present.as_deref());
         self.values.iter().enumerate().filter_map(move |(i, v)| {
-            let g = slots.generation((i >> shift) as usize)?;
+            let g = slots.generation(i >> shift)?;
             (g & 1 == 1 && bit(present, i)).then(|| (K::from_parts(i as u32, g), v))
         })
     }
@@ -193,7 +193,7 @@ impl<K: Element, T: Attribute> AttrViewMut<'_, K, T> {
             .iter_mut()
             .enumerate()
             .filter_map(move |(i, v)| {
-                let g = slots.generation((i >> shift) as usize)?;
+                let g = slots.generation(i >> shift)?;
                 (g & 1 == 1 && bit(present, i)).then(|| (K::from_parts(i as u32, g), v))
             })
     }
