@@ -181,30 +181,60 @@ fn validate_accepts_clean_files() {
     assert_eq!(j["faces"], 5558);
 }
 
+/// The line number in `FILE:LINE:` of a message about `rel`.
+fn line_named(message: &str, rel: &str) -> usize {
+    let after = message
+        .split_once(&format!("{rel}:"))
+        .unwrap_or_else(|| panic!("{rel} not named in {message}"))
+        .1;
+    after
+        .split(':')
+        .next()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no line number after {rel} in {message}"))
+}
+
+/// Line `n` (from 1) of a shared file, as tokens.
+fn tokens_of_line(rel: &str, n: usize) -> Vec<String> {
+    let text = std::fs::read_to_string(shared(rel)).expect("text file");
+    let line = text.lines().nth(n - 1).expect("line exists");
+    line.split_whitespace().map(str::to_owned).collect()
+}
+
 #[test]
 fn validate_rejects_bad_files_naming_file_and_line() {
-    // (file, the line the manifest's data puts the trouble on)
-    let cases = [
-        ("invalid/assimp_invalid.off", ":6:"),
-        ("dirty/meshio_bun_zipper_res4.ply", ":562:"),
-    ];
-    for (rel, line) in cases {
-        let o = run(&["validate", &shared(rel)]);
-        assert_eq!(code(&o), 1, "{rel}: {}", stdout(&o));
-        let err = stderr(&o);
-        assert!(err.contains(rel), "{rel}: {err}");
-        assert!(err.contains(line), "{rel}: wanted {line} in {err}");
-        assert!(!err.contains("panicked"), "{err}");
-    }
-    let o = run(&[
-        "validate",
-        "--json",
-        &shared("dirty/meshio_bun_zipper_res4.ply"),
-    ]);
+    // A face with no corners: the line holds just "0".
+    let rel = "invalid/assimp_invalid.off";
+    let o = run(&["validate", &shared(rel)]);
+    assert_eq!(code(&o), 1, "{rel}: {}", stdout(&o));
+    let n = line_named(&stderr(&o), rel);
+    assert_eq!(tokens_of_line(rel, n), ["0"], "{}", stderr(&o));
+
+    // An edge shared by three faces: the line named is a face using both
+    // ends of the edge the message names.
+    let rel = "dirty/meshio_bun_zipper_res4.ply";
+    let o = run(&["validate", &shared(rel)]);
+    assert_eq!(code(&o), 1, "{rel}: {}", stdout(&o));
+    let err = stderr(&o);
+    assert!(err.contains("more than two faces"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    let n = line_named(&err, rel);
+    let (a, b) = err
+        .split_once("edge ")
+        .and_then(|(_, r)| r.split_once(' '))
+        .and_then(|(ab, _)| ab.split_once('-'))
+        .expect("the message names the edge a-b");
+    let face = tokens_of_line(rel, n);
+    assert!(
+        face[1..].contains(&a.to_string()) && face[1..].contains(&b.to_string()),
+        "line {n}: {face:?} vs {err}"
+    );
+
+    let o = run(&["validate", "--json", &shared(rel)]);
     assert_eq!(code(&o), 1);
     let j = json(&o);
     assert_eq!(j["valid"], false);
-    assert_eq!(j["line"], 562);
+    assert_eq!(j["line"], n);
     assert_eq!(j["repairable"], true);
     assert!(j["error"]
         .as_str()
