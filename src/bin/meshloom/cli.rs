@@ -27,15 +27,22 @@ pub struct Cli {
 /// The commands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Count vertices, edges, faces, holes, boundary loops and components;
-    /// Euler characteristic, genus where closed, face-degree histogram.
+    /// Print counts, boundary, components, Euler characteristic and genus.
+    ///
+    /// Vertices, edges, faces, holes, boundary edges and loops, connected
+    /// components, Euler characteristic V - E + F, genus where the mesh is
+    /// closed (summed over components), the face-degree histogram and the
+    /// bounding box.
     #[command(after_help = "\
 Example:
   meshloom stats data/elephant.off
   meshloom stats data/elephant.off --json")]
     Stats(StatsArgs),
-    /// Check that a file reads as a valid half-edge mesh, without repairs.
-    /// Exit code 1 and a message naming the file and line if it does not.
+    /// Check that a file is a valid half-edge mesh as it stands.
+    ///
+    /// Reads strictly (no repairs) and checks every structural rule. Exit
+    /// code 1 and a message naming the file and line if it is not valid,
+    /// with a hint when `meshloom repair` would fix it.
     #[command(after_help = "\
 Example:
   meshloom validate data/elephant.off && echo clean")]
@@ -46,24 +53,30 @@ Example:
   meshloom convert data/elephant.off elephant.ply
   meshloom convert scan.stl scan.obj.gz --repair")]
     Convert(ConvertArgs),
-    /// Read with every repair on (weld, drop degenerate and duplicate
+    /// Repair a dirty file and report what was done.
+    ///
+    /// Reads with every repair on (weld, drop degenerate and duplicate
     /// faces, orient, split non-manifold edges and vertices, drop unused
-    /// vertices), write the result and report what was done.
+    /// vertices) and writes the result.
     #[command(after_help = "\
 Example:
   meshloom repair scan.ply fixed.ply
   meshloom repair scan.ply fixed.off --json")]
     Repair(RepairArgs),
-    /// Cut every face of more than three sides into triangles (ear
-    /// clipping, so non-convex faces stay inside their outline); attributes
-    /// split with the faces.
+    /// Cut every face of more than three sides into triangles.
+    ///
+    /// Ear clipping, so non-convex faces stay inside their outline;
+    /// attributes split with the faces.
     #[command(after_help = "\
 Example:
   meshloom triangulate quads.obj triangles.obj
   meshloom triangulate part.off part.stl --json")]
     Triangulate(TriangulateArgs),
-    /// Draw a shaded picture (orthographic, flat or smooth shading,
-    /// optional wireframe and boundary highlight) as PNG.
+    /// Draw a shaded picture of a mesh as PNG.
+    ///
+    /// Orthographic, flat or smooth shading, optional wireframe and
+    /// boundary highlight; the back of faces (seen through holes) is
+    /// orange.
     #[command(after_help = "\
 Example:
   meshloom render data/elephant.off elephant.png
