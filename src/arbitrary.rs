@@ -12,7 +12,7 @@
 //!
 //! ```
 //! use meshloom::arbitrary::ArbitraryMesh;
-//! use quickcheck::{QuickCheck, TestResult};
+//! use quickcheck::QuickCheck;
 //!
 //! fn halfedges_pair_up(m: ArbitraryMesh) -> bool {
 //!     m.0.validate().is_ok() && m.0.halfedge_count() == 2 * m.0.edge_count()

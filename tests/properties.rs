@@ -9,6 +9,7 @@
 use std::collections::{HashMap, HashSet};
 
 use meshloom::shapes::{self, GridFaces};
+use meshloom::traverse::Bfs;
 use meshloom::{Error, Mesh, Polygons, VertexKey};
 use quickcheck::{Arbitrary, Gen, QuickCheck, TestResult};
 
@@ -498,6 +499,81 @@ fn dense_small_soups_build_or_refuse_cleanly() {
     QuickCheck::new()
         .tests(3000)
         .quickcheck(prop as fn(Vec<(u8, u8, u8)>) -> bool);
+}
+
+/// Walks, components and unit-cost paths agree with a breadth-first search
+/// and a component count done here on the soup's own edges.
+#[test]
+fn traversals_match_an_independent_search() {
+    fn prop(soup: Soup) -> bool {
+        let built = Mesh::build(None, soup.n, &soup.faces).unwrap();
+        let mesh = &built.mesh;
+        let mut adjacent: Vec<Vec<usize>> = vec![Vec::new(); soup.n];
+        for f in &soup.faces {
+            for k in 0..f.len() {
+                let (a, b) = (f[k] as usize, f[(k + 1) % f.len()] as usize);
+                adjacent[a].push(b);
+                adjacent[b].push(a);
+            }
+        }
+        let distances = |s: usize| {
+            let mut d = vec![usize::MAX; soup.n];
+            d[s] = 0;
+            let mut queue = std::collections::VecDeque::from([s]);
+            while let Some(u) = queue.pop_front() {
+                for &w in &adjacent[u] {
+                    if d[w] == usize::MAX {
+                        d[w] = d[u] + 1;
+                        queue.push_back(w);
+                    }
+                }
+            }
+            d
+        };
+        let used: Vec<usize> = (0..soup.n).filter(|&i| !adjacent[i].is_empty()).collect();
+        // Components: label by repeated searches.
+        let mut label = vec![usize::MAX; soup.n];
+        let mut pieces = 0;
+        for &i in &used {
+            if label[i] == usize::MAX {
+                for (j, &d) in distances(i).iter().enumerate() {
+                    if d != usize::MAX {
+                        label[j] = pieces;
+                    }
+                }
+                pieces += 1;
+            }
+        }
+        let parts = mesh.components();
+        let mut ok = parts.count() == pieces;
+        for &a in used.iter().take(3) {
+            let d = distances(a);
+            let key = |i: usize| built.vertices[i].unwrap();
+            let mut bfs = Bfs::new(mesh, key(a)).unwrap();
+            let mut visited = 0;
+            let mut last = 0;
+            while let Some((v, depth)) = bfs.next_with_depth(mesh) {
+                let i = built.vertices.iter().position(|&k| k == Some(v)).unwrap();
+                ok &= d[i] == depth && depth >= last;
+                last = depth;
+                visited += 1;
+            }
+            ok &= visited == used.iter().filter(|&&i| d[i] != usize::MAX).count();
+            for &b in used.iter().step_by(5) {
+                let path = mesh.shortest_path(key(a), key(b), |_| 1.0).unwrap();
+                ok &= match path {
+                    Some(p) => p.cost == d[b] as f64 && p.halfedges.len() == d[b],
+                    None => d[b] == usize::MAX,
+                };
+                ok &=
+                    (parts.of_vertex(key(a)) == parts.of_vertex(key(b))) == (label[a] == label[b]);
+            }
+        }
+        ok
+    }
+    QuickCheck::new()
+        .tests(TESTS)
+        .quickcheck(prop as fn(Soup) -> bool);
 }
 
 #[cfg(feature = "quickcheck")]
