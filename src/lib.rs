@@ -62,7 +62,7 @@ pub use build::{Built, IndexMaps, Polygons, VertexIndex};
 pub use error::{BuildError, Error, Refusal, Result};
 pub use keys::{AnyKey, EdgeKey, ElementKind, FaceKey, HalfedgeKey, VertexKey};
 pub use mesh::Mesh;
-pub use stats::Stats;
+pub use stats::{ComponentStats, Stats};
 pub use validate::ValidationError;
 pub use view::{EdgeView, FaceView, HalfedgeView, VertexView};
 

@@ -1,5 +1,6 @@
 //! Whole-mesh figures: counts, boundary, components, Euler characteristic,
-//! genus and the face-degree histogram, in one pass each.
+//! genus and the face-degree histogram, in one pass each; the same per
+//! connected component.
 //!
 //! ```
 //! let s = meshloom::shapes::cube().stats();
@@ -150,14 +151,9 @@ impl Mesh {
             .live_indices()
             .filter(|&e| self.in_hole_raw(2 * e) || self.in_hole_raw(2 * e + 1))
             .count();
-        let components = self.component_count();
+        let components = crate::traverse::components(self).count();
         let euler_characteristic = self.euler_characteristic();
-        let genus = if self.is_closed() && components > 0 {
-            let twice = 2 * components as i64 - euler_characteristic;
-            (twice >= 0 && twice % 2 == 0).then_some((twice / 2) as u64)
-        } else {
-            None
-        };
+        let genus = closed_genus(self.hole_count(), components, euler_characteristic);
         Stats {
             vertices: self.vertex_count(),
             edges: self.edge_count(),
@@ -196,28 +192,54 @@ impl Mesh {
         }))
     }
 
-    /// Number of connected components: classes of vertices joined by edges.
-    fn component_count(&self) -> usize {
-        let n = self.v_slots.slot_count();
-        let mut parent: Vec<u32> = (0..n as u32).collect();
-        fn find(parent: &mut [u32], mut x: u32) -> u32 {
-            while parent[x as usize] != x {
-                let up = parent[parent[x as usize] as usize];
-                parent[x as usize] = up;
-                x = up;
-            }
-            x
-        }
-        let mut components = self.vertex_count();
+    /// Figures of each connected component, numbered as
+    /// [`traverse::components`](crate::traverse::components) numbers them
+    /// (in the slot order of their first vertex).
+    ///
+    /// # Complexity
+    /// O(V + E + F).
+    ///
+    /// ```
+    /// use meshloom::Mesh;
+    /// // A closed tetrahedron and a separate open triangle.
+    /// let faces = [vec![0u32, 1, 2], vec![0, 2, 3], vec![0, 3, 1], vec![1, 3, 2], vec![4, 5, 6]];
+    /// let parts = Mesh::from_faces(7, &faces)?.component_stats();
+    /// assert_eq!(parts.len(), 2);
+    /// assert_eq!((parts[0].faces, parts[0].holes, parts[0].genus), (4, 0, Some(0)));
+    /// assert_eq!((parts[1].faces, parts[1].holes, parts[1].genus), (1, 1, None));
+    /// assert_eq!(parts[1].euler_characteristic, 1);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn component_stats(&self) -> Vec<ComponentStats> {
+        let parts = crate::traverse::components(self);
+        let mut out: Vec<ComponentStats> = parts
+            .vertex_counts()
+            .iter()
+            .map(|&vertices| ComponentStats {
+                vertices,
+                ..ComponentStats::default()
+            })
+            .collect();
         for e in self.e_slots.live_indices() {
-            let a = find(&mut parent, self.origin_of(2 * e));
-            let b = find(&mut parent, self.origin_of(2 * e + 1));
-            if a != b {
-                parent[a.max(b) as usize] = a.min(b);
-                components -= 1;
+            let a = self.vkey(self.origin_of(2 * e));
+            if let Some(c) = parts.of_vertex(a).and_then(|c| out.get_mut(c)) {
+                c.edges += 1;
             }
         }
-        components
+        for f in self.f_slots.live_indices() {
+            if let Some(c) = parts.of_face(self.fkey(f)).and_then(|c| out.get_mut(c)) {
+                if self.is_hole_raw(f) {
+                    c.holes += 1;
+                } else {
+                    c.faces += 1;
+                }
+            }
+        }
+        for c in &mut out {
+            c.euler_characteristic = c.vertices as i64 - c.edges as i64 + c.faces as i64;
+            c.genus = closed_genus(c.holes, 1, c.euler_characteristic);
+        }
+        out
     }
 
     /// Number of cycles among the half-edges that lie in holes, following
@@ -238,6 +260,36 @@ impl Mesh {
         }
         loops
     }
+}
+
+/// The genus of a closed surface of `components` pieces with Euler
+/// characteristic `chi`: Σ (2 − χᵢ)/2 = (2·components − χ)/2. `None` with
+/// holes, without components, or for a χ no closed orientable surface has.
+fn closed_genus(holes: usize, components: usize, chi: i64) -> Option<u64> {
+    if holes > 0 || components == 0 {
+        return None;
+    }
+    let twice = 2 * components as i64 - chi;
+    (twice >= 0 && twice % 2 == 0).then_some((twice / 2) as u64)
+}
+
+/// Figures of one connected component, from [`Mesh::component_stats`].
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
+pub struct ComponentStats {
+    /// Number of vertices.
+    pub vertices: usize,
+    /// Number of edges.
+    pub edges: usize,
+    /// Number of faces, holes excluded.
+    pub faces: usize,
+    /// Number of holes (boundary loops).
+    pub holes: usize,
+    /// V − E + F of the component.
+    pub euler_characteristic: i64,
+    /// (2 − χ)/2 where the component is closed; `None` with boundary.
+    pub genus: Option<u64>,
 }
 
 #[cfg(test)]
@@ -291,5 +343,34 @@ mod tests {
         assert_eq!(s.euler_characteristic, 1);
         assert_eq!(s.face_degrees.get(&4), Some(&2));
         assert!(!s.is_closed());
+    }
+}
+
+#[cfg(test)]
+mod component_tests {
+    use crate::{shapes, Mesh};
+
+    #[test]
+    fn component_figures_add_up_to_the_whole() {
+        // An open strip of two quads and a separate tetrahedron.
+        let mut faces: Vec<Vec<u32>> = vec![vec![0, 1, 4, 3], vec![1, 2, 5, 4]];
+        faces.extend([[6u32, 7, 8], [6, 8, 9], [6, 9, 7], [7, 9, 8]].map(|f| f.to_vec()));
+        let mesh = Mesh::from_faces(10, &faces).unwrap();
+        let parts = mesh.component_stats();
+        let whole = mesh.stats();
+        assert_eq!(parts.len(), whole.components);
+        let sum = |f: fn(&super::ComponentStats) -> usize| parts.iter().map(f).sum::<usize>();
+        assert_eq!(sum(|c| c.vertices), whole.vertices);
+        assert_eq!(sum(|c| c.edges), whole.edges);
+        assert_eq!(sum(|c| c.faces), whole.faces);
+        assert_eq!(sum(|c| c.holes), whole.holes);
+        assert_eq!(
+            parts.iter().map(|c| c.euler_characteristic).sum::<i64>(),
+            whole.euler_characteristic
+        );
+        assert_eq!(parts[0].genus, None);
+        assert_eq!(parts[1].genus, Some(0));
+        assert_eq!(shapes::cube().component_stats()[0].genus, Some(0));
+        assert!(Mesh::new().component_stats().is_empty());
     }
 }

@@ -358,6 +358,7 @@ fn every_command_has_help_with_an_example() {
     assert!(stdout(&o).contains("Examples:"));
     for command in [
         "stats",
+        "components",
         "validate",
         "convert",
         "repair",
@@ -486,4 +487,31 @@ fn readme_quickstart_output_is_what_the_tool_prints() {
     assert!(readme.contains(
         "```sh\ncargo run --release -- stats data/elephant.off\ncargo test --all-features\n```"
     ));
+}
+
+#[test]
+fn components_lists_each_piece() {
+    // 15 closed pieces (the manifest's count), together χ = 30.
+    let rel = "closed/pyvista_ant.ply";
+    let m = manifest(rel);
+    let o = run(&["components", "--json", &shared(rel)]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let j = json(&o);
+    let parts = j["components"].as_array().expect("a list");
+    assert_eq!(parts.len().to_string(), m["components"]);
+    let total = |key: &str| parts.iter().map(|c| c[key].as_i64().unwrap()).sum::<i64>();
+    assert_eq!(total("vertices").to_string(), m["V"]);
+    assert_eq!(total("edges").to_string(), m["E"]);
+    assert_eq!(total("faces").to_string(), m["F"]);
+    assert_eq!(total("euler_characteristic").to_string(), m["euler_char"]);
+    assert!(parts.iter().all(|c| c["holes"] == 0 && c["genus"].is_u64()));
+
+    let o = run(&["components", BUNDLED]);
+    assert_eq!(code(&o), 0);
+    let text = stdout(&o);
+    let rows: Vec<&str> = text.lines().collect();
+    assert_eq!(rows.len(), 2, "{text}");
+    assert!(rows[0].contains("genus"));
+    let cells: Vec<&str> = rows[1].split_whitespace().collect();
+    assert_eq!(cells, ["0", "2775", "8337", "5558", "0", "-4", "3"]);
 }

@@ -38,6 +38,16 @@ Example:
   meshloom stats data/elephant.off
   meshloom stats data/elephant.off --json")]
     Stats(StatsArgs),
+    /// Print the figures of each connected component.
+    ///
+    /// One row per component, numbered in the order of their first vertex:
+    /// vertices, edges, faces, holes, Euler characteristic, and the genus
+    /// of closed components.
+    #[command(after_help = "\
+Example:
+  meshloom components data/elephant.off
+  meshloom components scan.ply --json")]
+    Components(StatsArgs),
     /// Check that a file is a valid half-edge mesh as it stands.
     ///
     /// Reads strictly (no repairs) and checks every structural rule. Exit

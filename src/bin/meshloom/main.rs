@@ -60,6 +60,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let done = match cli.command {
         Command::Stats(a) => stats::run(&a),
+        Command::Components(a) => stats::components(&a),
         Command::Validate(a) => validate::run(&a),
         Command::Convert(a) => convert::convert(&a),
         Command::Repair(a) => convert::repair(&a),

@@ -1,4 +1,5 @@
-//! `meshloom stats FILE [--json] [--repair]`.
+//! `meshloom stats FILE [--json] [--repair]` and `meshloom components FILE
+//! [--json] [--repair]`.
 
 use serde_json::json;
 
@@ -24,6 +25,30 @@ pub fn run(args: &StatsArgs) -> Result<(), Failure> {
         for line in report.to_string().lines() {
             text.push_str(&format!("{:<22}{line}\n", "repairs"));
         }
+    }
+    output::print(&text)
+}
+
+/// Print one row of figures per connected component.
+pub fn components(args: &StatsArgs) -> Result<(), Failure> {
+    let (mesh, _) = input::read(&args.file, args.read)?;
+    let parts = mesh.component_stats();
+    if args.json {
+        return output::json(&json!({
+            "file": args.file.display().to_string(),
+            "components": to_json(&parts)?,
+        }));
+    }
+    let mut text = format!(
+        "{:>9} {:>9} {:>9} {:>9} {:>6} {:>6} {:>6}\n",
+        "component", "vertices", "edges", "faces", "holes", "euler", "genus"
+    );
+    for (i, c) in parts.iter().enumerate() {
+        let genus = c.genus.map_or("-".to_string(), |g| g.to_string());
+        text.push_str(&format!(
+            "{i:>9} {:>9} {:>9} {:>9} {:>6} {:>6} {genus:>6}\n",
+            c.vertices, c.edges, c.faces, c.holes, c.euler_characteristic
+        ));
     }
     output::print(&text)
 }
