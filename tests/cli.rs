@@ -271,6 +271,15 @@ fn no_input_file_makes_it_panic() {
         "{}",
         stderr(&o)
     );
+    // Outputs that cannot be written are failures naming the file.
+    for (command, out) in [
+        ("convert", "/no/such/dir/out.ply"),
+        ("render", "/no/such/dir/out.png"),
+    ] {
+        let o = run(&[command, BUNDLED, out]);
+        assert_eq!(code(&o), 1, "{command}");
+        assert!(stderr(&o).contains(out), "{}", stderr(&o));
+    }
 }
 
 #[test]
