@@ -1,0 +1,200 @@
+//! A small software renderer: shaded orthographic pictures of a mesh as PNG.
+//!
+//! No GPU and no window: [`render`] projects the mesh orthographically along a
+//! [`View`], fills every face into a z-buffer with Lambert shading (flat, or
+//! smooth from area-weighted vertex normals), optionally draws the edges and
+//! highlights the boundary, and hands back an [`Image`] that
+//! [`Image::write_png`] saves.
+//!
+//! - Faces of any degree are filled with the even-odd rule over a fan of
+//!   triangles, so non-convex planar polygons come out right.
+//! - Both sides are lit; the back side of a face (seen through a hole of an
+//!   open mesh) has its own colour.
+//! - Each pixel averages `supersample²` samples, which smooths edges.
+//!
+//! ```
+//! use meshloom::render::{render, RenderOptions, View};
+//! let mesh = meshloom::shapes::cube();
+//! let options = RenderOptions { width: 64, height: 48, view: View::Iso, ..RenderOptions::default() };
+//! let image = render(&mesh, &options)?;
+//! assert_eq!((image.width(), image.height()), (64, 48));
+//! assert_ne!(image.pixel(32, 24), Some(options.colors.background)); // the cube is in the middle
+//! assert_eq!(image.pixel(0, 0), Some(options.colors.background));
+//! # Ok::<(), meshloom::render::RenderError>(())
+//! ```
+
+mod camera;
+mod image;
+mod options;
+mod raster;
+#[cfg(test)]
+mod tests;
+
+use std::path::PathBuf;
+
+pub use image::Image;
+pub use options::{Colors, RenderOptions, Shading, View, MAX_SAMPLES, MAX_SIDE, VIEW_NAMES};
+
+use crate::mesh::Mesh;
+use camera::{add, dot, newell_normal, normalize, scale, vertex_normals, Camera};
+use raster::Canvas;
+
+/// Why a picture could not be made or saved.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum RenderError {
+    /// Occurs when the mesh has no faces.
+    #[error("the mesh has no faces to render")]
+    Empty,
+    /// Occurs when the mesh is topology-only (built without positions).
+    #[error("the mesh has no vertex positions to render")]
+    NoPositions,
+    /// Occurs when the image size or supersampling is out of range.
+    #[error("image size {width}x{height} with supersampling {supersample} is out of range (sides 1 to {MAX_SIDE} pixels, supersampling 1 to 4, at most {MAX_SAMPLES} samples)")]
+    Size {
+        /// Requested width.
+        width: u32,
+        /// Requested height.
+        height: u32,
+        /// Requested supersampling.
+        supersample: u32,
+    },
+    /// Occurs when a view direction is zero or not finite, or parallel to
+    /// the up direction.
+    #[error("view direction {direction:?} with up {up:?} does not define a camera (zero, non-finite or parallel)")]
+    View {
+        /// The direction toward the eye.
+        direction: [f64; 3],
+        /// The up direction.
+        up: [f64; 3],
+    },
+    /// Occurs when the PNG file cannot be written.
+    #[error("cannot write {path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Occurs when the PNG encoder fails.
+    #[error("PNG encoding failed: {0}")]
+    Png(String),
+}
+
+/// Render a shaded picture of `mesh`.
+///
+/// # Errors
+/// [`RenderError::Empty`] for a mesh without faces,
+/// [`RenderError::NoPositions`] for a topology-only mesh,
+/// [`RenderError::Size`] and [`RenderError::View`] for unusable options.
+///
+/// # Complexity
+/// O(corners + covered pixels · face degree + width · height).
+pub fn render(mesh: &Mesh, options: &RenderOptions) -> Result<Image, RenderError> {
+    render_with_progress(mesh, options, &mut |_, _| {})
+}
+
+/// [`render`], calling `progress(done, total)` now and then with the
+/// number of faces filled so far, and once at the end with
+/// `done == total`.
+///
+/// # Errors
+/// As [`render`].
+///
+/// ```
+/// use meshloom::render::{render_with_progress, RenderOptions};
+/// let mesh = meshloom::shapes::cube();
+/// let mut last = (0, 0);
+/// render_with_progress(&mesh, &RenderOptions::default(), &mut |done, total| last = (done, total))?;
+/// assert_eq!(last, (6, 6));
+/// # Ok::<(), meshloom::render::RenderError>(())
+/// ```
+pub fn render_with_progress(
+    mesh: &Mesh,
+    options: &RenderOptions,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Image, RenderError> {
+    let o = options;
+    o.check()?;
+    if mesh.face_count() == 0 {
+        return Err(RenderError::Empty);
+    }
+    let positions = mesh.position_slots().ok_or(RenderError::NoPositions)?;
+    let camera = Camera::new(o.view)?;
+    let s = o.supersample;
+    let mut canvas = Canvas::new(o.width * s, o.height * s, o.colors.background);
+    let screen = camera.fit(mesh, positions, canvas.width, canvas.height);
+    let normals = match o.shading {
+        Shading::Flat => None,
+        Shading::Smooth => Some(vertex_normals(mesh, positions)),
+    };
+    let light = camera.light();
+    let total = mesh.face_count();
+    let mut done = 0;
+    let mut corners: Vec<u32> = Vec::new();
+    for f in mesh.f_slots.live_indices() {
+        if mesh.is_hole_raw(f) {
+            continue;
+        }
+        corners.clear();
+        corners.extend(mesh.face_loop_raw(f).map(|h| mesh.origin_of(h)));
+        let n = newell_normal(corners.iter().map(|&v| positions[v as usize]));
+        let facing = dot(n, camera.toward_eye);
+        let (base, side) = if facing >= 0.0 {
+            (o.colors.front, 1.0)
+        } else {
+            (o.colors.back, -1.0)
+        };
+        let flat = normalize(n).unwrap_or(camera.toward_eye);
+        let shade = |normal: [f64; 3]| {
+            let lambert = (side * dot(normal, light)).max(0.0);
+            let k = AMBIENT + (1.0 - AMBIENT) * lambert;
+            base.map(|c| (f64::from(c) * k).round().clamp(0.0, 255.0) as u8)
+        };
+        canvas.fill_polygon(&corners, &screen, |vertex_weights| match &normals {
+            None => shade(flat),
+            Some(vn) => {
+                let mut m = [0.0; 3];
+                for &(v, w) in vertex_weights {
+                    m = add(m, scale(vn[v as usize], w));
+                }
+                shade(normalize(m).unwrap_or(flat))
+            }
+        });
+        done += 1;
+        if done % 16384 == 0 {
+            progress(done, total);
+        }
+    }
+    progress(total, total);
+    let bias = canvas.depth_bias();
+    if o.wireframe {
+        for e in mesh.e_slots.live_indices() {
+            let on_boundary = mesh.in_hole_raw(2 * e) || mesh.in_hole_raw(2 * e + 1);
+            if o.boundary && on_boundary {
+                continue;
+            }
+            let (a, b) = (mesh.origin_of(2 * e), mesh.origin_of(2 * e + 1));
+            canvas.line(
+                screen[a as usize],
+                screen[b as usize],
+                s,
+                bias,
+                o.colors.wire,
+            );
+        }
+    }
+    if o.boundary {
+        for e in mesh.e_slots.live_indices() {
+            if mesh.in_hole_raw(2 * e) || mesh.in_hole_raw(2 * e + 1) {
+                let (a, b) = (mesh.origin_of(2 * e), mesh.origin_of(2 * e + 1));
+                let (pa, pb) = (screen[a as usize], screen[b as usize]);
+                canvas.line(pa, pb, 3 * s, 4.0 * bias, o.colors.boundary);
+            }
+        }
+    }
+    Ok(canvas.downsample(s))
+}
+
+/// Share of light that reaches faces turned away from the lamp.
+const AMBIENT: f64 = 0.35;
