@@ -146,13 +146,34 @@ fn parse_bytes(
             what: format!("the input is larger than {} bytes", options.max_bytes),
         });
     }
-    let soup = match format {
-        Format::Obj => obj::parse(bytes)?,
-        Format::Off => off::parse(bytes)?,
-        Format::Ply => ply::parse(bytes)?,
-        Format::Stl => stl::parse(bytes)?,
-    };
-    soup.finish(options)
+    read_soup(format, bytes, options)
+}
+
+fn parse_soup(format: Format, bytes: &[u8], record: bool) -> Result<soup::Soup, Error> {
+    match format {
+        Format::Obj => obj::parse(bytes, record),
+        Format::Off => off::parse(bytes, record),
+        Format::Ply => ply::parse(bytes, record),
+        Format::Stl => stl::parse(bytes, record),
+    }
+}
+
+/// Parse, repair and build; a face the builder refuses is placed by a
+/// second parse that records where each face was read.
+fn read_soup(
+    format: Format,
+    bytes: &[u8],
+    options: &ReadOptions,
+) -> Result<(Mesh, RepairReport), Error> {
+    match parse_soup(format, bytes, false)?.finish(options) {
+        Err(Error::Build { face, source, .. }) => {
+            let at = parse_soup(format, bytes, true)
+                .map(|s| s.location_of_face(face))
+                .unwrap_or_default();
+            Err(Error::Build { at, face, source })
+        }
+        other => other,
+    }
 }
 
 /// Write a mesh file; the format comes from the extension, `.gz` compresses.

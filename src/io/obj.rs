@@ -26,11 +26,14 @@ use std::io::{Read, Write};
 
 use super::attrs::{Data, SoupColumn};
 use super::error::Error;
+use super::error::Location;
 use super::soup::Soup;
-use super::text::{parse_f64, parse_i64, Lines, Tokens};
+use super::text::{is_space, parse_f64, parse_f64_at, parse_i64, Lines, Tokens};
 use super::{emit, polygons_of, slurp, ReadOptions};
 use crate::attr::Value;
 use crate::mesh::Mesh;
+
+const FORMAT: super::Format = super::Format::Obj;
 use crate::repair::RepairReport;
 
 /// Read an OBJ mesh, strictly.
@@ -51,7 +54,7 @@ pub fn read_obj_with(
     options: &ReadOptions,
 ) -> Result<(Mesh, RepairReport), Error> {
     let bytes = slurp(reader, options)?;
-    parse(&bytes)?.finish(options)
+    super::read_soup(FORMAT, &bytes, options)
 }
 
 /// Write a mesh as OBJ: `v` lines with every digit needed to read the
@@ -195,8 +198,8 @@ struct CornerRefs {
 }
 
 /// Parse OBJ bytes into a soup.
-pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
-    let mut soup = Soup::new();
+pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
+    let mut soup = Soup::new(record);
     let mut refs = CornerRefs::default();
     let mut lines = Lines::new(bytes);
     let mut groups = Names::new("group");
@@ -205,10 +208,83 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
     // Reserve by the input's size only: about 30 bytes per statement.
     soup.polygons.positions.reserve(bytes.len() / 96);
     soup.polygons.indices.reserve(bytes.len() / 16);
-    while let Some(line) = lines.next() {
+    soup.polygons.offsets.reserve(bytes.len() / 48);
+    let n = bytes.len();
+    let mut pos = 0;
+    while pos < n {
+        lines.line += 1;
+        // The hot statements, `v x y z` and `f` with plain indices, are
+        // parsed in place in one pass; everything else goes by tokens.
+        let line_no = lines.line;
+        let at = || Location::line(line_no);
+        let head = &bytes[pos..n.min(pos + 2)];
+        if head.len() == 2
+            && (head[1] == b' ' || head[1] == b'\t')
+            && (head[0] == b'v' || head[0] == b'f')
+        {
+            let mut i = pos + 2;
+            if head[0] == b'v' {
+                let mut p = [0.0; 3];
+                for c in &mut p {
+                    while i < n && is_space(bytes[i]) {
+                        i += 1;
+                    }
+                    *c = parse_f64_at(bytes, &mut i).ok_or_else(|| {
+                        Error::syntax(at(), "a vertex coordinate", token_at(bytes, i))
+                    })?;
+                }
+                soup.polygons.positions.push(p);
+            } else {
+                let start = soup.polygons.indices.len();
+                loop {
+                    while i < n && is_space(bytes[i]) {
+                        i += 1;
+                    }
+                    if i >= n || bytes[i] == b'\n' || bytes[i] == b'#' {
+                        break;
+                    }
+                    // A plain index, parsed in place.
+                    let st = i;
+                    let mut v: u32 = 0;
+                    while i < n && i - st < 9 && bytes[i].is_ascii_digit() {
+                        v = v * 10 + u32::from(bytes[i] - b'0');
+                        i += 1;
+                    }
+                    let plain = i > st
+                        && v > 0
+                        && v as usize <= soup.polygons.positions.len()
+                        && refs.texcoord_of.is_empty()
+                        && refs.normal_of.is_empty()
+                        && (i == n || is_space(bytes[i]) || bytes[i] == b'\n');
+                    if plain {
+                        soup.polygons.indices.push(v - 1);
+                        continue;
+                    }
+                    let tok = token_at(bytes, st);
+                    i = st + tok.len();
+                    face_corner(tok, &mut soup, &mut refs, at)?;
+                }
+                if soup.polygons.indices.len() == start {
+                    return Err(Error::syntax(at(), "vertex indices after f", b""));
+                }
+                soup.end_face(line_no);
+            }
+            // The rest of the line (a `w`, vertex colours, a comment).
+            pos = match bytes[i.min(n)..].iter().position(|&b| b == b'\n') {
+                Some(k) => i + k + 1,
+                None => n,
+            };
+            continue;
+        }
+        let end = bytes[pos..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(n, |k| pos + k);
+        let line = &bytes[pos..end];
+        let line = line.strip_suffix(b"\r").unwrap_or(line);
+        pos = end + 1;
         let mut t = Tokens::new(line);
         let Some(key) = t.next() else { continue };
-        let at = || lines.here();
         match key {
             b"v" => {
                 let mut p = [0.0; 3];
@@ -218,6 +294,16 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                         .ok_or_else(|| Error::syntax(at(), "a vertex coordinate", tok))?;
                 }
                 soup.polygons.positions.push(p);
+            }
+            b"f" => {
+                let start = soup.polygons.indices.len();
+                for corner in t {
+                    face_corner(corner, &mut soup, &mut refs, at)?;
+                }
+                if soup.polygons.indices.len() == start {
+                    return Err(Error::syntax(at(), "vertex indices after f", b""));
+                }
+                soup.end_face(line_no);
             }
             b"vt" => {
                 let tok = t.next().unwrap_or_default();
@@ -239,21 +325,11 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                 }
                 refs.normals.push(n);
             }
-            b"f" => {
-                let start = soup.polygons.indices.len();
-                for corner in t {
-                    face_corner(corner, &mut soup, &mut refs, at)?;
-                }
-                if soup.polygons.indices.len() == start {
-                    return Err(Error::syntax(at(), "vertex indices after f", b""));
-                }
-                soup.end_face(lines.line);
-            }
             b"g" | b"o" | b"usemtl" => {
                 let rest = line.trim_ascii();
                 let name = rest[key.len()..].trim_ascii();
                 let name = String::from_utf8_lossy(name).into_owned();
-                let face = soup.face_at.len();
+                let face = soup.face_count();
                 match key {
                     b"g" => groups.name(face, name),
                     b"o" => objects.name(face, name),
@@ -263,7 +339,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
             _ => {}
         }
     }
-    let nf = soup.face_at.len();
+    let nf = soup.face_count();
     let nc = soup.polygons.indices.len();
     let a = &mut soup.attrs;
     a.face.extend(objects.finish(nf));
@@ -363,6 +439,16 @@ impl Names {
     }
 }
 
+/// The token that starts at `s[i]`: up to whitespace or the line end.
+fn token_at(s: &[u8], i: usize) -> &[u8] {
+    let rest = s.get(i..).unwrap_or_default();
+    let len = rest
+        .iter()
+        .position(|&b| is_space(b) || b == b'\n')
+        .unwrap_or(rest.len());
+    &rest[..len]
+}
+
 /// One `v[/vt][/vn]` corner of an `f` statement.
 #[inline]
 fn face_corner(
@@ -371,11 +457,33 @@ fn face_corner(
     refs: &mut CornerRefs,
     at: impl Fn() -> super::error::Location,
 ) -> Result<(), Error> {
+    // The common case: a plain positive index.
+    if corner.len() <= 9 && corner.iter().all(u8::is_ascii_digit) {
+        let index = corner
+            .iter()
+            .fold(0u32, |a, &d| a * 10 + u32::from(d - b'0'));
+        let count = soup.polygons.positions.len();
+        if index == 0 || index as usize > count {
+            return Err(Error::IndexOutOfRange {
+                at: at(),
+                index: i64::from(index),
+                count,
+            });
+        }
+        soup.polygons.indices.push(index - 1);
+        if !refs.texcoord_of.is_empty() {
+            refs.texcoord_of.push(u32::MAX);
+        }
+        if !refs.normal_of.is_empty() {
+            refs.normal_of.push(u32::MAX);
+        }
+        return Ok(());
+    }
     let mut parts = corner.splitn(3, |&b| b == b'/');
     let v_tok = parts.next().unwrap_or_default();
     let index = parse_i64(v_tok).ok_or_else(|| Error::syntax(at(), "a vertex index", corner))?;
     let count = soup.polygons.positions.len();
-    let v = resolve(index, count).ok_or(Error::IndexOutOfRange {
+    let v = resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
         at: at(),
         index,
         count,
@@ -386,7 +494,7 @@ fn face_corner(
             let index = parse_i64(tok)
                 .ok_or_else(|| Error::syntax(at(), "a texture coordinate index", corner))?;
             let count = refs.texcoords.len();
-            resolve(index, count).ok_or(Error::IndexOutOfRange {
+            resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
                 at: at(),
                 index,
                 count,
@@ -399,7 +507,7 @@ fn face_corner(
             let index =
                 parse_i64(tok).ok_or_else(|| Error::syntax(at(), "a normal index", corner))?;
             let count = refs.normals.len();
-            resolve(index, count).ok_or(Error::IndexOutOfRange {
+            resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
                 at: at(),
                 index,
                 count,

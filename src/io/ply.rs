@@ -32,6 +32,8 @@ use super::text::{capped, parse_f64, Lines, Tokens};
 use super::{emit, polygons_of, slurp, ReadOptions};
 use crate::attr::{Value, ValueType};
 use crate::mesh::Mesh;
+
+const FORMAT: super::Format = super::Format::Ply;
 use crate::repair::RepairReport;
 
 /// How a PLY body is stored.
@@ -64,7 +66,7 @@ pub fn read_ply_with(
     options: &ReadOptions,
 ) -> Result<(Mesh, RepairReport), Error> {
     let bytes = slurp(reader, options)?;
-    parse(&bytes)?.finish(options)
+    super::read_soup(FORMAT, &bytes, options)
 }
 
 /// Write a mesh as PLY: `vertex` with `double x y z`, `face` with a
@@ -612,7 +614,7 @@ impl<'a> Body<'a> {
 }
 
 /// Parse PLY bytes into a soup.
-pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
+pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
     let header = parse_header(bytes)?;
     let ascii = header.encoding == PlyEncoding::Ascii;
     let data = &bytes[header.body..];
@@ -650,7 +652,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                 )
             })?;
     }
-    let mut soup = Soup::new();
+    let mut soup = Soup::new(record);
     soup.binary = !ascii;
     let mut values: Vec<f64> = Vec::new();
     for element in &header.elements {
@@ -702,7 +704,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
         }
         if is_face {
             soup.polygons.offsets.reserve(room);
-            soup.face_at.reserve(room);
+
             soup.polygons
                 .indices
                 .reserve(capped(3 * element.count, body.remaining(), 2));

@@ -15,8 +15,12 @@ use super::ReadOptions;
 #[derive(Default)]
 pub(crate) struct Soup {
     pub(crate) polygons: Polygons,
-    /// Line (text) or byte offset (binary) each face was read at.
+    /// Line (text) or byte offset (binary) each face was read at, kept
+    /// only when `record` is set (readers parse a second time to place an
+    /// error, so the common path stores nothing per face).
     pub(crate) face_at: Vec<u64>,
+    /// Whether to fill `face_at`.
+    pub(crate) record: bool,
     /// Whether `face_at` holds byte offsets.
     pub(crate) binary: bool,
     /// Attribute values read with the elements, in file order.
@@ -24,10 +28,18 @@ pub(crate) struct Soup {
 }
 
 impl Soup {
-    pub(crate) fn new() -> Soup {
-        let mut s = Soup::default();
+    pub(crate) fn new(record: bool) -> Soup {
+        let mut s = Soup {
+            record,
+            ..Soup::default()
+        };
         s.polygons.offsets.push(0);
         s
+    }
+
+    /// Number of faces read so far.
+    pub(crate) fn face_count(&self) -> usize {
+        self.polygons.offsets.len() - 1
     }
 
     /// End the face whose corners were pushed since the last one.
@@ -36,10 +48,12 @@ impl Soup {
         self.polygons
             .offsets
             .push(self.polygons.indices.len() as u32);
-        self.face_at.push(at);
+        if self.record {
+            self.face_at.push(at);
+        }
     }
 
-    fn location_of_face(&self, face: usize) -> Location {
+    pub(crate) fn location_of_face(&self, face: usize) -> Location {
         match self.face_at.get(face) {
             Some(&at) if self.binary => Location::byte(at),
             Some(&at) => Location::line(at),
