@@ -282,3 +282,8 @@ fn invalid_files_say_what_was_wrong() {
         assert_eq!(err.line(), Some(line), "{file}: {err}");
     }
 }
+
+#[test]
+fn full_dragon_through_gzip() {
+    check_dir("large", &["dragon_vrip_res2.ply"]);
+}
