@@ -1,5 +1,6 @@
 //! Reading and writing mesh files: one format per file, dispatch by
-//! extension, gzip by a trailing `.gz`, repair of dirty input by policy.
+//! extension, gzip by a trailing `.gz` (and gzip data is recognised by its
+//! magic bytes on reading), repair of dirty input by policy.
 //!
 //! | format | read | write | module |
 //! |---|---|---|---|
@@ -206,9 +207,10 @@ fn format_of(path: &Path) -> Result<(Format, bool), Error> {
     })
 }
 
-/// Read all of `reader` under the default byte limit.
+/// Read all of `reader` under the byte limit, gunzipping gzip data.
 fn slurp(reader: impl std::io::Read, options: &ReadOptions) -> Result<Vec<u8>, Error> {
-    source::read_all(reader, options.max_bytes, 0)
+    let bytes = source::read_all(reader, options.max_bytes, 0)?;
+    source::gunzip_if_gzip(bytes, options.max_bytes)
 }
 
 /// Write `bytes` to `writer`, mapping the error.

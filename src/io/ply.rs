@@ -1,11 +1,12 @@
 //! PLY (Polygon File Format), ascii and binary in both byte orders.
 //!
-//! The reader is written here rather than taken from `ply-rs-bw`: the
-//! versions that build with this crate's minimum Rust read through a
-//! generic property map per element (slow on the 871k-face dragon), and
-//! what this module needs is bounded reads that never reserve by a
-//! header's count and errors that name the header line or the body line
-//! (ascii) or byte offset (binary) where the data is wrong. The header is
+//! The reader is written here rather than taken from `ply-rs-bw`: its
+//! current version needs a newer Rust than this crate's minimum (1.80), its
+//! reader builds a map of named properties for every element (slow on the
+//! 871k-face dragon), and what this module needs is bounded reads that
+//! never reserve by a header's count and errors that name the header line,
+//! or the body line (ascii) or byte offset (binary), where the data is
+//! wrong. The header is
 //! parsed into elements and typed properties; the body is read element by
 //! element, every element the header declares (unknown ones are read and
 //! skipped, so what follows them is found).

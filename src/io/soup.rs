@@ -169,13 +169,10 @@ impl Soup {
                 },
             ),
             BuildError::NonFinitePosition { vertex, position } => {
-                return Error::Build {
+                return Error::NonFinite {
                     at: Location::whole(),
-                    face: 0,
-                    source: BuildError::NonFinitePosition {
-                        vertex: v(vertex),
-                        position,
-                    },
+                    vertex: v(vertex),
+                    position,
                 }
             }
             other => {
