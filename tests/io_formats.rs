@@ -438,8 +438,10 @@ fn gzip_data_is_recognised_without_the_extension() {
 fn non_finite_positions_are_refused_by_vertex() {
     let err = read_obj("v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n".as_bytes()).unwrap_err();
     assert!(matches!(err, Error::NonFinite { vertex: 1, .. }), "{err}");
+    assert_eq!(err.line(), Some(2));
     let err = read_off("OFF\n3 1 0\n0 0 0\n1e999 0 0\n0 1 0\n3 0 1 2\n".as_bytes()).unwrap_err();
     assert!(matches!(err, Error::NonFinite { vertex: 1, .. }), "{err}");
+    assert_eq!(err.line(), Some(4));
 }
 
 #[test]

@@ -166,12 +166,31 @@ fn read_soup(
     bytes: &[u8],
     options: &ReadOptions,
 ) -> Result<(Mesh, RepairReport), Error> {
+    let again = || parse_soup(format, bytes, true);
     match parse_soup(format, bytes, false)?.finish(options) {
         Err(Error::Build { face, source, .. }) => {
-            let at = parse_soup(format, bytes, true)
+            let at = again()
                 .map(|s| s.location_of_face(face))
                 .unwrap_or_default();
             Err(Error::Build { at, face, source })
+        }
+        Err(Error::NonFinite {
+            vertex, position, ..
+        }) => {
+            let at = again()
+                .map(|s| s.location_of_vertex(vertex))
+                .unwrap_or_default();
+            Err(Error::NonFinite {
+                at,
+                vertex,
+                position,
+            })
+        }
+        Err(Error::Unreferenced { count, first, .. }) => {
+            let at = again()
+                .map(|s| s.location_of_vertex(first))
+                .unwrap_or_default();
+            Err(Error::Unreferenced { at, count, first })
         }
         other => other,
     }

@@ -363,6 +363,7 @@ fn parse_serial(bytes: &[u8], record: bool) -> Result<Soup, Error> {
                     })?;
                 }
                 soup.polygons.positions.push(p);
+                soup.vertex_read_at(line_no);
             } else {
                 let start = soup.polygons.indices.len();
                 loop {
@@ -423,6 +424,7 @@ fn parse_serial(bytes: &[u8], record: bool) -> Result<Soup, Error> {
                         .ok_or_else(|| Error::syntax(at(), "a vertex coordinate", tok))?;
                 }
                 soup.polygons.positions.push(p);
+                soup.vertex_read_at(line_no);
             }
             b"f" => {
                 let start = soup.polygons.indices.len();

@@ -339,6 +339,7 @@ pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
             }
         }
         soup.polygons.positions.push(p);
+        soup.vertex_read_at(lines.line);
         if kw.normals || kw.colors || kw.texcoords {
             extra.clear();
             for tok in t {

@@ -779,6 +779,7 @@ pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
                 soup.polygons
                     .positions
                     .push([values[xyz[0]], values[xyz[1]], values[xyz[2]]]);
+                soup.vertex_read_at(start);
             }
             if is_face {
                 soup.end_face(start);

@@ -19,7 +19,9 @@ pub(crate) struct Soup {
     /// only when `record` is set (readers parse a second time to place an
     /// error, so the common path stores nothing per face).
     pub(crate) face_at: Vec<u64>,
-    /// Whether to fill `face_at`.
+    /// Line or byte offset each vertex was read at (only when `record`).
+    pub(crate) vertex_at: Vec<u64>,
+    /// Whether to fill `face_at` and `vertex_at`.
     pub(crate) record: bool,
     /// Whether `face_at` holds byte offsets.
     pub(crate) binary: bool,
@@ -50,6 +52,23 @@ impl Soup {
             .push(self.polygons.indices.len() as u32);
         if self.record {
             self.face_at.push(at);
+        }
+    }
+
+    /// Note where the vertex just pushed was read (when recording).
+    #[inline]
+    pub(crate) fn vertex_read_at(&mut self, at: u64) {
+        if self.record {
+            self.vertex_at.push(at);
+        }
+    }
+
+    /// Where vertex `vertex` was read, if recorded.
+    pub(crate) fn location_of_vertex(&self, vertex: usize) -> Location {
+        match self.vertex_at.get(vertex) {
+            Some(&at) if self.binary => Location::byte(at),
+            Some(&at) => Location::line(at),
+            None => Location::whole(),
         }
     }
 
