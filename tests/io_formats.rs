@@ -413,3 +413,42 @@ fn strict_reads_reject_what_repair_fixes() {
     assert_eq!(report.duplicate_faces, 1);
     assert_eq!(m.face_count(), 2);
 }
+
+#[test]
+fn gzip_data_is_recognised_without_the_extension() {
+    use std::io::Write;
+    let mut bytes = Vec::new();
+    write_obj(&mixed(), &mut bytes).unwrap();
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+    gz.write_all(&bytes).unwrap();
+    let gz = gz.finish().unwrap();
+    assert_eq!(shape(&read_obj(&gz[..]).unwrap()), shape(&mixed()));
+    let path = temp("packed.obj");
+    std::fs::write(&path, &gz).unwrap();
+    assert_eq!(shape(&io::read(&path).unwrap()), shape(&mixed()));
+    // Corrupt gzip data is an i/o error naming the file.
+    let path = temp("broken.obj.gz");
+    std::fs::write(&path, &gz[..gz.len() / 2]).unwrap();
+    let err = io::read(&path).unwrap_err();
+    assert!(matches!(err, Error::Io { .. }), "{err}");
+    assert!(err.to_string().contains("broken.obj.gz"), "{err}");
+}
+
+#[test]
+fn non_finite_positions_are_refused_by_vertex() {
+    let err = read_obj("v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n".as_bytes()).unwrap_err();
+    assert!(matches!(err, Error::NonFinite { vertex: 1, .. }), "{err}");
+    assert_eq!(err.line(), Some(2));
+    let err = read_off("OFF\n3 1 0\n0 0 0\n1e999 0 0\n0 1 0\n3 0 1 2\n".as_bytes()).unwrap_err();
+    assert!(matches!(err, Error::NonFinite { vertex: 1, .. }), "{err}");
+    assert_eq!(err.line(), Some(4));
+}
+
+#[test]
+fn unknown_extensions_and_missing_files() {
+    let err = io::read("mesh.xyz").unwrap_err();
+    assert!(matches!(err, Error::UnsupportedFormat { .. }), "{err}");
+    let err = io::read(temp("does-not-exist.off")).unwrap_err();
+    assert!(matches!(err, Error::Io { .. }), "{err}");
+    assert!(err.to_string().contains("does-not-exist.off"), "{err}");
+}

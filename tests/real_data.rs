@@ -282,3 +282,26 @@ fn invalid_files_say_what_was_wrong() {
         assert_eq!(err.line(), Some(line), "{file}: {err}");
     }
 }
+
+#[test]
+fn full_dragon_through_gzip() {
+    check_dir("large", &["dragon_vrip_res2.ply"]);
+}
+
+#[test]
+fn an_unused_vertex_is_named_with_its_line() {
+    let path = Path::new(DATA).join("dirty/cgal_cube-ouvert.off");
+    let err = io::read(&path).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            Error::Unreferenced {
+                count: 1,
+                first: 8,
+                ..
+            }
+        ),
+        "{err}"
+    );
+    assert_eq!(err.line(), Some(11), "{err}");
+}

@@ -159,6 +159,17 @@ pub enum Error {
         /// What the builder found.
         source: BuildError,
     },
+    /// Occurs when a vertex position is NaN or infinite (`nan`, `inf`, or a
+    /// number too large for its type).
+    #[error("{at}: vertex {vertex} has the non-finite position {position:?}")]
+    NonFinite {
+        /// The file.
+        at: Location,
+        /// The vertex, 0-based in file order.
+        vertex: usize,
+        /// Its position.
+        position: [f64; 3],
+    },
     /// Occurs when vertices are used by no face and the policy to drop
     /// them is off (a half-edge mesh cannot hold an isolated vertex).
     #[error("{at}: {count} vertices are used by no face (vertex {first} is the first, 0-based); choose the drop-unreferenced policy to drop them")]
@@ -194,6 +205,7 @@ impl Error {
             | Error::UnsupportedFormat { at, .. }
             | Error::TooLarge { at, .. }
             | Error::Build { at, .. }
+            | Error::NonFinite { at, .. }
             | Error::Unreferenced { at, .. }
             | Error::Unwritable { at, .. } => at,
         }
@@ -210,6 +222,7 @@ impl Error {
             | Error::UnsupportedFormat { at, .. }
             | Error::TooLarge { at, .. }
             | Error::Build { at, .. }
+            | Error::NonFinite { at, .. }
             | Error::Unreferenced { at, .. }
             | Error::Unwritable { at, .. } => at,
         }

@@ -1,5 +1,6 @@
 //! Reading and writing mesh files: one format per file, dispatch by
-//! extension, gzip by a trailing `.gz`, repair of dirty input by policy.
+//! extension, gzip by a trailing `.gz` (and gzip data is recognised by its
+//! magic bytes on reading), repair of dirty input by policy.
 //!
 //! | format | read | write | module |
 //! |---|---|---|---|
@@ -146,13 +147,53 @@ fn parse_bytes(
             what: format!("the input is larger than {} bytes", options.max_bytes),
         });
     }
-    let soup = match format {
-        Format::Obj => obj::parse(bytes)?,
-        Format::Off => off::parse(bytes)?,
-        Format::Ply => ply::parse(bytes)?,
-        Format::Stl => stl::parse(bytes)?,
-    };
-    soup.finish(options)
+    read_soup(format, bytes, options)
+}
+
+fn parse_soup(format: Format, bytes: &[u8], record: bool) -> Result<soup::Soup, Error> {
+    match format {
+        Format::Obj => obj::parse(bytes, record),
+        Format::Off => off::parse(bytes, record),
+        Format::Ply => ply::parse(bytes, record),
+        Format::Stl => stl::parse(bytes, record),
+    }
+}
+
+/// Parse, repair and build; a face the builder refuses is placed by a
+/// second parse that records where each face was read.
+fn read_soup(
+    format: Format,
+    bytes: &[u8],
+    options: &ReadOptions,
+) -> Result<(Mesh, RepairReport), Error> {
+    let again = || parse_soup(format, bytes, true);
+    match parse_soup(format, bytes, false)?.finish(options) {
+        Err(Error::Build { face, source, .. }) => {
+            let at = again()
+                .map(|s| s.location_of_face(face))
+                .unwrap_or_default();
+            Err(Error::Build { at, face, source })
+        }
+        Err(Error::NonFinite {
+            vertex, position, ..
+        }) => {
+            let at = again()
+                .map(|s| s.location_of_vertex(vertex))
+                .unwrap_or_default();
+            Err(Error::NonFinite {
+                at,
+                vertex,
+                position,
+            })
+        }
+        Err(Error::Unreferenced { count, first, .. }) => {
+            let at = again()
+                .map(|s| s.location_of_vertex(first))
+                .unwrap_or_default();
+            Err(Error::Unreferenced { at, count, first })
+        }
+        other => other,
+    }
 }
 
 /// Write a mesh file; the format comes from the extension, `.gz` compresses.
@@ -185,9 +226,10 @@ fn format_of(path: &Path) -> Result<(Format, bool), Error> {
     })
 }
 
-/// Read all of `reader` under the default byte limit.
+/// Read all of `reader` under the byte limit, gunzipping gzip data.
 fn slurp(reader: impl std::io::Read, options: &ReadOptions) -> Result<Vec<u8>, Error> {
-    source::read_all(reader, options.max_bytes, 0)
+    let bytes = source::read_all(reader, options.max_bytes, 0)?;
+    source::gunzip_if_gzip(bytes, options.max_bytes)
 }
 
 /// Write `bytes` to `writer`, mapping the error.

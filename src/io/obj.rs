@@ -1,11 +1,12 @@
 //! Wavefront OBJ.
 //!
 //! The parser is hand-written rather than taken from a crate, for three
-//! reasons: speed (one pass over the bytes, integers and floats parsed in
-//! place without strings; the 250k-vertex grid reads in well under the
-//! time of pmp-library's reader, see `examples/bench_peers/io.rs`), n-gons
-//! (faces keep every corner; nothing is triangulated) and error quality
-//! (every error names the line and what was expected there).
+//! reasons: speed (`v` and `f` statements are parsed in place in one pass
+//! over their bytes, without strings; a large file of only those is read
+//! in two halves on two threads; `examples/bench_peers/io.rs` times it
+//! beside pmp-library's reader), n-gons (faces keep every corner; nothing
+//! is triangulated) and error quality (every error names the line and what
+//! was expected there).
 //!
 //! Read: `v` (first three numbers; a `w` or vertex colour after them is
 //! ignored), `vt`, `vn`, `f` with `v`, `v/vt`, `v//vn` and `v/vt/vn`
@@ -26,11 +27,14 @@ use std::io::{Read, Write};
 
 use super::attrs::{Data, SoupColumn};
 use super::error::Error;
+use super::error::Location;
 use super::soup::Soup;
-use super::text::{parse_f64, parse_i64, Lines, Tokens};
+use super::text::{is_space, parse_f64, parse_f64_at, parse_i64, Lines, Tokens};
 use super::{emit, polygons_of, slurp, ReadOptions};
 use crate::attr::Value;
 use crate::mesh::Mesh;
+
+const FORMAT: super::Format = super::Format::Obj;
 use crate::repair::RepairReport;
 
 /// Read an OBJ mesh, strictly.
@@ -51,7 +55,7 @@ pub fn read_obj_with(
     options: &ReadOptions,
 ) -> Result<(Mesh, RepairReport), Error> {
     let bytes = slurp(reader, options)?;
-    parse(&bytes)?.finish(options)
+    super::read_soup(FORMAT, &bytes, options)
 }
 
 /// Write a mesh as OBJ: `v` lines with every digit needed to read the
@@ -194,9 +198,137 @@ struct CornerRefs {
     normal_of: Vec<u32>,
 }
 
+/// Inputs at least this large are parsed in two halves at once when both
+/// are plain (see [`plain`]).
+const PARALLEL_MIN: usize = 4 << 20;
+
 /// Parse OBJ bytes into a soup.
-pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
-    let mut soup = Soup::new();
+pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
+    if !record && bytes.len() >= PARALLEL_MIN {
+        if let Some(soup) = parse_halves(bytes) {
+            return Ok(soup);
+        }
+    }
+    parse_serial(bytes, record)
+}
+
+/// A chunk of plain OBJ: `v` and `f` statements with positive indices
+/// only (and statements every reader skips).
+struct Plain {
+    positions: Vec<[f64; 3]>,
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    /// The most vertices any index needed from before the chunk.
+    needs: usize,
+}
+
+/// The two halves of a large file, split at a line end, parsed on two
+/// threads and joined. `None` (the caller then parses serially, with full
+/// error reporting) if either half holds anything but plain statements or
+/// anything wrong.
+fn parse_halves(bytes: &[u8]) -> Option<Soup> {
+    let mid = bytes.len() / 2;
+    let cut = mid + bytes[mid..].iter().position(|&b| b == b'\n')? + 1;
+    let (first, second) = bytes.split_at(cut);
+    let (a, b) = std::thread::scope(|scope| {
+        let other = std::thread::Builder::new()
+            .spawn_scoped(scope, || plain(second))
+            .ok()?;
+        let a = plain(first);
+        let b = other.join().ok()?;
+        Some((a?, b?))
+    })?;
+    if a.needs > 0 || b.needs > a.positions.len() {
+        return None;
+    }
+    let mut soup = Soup::new(false);
+    let base = a.indices.len() as u32;
+    let p = &mut soup.polygons;
+    p.positions = a.positions;
+    p.positions.extend_from_slice(&b.positions);
+    p.indices = a.indices;
+    p.indices.extend_from_slice(&b.indices);
+    p.offsets = a.offsets;
+    p.offsets.extend(b.offsets[1..].iter().map(|&o| o + base));
+    Some(soup)
+}
+
+/// Parse a chunk of plain OBJ; `None` at anything else.
+fn plain(bytes: &[u8]) -> Option<Plain> {
+    let n = bytes.len();
+    let mut out = Plain {
+        positions: Vec::with_capacity(n / 96),
+        offsets: Vec::with_capacity(n / 48),
+        indices: Vec::with_capacity(n / 16),
+        needs: 0,
+    };
+    out.offsets.push(0);
+    let mut pos = 0;
+    while pos < n {
+        let mut i = pos;
+        while i < n && is_space(bytes[i]) {
+            i += 1;
+        }
+        let key_end = i + bytes[i..]
+            .iter()
+            .position(|&b| is_space(b) || b == b'\n')
+            .unwrap_or(n - i);
+        match &bytes[i..key_end] {
+            b"v" => {
+                i = key_end;
+                let mut p = [0.0; 3];
+                for c in &mut p {
+                    while i < n && is_space(bytes[i]) {
+                        i += 1;
+                    }
+                    *c = parse_f64_at(bytes, &mut i)?;
+                }
+                out.positions.push(p);
+            }
+            b"f" => {
+                i = key_end;
+                let start = out.indices.len();
+                loop {
+                    while i < n && is_space(bytes[i]) {
+                        i += 1;
+                    }
+                    if i >= n || bytes[i] == b'\n' || bytes[i] == b'#' {
+                        break;
+                    }
+                    let st = i;
+                    let mut v: u32 = 0;
+                    while i < n && i - st < 9 && bytes[i].is_ascii_digit() {
+                        v = v * 10 + u32::from(bytes[i] - b'0');
+                        i += 1;
+                    }
+                    if i == st || v == 0 || !(i == n || is_space(bytes[i]) || bytes[i] == b'\n') {
+                        return None;
+                    }
+                    out.needs = out
+                        .needs
+                        .max((v as usize).saturating_sub(out.positions.len()));
+                    out.indices.push(v - 1);
+                }
+                if out.indices.len() == start {
+                    return None;
+                }
+                out.offsets.push(out.indices.len() as u32);
+            }
+            b"" | b"s" | b"l" | b"p" | b"mtllib" => {}
+            k if k.first() == Some(&b'#') => {}
+            _ => return None,
+        }
+        pos = match bytes[i.min(n)..].iter().position(|&b| b == b'\n') {
+            Some(k) => i + k + 1,
+            None => n,
+        };
+    }
+    Some(out)
+}
+
+/// Parse OBJ bytes into a soup, one statement after the other.
+fn parse_serial(bytes: &[u8], record: bool) -> Result<Soup, Error> {
+    let mut soup = Soup::new(record);
     let mut refs = CornerRefs::default();
     let mut lines = Lines::new(bytes);
     let mut groups = Names::new("group");
@@ -205,10 +337,84 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
     // Reserve by the input's size only: about 30 bytes per statement.
     soup.polygons.positions.reserve(bytes.len() / 96);
     soup.polygons.indices.reserve(bytes.len() / 16);
-    while let Some(line) = lines.next() {
+    soup.polygons.offsets.reserve(bytes.len() / 48);
+    let n = bytes.len();
+    let mut pos = 0;
+    while pos < n {
+        lines.line += 1;
+        // The hot statements, `v x y z` and `f` with plain indices, are
+        // parsed in place in one pass; everything else goes by tokens.
+        let line_no = lines.line;
+        let at = || Location::line(line_no);
+        let head = &bytes[pos..n.min(pos + 2)];
+        if head.len() == 2
+            && (head[1] == b' ' || head[1] == b'\t')
+            && (head[0] == b'v' || head[0] == b'f')
+        {
+            let mut i = pos + 2;
+            if head[0] == b'v' {
+                let mut p = [0.0; 3];
+                for c in &mut p {
+                    while i < n && is_space(bytes[i]) {
+                        i += 1;
+                    }
+                    *c = parse_f64_at(bytes, &mut i).ok_or_else(|| {
+                        Error::syntax(at(), "a vertex coordinate", token_at(bytes, i))
+                    })?;
+                }
+                soup.polygons.positions.push(p);
+                soup.vertex_read_at(line_no);
+            } else {
+                let start = soup.polygons.indices.len();
+                loop {
+                    while i < n && is_space(bytes[i]) {
+                        i += 1;
+                    }
+                    if i >= n || bytes[i] == b'\n' || bytes[i] == b'#' {
+                        break;
+                    }
+                    // A plain index, parsed in place.
+                    let st = i;
+                    let mut v: u32 = 0;
+                    while i < n && i - st < 9 && bytes[i].is_ascii_digit() {
+                        v = v * 10 + u32::from(bytes[i] - b'0');
+                        i += 1;
+                    }
+                    let plain = i > st
+                        && v > 0
+                        && v as usize <= soup.polygons.positions.len()
+                        && refs.texcoord_of.is_empty()
+                        && refs.normal_of.is_empty()
+                        && (i == n || is_space(bytes[i]) || bytes[i] == b'\n');
+                    if plain {
+                        soup.polygons.indices.push(v - 1);
+                        continue;
+                    }
+                    let tok = token_at(bytes, st);
+                    i = st + tok.len();
+                    face_corner(tok, &mut soup, &mut refs, at)?;
+                }
+                if soup.polygons.indices.len() == start {
+                    return Err(Error::syntax(at(), "vertex indices after f", b""));
+                }
+                soup.end_face(line_no);
+            }
+            // The rest of the line (a `w`, vertex colours, a comment).
+            pos = match bytes[i.min(n)..].iter().position(|&b| b == b'\n') {
+                Some(k) => i + k + 1,
+                None => n,
+            };
+            continue;
+        }
+        let end = bytes[pos..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(n, |k| pos + k);
+        let line = &bytes[pos..end];
+        let line = line.strip_suffix(b"\r").unwrap_or(line);
+        pos = end + 1;
         let mut t = Tokens::new(line);
         let Some(key) = t.next() else { continue };
-        let at = || lines.here();
         match key {
             b"v" => {
                 let mut p = [0.0; 3];
@@ -218,6 +424,17 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                         .ok_or_else(|| Error::syntax(at(), "a vertex coordinate", tok))?;
                 }
                 soup.polygons.positions.push(p);
+                soup.vertex_read_at(line_no);
+            }
+            b"f" => {
+                let start = soup.polygons.indices.len();
+                for corner in t {
+                    face_corner(corner, &mut soup, &mut refs, at)?;
+                }
+                if soup.polygons.indices.len() == start {
+                    return Err(Error::syntax(at(), "vertex indices after f", b""));
+                }
+                soup.end_face(line_no);
             }
             b"vt" => {
                 let tok = t.next().unwrap_or_default();
@@ -239,21 +456,11 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                 }
                 refs.normals.push(n);
             }
-            b"f" => {
-                let start = soup.polygons.indices.len();
-                for corner in t {
-                    face_corner(corner, &mut soup, &mut refs, at)?;
-                }
-                if soup.polygons.indices.len() == start {
-                    return Err(Error::syntax(at(), "vertex indices after f", b""));
-                }
-                soup.end_face(lines.line);
-            }
             b"g" | b"o" | b"usemtl" => {
                 let rest = line.trim_ascii();
                 let name = rest[key.len()..].trim_ascii();
                 let name = String::from_utf8_lossy(name).into_owned();
-                let face = soup.face_at.len();
+                let face = soup.face_count();
                 match key {
                     b"g" => groups.name(face, name),
                     b"o" => objects.name(face, name),
@@ -263,7 +470,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
             _ => {}
         }
     }
-    let nf = soup.face_at.len();
+    let nf = soup.face_count();
     let nc = soup.polygons.indices.len();
     let a = &mut soup.attrs;
     a.face.extend(objects.finish(nf));
@@ -363,6 +570,16 @@ impl Names {
     }
 }
 
+/// The token that starts at `s[i]`: up to whitespace or the line end.
+fn token_at(s: &[u8], i: usize) -> &[u8] {
+    let rest = s.get(i..).unwrap_or_default();
+    let len = rest
+        .iter()
+        .position(|&b| is_space(b) || b == b'\n')
+        .unwrap_or(rest.len());
+    &rest[..len]
+}
+
 /// One `v[/vt][/vn]` corner of an `f` statement.
 #[inline]
 fn face_corner(
@@ -371,11 +588,33 @@ fn face_corner(
     refs: &mut CornerRefs,
     at: impl Fn() -> super::error::Location,
 ) -> Result<(), Error> {
+    // The common case: a plain positive index.
+    if corner.len() <= 9 && corner.iter().all(u8::is_ascii_digit) {
+        let index = corner
+            .iter()
+            .fold(0u32, |a, &d| a * 10 + u32::from(d - b'0'));
+        let count = soup.polygons.positions.len();
+        if index == 0 || index as usize > count {
+            return Err(Error::IndexOutOfRange {
+                at: at(),
+                index: i64::from(index),
+                count,
+            });
+        }
+        soup.polygons.indices.push(index - 1);
+        if !refs.texcoord_of.is_empty() {
+            refs.texcoord_of.push(u32::MAX);
+        }
+        if !refs.normal_of.is_empty() {
+            refs.normal_of.push(u32::MAX);
+        }
+        return Ok(());
+    }
     let mut parts = corner.splitn(3, |&b| b == b'/');
     let v_tok = parts.next().unwrap_or_default();
     let index = parse_i64(v_tok).ok_or_else(|| Error::syntax(at(), "a vertex index", corner))?;
     let count = soup.polygons.positions.len();
-    let v = resolve(index, count).ok_or(Error::IndexOutOfRange {
+    let v = resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
         at: at(),
         index,
         count,
@@ -386,7 +625,7 @@ fn face_corner(
             let index = parse_i64(tok)
                 .ok_or_else(|| Error::syntax(at(), "a texture coordinate index", corner))?;
             let count = refs.texcoords.len();
-            resolve(index, count).ok_or(Error::IndexOutOfRange {
+            resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
                 at: at(),
                 index,
                 count,
@@ -399,7 +638,7 @@ fn face_corner(
             let index =
                 parse_i64(tok).ok_or_else(|| Error::syntax(at(), "a normal index", corner))?;
             let count = refs.normals.len();
-            resolve(index, count).ok_or(Error::IndexOutOfRange {
+            resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
                 at: at(),
                 index,
                 count,
@@ -418,4 +657,58 @@ fn face_corner(
         refs.normal_of.push(vn);
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A plain grid OBJ of at least `PARALLEL_MIN` bytes.
+    fn big_grid(n: usize) -> Vec<u8> {
+        let mut out = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                writeln!(out, "v {} {} 0.{}", i as f64 / 7.0, j as f64 / 3.0, i * j).unwrap();
+            }
+        }
+        for j in 0..n - 1 {
+            for i in 0..n - 1 {
+                let a = j * n + i + 1;
+                writeln!(
+                    out,
+                    "f {a} {} {}\nf {a} {} {}",
+                    a + 1,
+                    a + n + 1,
+                    a + n + 1,
+                    a + n
+                )
+                .unwrap();
+            }
+        }
+        assert!(out.len() >= PARALLEL_MIN);
+        out
+    }
+
+    #[test]
+    fn halves_read_the_same_as_one_pass() {
+        let bytes = big_grid(260);
+        let both = parse_halves(&bytes).expect("a plain file is read in halves");
+        let one = parse_serial(&bytes, false).unwrap();
+        assert_eq!(both.polygons, one.polygons);
+    }
+
+    #[test]
+    fn anything_unusual_in_a_half_falls_back_to_one_pass() {
+        let mut bytes = big_grid(260);
+        // A negative index near the end, a group name, an out-of-range index.
+        for tail in ["f -1 -2 -3\n", "g late\nf 1 2 3\n", "f 1 2 99999999\n"] {
+            let mut b = bytes.clone();
+            b.extend_from_slice(tail.as_bytes());
+            assert!(parse_halves(&b).is_none(), "{tail}");
+        }
+        bytes.extend_from_slice(b"f 1 2 99999999\n");
+        let lines = bytes.iter().filter(|&&b| b == b'\n').count() as u64;
+        let err = parse(&bytes, false).err().expect("an index out of range");
+        assert_eq!(err.line(), Some(lines));
+    }
 }

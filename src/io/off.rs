@@ -35,6 +35,8 @@ use super::text::{
 use super::{emit, polygons_of, slurp, ReadOptions};
 use crate::attr::Value;
 use crate::mesh::Mesh;
+
+const FORMAT: super::Format = super::Format::Off;
 use crate::repair::RepairReport;
 use crate::ElementKind;
 
@@ -56,7 +58,7 @@ pub fn read_off_with(
     options: &ReadOptions,
 ) -> Result<(Mesh, RepairReport), Error> {
     let bytes = slurp(reader, options)?;
-    parse(&bytes)?.finish(options)
+    super::read_soup(FORMAT, &bytes, options)
 }
 
 /// Write a mesh as ascii OFF: positions with every digit needed to read
@@ -242,7 +244,7 @@ fn refill<'a>(lines: &mut Lines<'a>, tokens: &mut Tokens<'a>) -> Result<(), Erro
 }
 
 /// Parse OFF bytes into a soup.
-pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
+pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
     let mut lines = Lines::new(bytes);
     let Some(first) = content(&mut lines) else {
         return Err(Error::Empty {
@@ -305,11 +307,11 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
         });
     }
 
-    let mut soup = Soup::new();
+    let mut soup = Soup::new(record);
     let rest = lines.remaining();
     soup.polygons.positions.reserve(capped(nv, rest, 2 * dim));
     soup.polygons.offsets.reserve(capped(nf, rest, 4));
-    soup.face_at.reserve(capped(nf, rest, 4));
+
     soup.polygons.indices.reserve(capped(3 * nf, rest, 2));
 
     let mut w_col = Collector::<f64>::new("w");
@@ -337,6 +339,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
             }
         }
         soup.polygons.positions.push(p);
+        soup.vertex_read_at(lines.line);
         if kw.normals || kw.colors || kw.texcoords {
             extra.clear();
             for tok in t {

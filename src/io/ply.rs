@@ -1,11 +1,12 @@
 //! PLY (Polygon File Format), ascii and binary in both byte orders.
 //!
-//! The reader is written here rather than taken from `ply-rs-bw`: the
-//! versions that build with this crate's minimum Rust read through a
-//! generic property map per element (slow on the 871k-face dragon), and
-//! what this module needs is bounded reads that never reserve by a
-//! header's count and errors that name the header line or the body line
-//! (ascii) or byte offset (binary) where the data is wrong. The header is
+//! The reader is written here rather than taken from `ply-rs-bw`: its
+//! current version needs a newer Rust than this crate's minimum (1.80), its
+//! reader builds a map of named properties for every element (slow on the
+//! 871k-face dragon), and what this module needs is bounded reads that
+//! never reserve by a header's count and errors that name the header line,
+//! or the body line (ascii) or byte offset (binary), where the data is
+//! wrong. The header is
 //! parsed into elements and typed properties; the body is read element by
 //! element, every element the header declares (unknown ones are read and
 //! skipped, so what follows them is found).
@@ -32,6 +33,8 @@ use super::text::{capped, parse_f64, Lines, Tokens};
 use super::{emit, polygons_of, slurp, ReadOptions};
 use crate::attr::{Value, ValueType};
 use crate::mesh::Mesh;
+
+const FORMAT: super::Format = super::Format::Ply;
 use crate::repair::RepairReport;
 
 /// How a PLY body is stored.
@@ -64,7 +67,7 @@ pub fn read_ply_with(
     options: &ReadOptions,
 ) -> Result<(Mesh, RepairReport), Error> {
     let bytes = slurp(reader, options)?;
-    parse(&bytes)?.finish(options)
+    super::read_soup(FORMAT, &bytes, options)
 }
 
 /// Write a mesh as PLY: `vertex` with `double x y z`, `face` with a
@@ -612,7 +615,7 @@ impl<'a> Body<'a> {
 }
 
 /// Parse PLY bytes into a soup.
-pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
+pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
     let header = parse_header(bytes)?;
     let ascii = header.encoding == PlyEncoding::Ascii;
     let data = &bytes[header.body..];
@@ -650,7 +653,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                 )
             })?;
     }
-    let mut soup = Soup::new();
+    let mut soup = Soup::new(record);
     soup.binary = !ascii;
     let mut values: Vec<f64> = Vec::new();
     for element in &header.elements {
@@ -702,7 +705,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
         }
         if is_face {
             soup.polygons.offsets.reserve(room);
-            soup.face_at.reserve(room);
+
             soup.polygons
                 .indices
                 .reserve(capped(3 * element.count, body.remaining(), 2));
@@ -776,6 +779,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
                 soup.polygons
                     .positions
                     .push([values[xyz[0]], values[xyz[1]], values[xyz[2]]]);
+                soup.vertex_read_at(start);
             }
             if is_face {
                 soup.end_face(start);

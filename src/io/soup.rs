@@ -15,8 +15,14 @@ use super::ReadOptions;
 #[derive(Default)]
 pub(crate) struct Soup {
     pub(crate) polygons: Polygons,
-    /// Line (text) or byte offset (binary) each face was read at.
+    /// Line (text) or byte offset (binary) each face was read at, kept
+    /// only when `record` is set (readers parse a second time to place an
+    /// error, so the common path stores nothing per face).
     pub(crate) face_at: Vec<u64>,
+    /// Line or byte offset each vertex was read at (only when `record`).
+    pub(crate) vertex_at: Vec<u64>,
+    /// Whether to fill `face_at` and `vertex_at`.
+    pub(crate) record: bool,
     /// Whether `face_at` holds byte offsets.
     pub(crate) binary: bool,
     /// Attribute values read with the elements, in file order.
@@ -24,10 +30,18 @@ pub(crate) struct Soup {
 }
 
 impl Soup {
-    pub(crate) fn new() -> Soup {
-        let mut s = Soup::default();
+    pub(crate) fn new(record: bool) -> Soup {
+        let mut s = Soup {
+            record,
+            ..Soup::default()
+        };
         s.polygons.offsets.push(0);
         s
+    }
+
+    /// Number of faces read so far.
+    pub(crate) fn face_count(&self) -> usize {
+        self.polygons.offsets.len() - 1
     }
 
     /// End the face whose corners were pushed since the last one.
@@ -36,10 +50,29 @@ impl Soup {
         self.polygons
             .offsets
             .push(self.polygons.indices.len() as u32);
-        self.face_at.push(at);
+        if self.record {
+            self.face_at.push(at);
+        }
     }
 
-    fn location_of_face(&self, face: usize) -> Location {
+    /// Note where the vertex just pushed was read (when recording).
+    #[inline]
+    pub(crate) fn vertex_read_at(&mut self, at: u64) {
+        if self.record {
+            self.vertex_at.push(at);
+        }
+    }
+
+    /// Where vertex `vertex` was read, if recorded.
+    pub(crate) fn location_of_vertex(&self, vertex: usize) -> Location {
+        match self.vertex_at.get(vertex) {
+            Some(&at) if self.binary => Location::byte(at),
+            Some(&at) => Location::line(at),
+            None => Location::whole(),
+        }
+    }
+
+    pub(crate) fn location_of_face(&self, face: usize) -> Location {
         match self.face_at.get(face) {
             Some(&at) if self.binary => Location::byte(at),
             Some(&at) => Location::line(at),
@@ -155,13 +188,10 @@ impl Soup {
                 },
             ),
             BuildError::NonFinitePosition { vertex, position } => {
-                return Error::Build {
+                return Error::NonFinite {
                     at: Location::whole(),
-                    face: 0,
-                    source: BuildError::NonFinitePosition {
-                        vertex: v(vertex),
-                        position,
-                    },
+                    vertex: v(vertex),
+                    position,
                 }
             }
             other => {

@@ -80,7 +80,8 @@ pub(crate) fn read_all(reader: impl Read, limit: u64, size_hint: usize) -> Resul
     Ok(buf)
 }
 
-/// The bytes of a file, gunzipped when `gz`.
+/// The bytes of a file, gunzipped when `gz` (or when they start with the
+/// gzip magic bytes anyway).
 pub(crate) fn load(path: &Path, gz: bool, limit: u64) -> Result<Vec<u8>, Error> {
     let file = std::fs::File::open(path).map_err(|e| Error::io(e).with_path(path))?;
     let size = file.metadata().map(|m| m.len() as usize).unwrap_or(0);
@@ -88,9 +89,19 @@ pub(crate) fn load(path: &Path, gz: bool, limit: u64) -> Result<Vec<u8>, Error> 
         let decoder = flate2::read::MultiGzDecoder::new(std::io::BufReader::new(file));
         read_all(decoder, limit, size.saturating_mul(4))
     } else {
-        read_all(file, limit, size)
+        read_all(file, limit, size).and_then(|b| gunzip_if_gzip(b, limit))
     };
     bytes.map_err(|e| e.with_path(path))
+}
+
+/// `bytes` decompressed if they are gzip data, else as they are.
+pub(crate) fn gunzip_if_gzip(bytes: Vec<u8>, limit: u64) -> Result<Vec<u8>, Error> {
+    if bytes.starts_with(&[0x1f, 0x8b, 8]) {
+        let size = bytes.len().saturating_mul(4);
+        read_all(flate2::read::MultiGzDecoder::new(&bytes[..]), limit, size)
+    } else {
+        Ok(bytes)
+    }
 }
 
 /// Write `bytes` to `path`, gzipped when `gz`.

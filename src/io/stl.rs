@@ -31,6 +31,8 @@ use super::soup::Soup;
 use super::text::{capped, parse_f64, Lines, Tokens};
 use super::{emit, polygons_of, slurp, ReadOptions};
 use crate::mesh::Mesh;
+
+const FORMAT: super::Format = super::Format::Stl;
 use crate::repair::RepairReport;
 
 /// Which kind of STL to write.
@@ -61,7 +63,7 @@ pub fn read_stl_with(
     options: &ReadOptions,
 ) -> Result<(Mesh, RepairReport), Error> {
     let bytes = slurp(reader, options)?;
-    parse(&bytes)?.finish(options)
+    super::read_soup(FORMAT, &bytes, options)
 }
 
 /// Write a mesh as STL; polygons become triangle fans, positions `f32`.
@@ -158,7 +160,7 @@ impl Welder {
 }
 
 /// Parse STL bytes (ascii or binary) into a soup.
-pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
+pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
     if bytes.is_empty() {
         return Err(Error::Empty {
             at: Location::whole(),
@@ -174,13 +176,13 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Soup, Error> {
     let ascii = bytes.trim_ascii_start().starts_with(b"solid")
         && !bytes[..bytes.len().min(1024)].contains(&0);
     if !exact_binary && ascii {
-        parse_ascii(bytes)
+        parse_ascii(bytes, record)
     } else {
-        parse_binary(bytes)
+        parse_binary(bytes, record)
     }
 }
 
-fn parse_binary(bytes: &[u8]) -> Result<Soup, Error> {
+fn parse_binary(bytes: &[u8], record: bool) -> Result<Soup, Error> {
     if bytes.len() < 84 {
         return Err(Error::Truncated {
             at: Location::byte(bytes.len() as u64),
@@ -188,7 +190,7 @@ fn parse_binary(bytes: &[u8]) -> Result<Soup, Error> {
         });
     }
     let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
-    let mut soup = Soup::new();
+    let mut soup = Soup::new(record);
     soup.binary = true;
     let room = (bytes.len() - 84) / 50;
     if n > room {
@@ -203,7 +205,7 @@ fn parse_binary(bytes: &[u8]) -> Result<Soup, Error> {
     let mut weld = Welder::new(n / 2);
     soup.polygons.indices.reserve(3 * n);
     soup.polygons.offsets.reserve(n);
-    soup.face_at.reserve(n);
+
     let f32_at =
         |o: usize| f32::from_le_bytes([bytes[o], bytes[o + 1], bytes[o + 2], bytes[o + 3]]);
     for t in 0..n {
@@ -259,12 +261,12 @@ impl<'a> Words<'a> {
     }
 }
 
-fn parse_ascii(bytes: &[u8]) -> Result<Soup, Error> {
+fn parse_ascii(bytes: &[u8], record: bool) -> Result<Soup, Error> {
     let mut w = Words {
         lines: Lines::new(bytes),
         tokens: Tokens::new(b""),
     };
-    let mut soup = Soup::new();
+    let mut soup = Soup::new(record);
     // A facet is at least ~60 bytes of text.
     let mut weld = Welder::new(capped(bytes.len() / 60, bytes.len(), 1));
     w.expect("solid")?;

@@ -55,7 +55,7 @@ impl<'a> Iterator for Lines<'a> {
             return None;
         }
         let rest = &self.data[self.pos..];
-        let len = rest.iter().position(|&b| b == b'\n');
+        let len = find_newline(rest);
         let (line, step) = match len {
             Some(n) => (&rest[..n], n + 1),
             None => (rest, rest.len()),
@@ -64,6 +64,30 @@ impl<'a> Iterator for Lines<'a> {
         self.line += 1;
         Some(line.strip_suffix(b"\r").unwrap_or(line))
     }
+}
+
+/// The index of the first `\n`, eight bytes at a time.
+#[inline]
+fn find_newline(s: &[u8]) -> Option<usize> {
+    const ONES: u64 = 0x0101_0101_0101_0101;
+    const HIGHS: u64 = 0x8080_8080_8080_8080;
+    const NL: u64 = ONES * b'\n' as u64;
+    let mut chunks = s.chunks_exact(8);
+    let mut base = 0;
+    for chunk in chunks.by_ref() {
+        let mut w = [0u8; 8];
+        w.copy_from_slice(chunk);
+        let x = u64::from_le_bytes(w) ^ NL;
+        if (x.wrapping_sub(ONES) & !x & HIGHS) != 0 {
+            return chunk.iter().position(|&b| b == b'\n').map(|i| base + i);
+        }
+        base += 8;
+    }
+    chunks
+        .remainder()
+        .iter()
+        .position(|&b| b == b'\n')
+        .map(|i| base + i)
 }
 
 #[inline]
@@ -121,6 +145,74 @@ const POW10: [f64; 23] = [
     1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
+
+/// Parse the number that starts at `s[*i]` and ends at whitespace, a line
+/// end or the end of `s`; on success `*i` moves past it. One pass over its
+/// bytes in the common case (the exact fast path); otherwise the token is
+/// cut out and parsed like [`parse_f64`].
+#[inline]
+pub(crate) fn parse_f64_at(s: &[u8], i: &mut usize) -> Option<f64> {
+    let start = *i;
+    let mut j = start;
+    let neg = match s.get(j) {
+        Some(b'-') => {
+            j += 1;
+            true
+        }
+        Some(b'+') => {
+            j += 1;
+            false
+        }
+        _ => false,
+    };
+    let mut mant: u64 = 0;
+    let mut digits = 0u32;
+    let mut any = false;
+    let mut exp: i64 = 0;
+    while let Some(&b) = s.get(j) {
+        let d = b.wrapping_sub(b'0');
+        if d > 9 {
+            break;
+        }
+        digits += u32::from(digits > 0 || d != 0);
+        mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
+        any = true;
+        j += 1;
+    }
+    if s.get(j) == Some(&b'.') {
+        j += 1;
+        while let Some(&b) = s.get(j) {
+            let d = b.wrapping_sub(b'0');
+            if d > 9 {
+                break;
+            }
+            digits += u32::from(digits > 0 || d != 0);
+            mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
+            exp -= 1;
+            any = true;
+            j += 1;
+        }
+    }
+    let ends = |j: usize| s.get(j).map_or(true, |&b| is_space(b) || b == b'\n');
+    if any && digits <= 19 && mant <= (1u64 << 53) && (-22..=0).contains(&exp) && ends(j) {
+        let m = mant as f64;
+        let v = if exp == 0 {
+            m
+        } else {
+            m / POW10[(-exp) as usize]
+        };
+        *i = j;
+        return Some(if neg { -v } else { v });
+    }
+    // Anything else (exponents, long mantissas): cut the token out.
+    let mut end = j;
+    while end < s.len() && !is_space(s[end]) && s[end] != b'\n' {
+        end += 1;
+    }
+    let v = parse_f64(&s[start..end])?;
+    *i = end;
+    Some(v)
+}
 
 /// Parse a decimal floating-point number; `None` if `tok` is not one.
 #[inline]
@@ -302,6 +394,40 @@ mod tests {
         for s in ["", "-", ".", "e5", "1e", "1x", "--1", "\x10"] {
             assert_eq!(parse_f64(s.as_bytes()), None, "{s:?}");
         }
+    }
+
+    #[test]
+    fn newlines() {
+        for s in [
+            "",
+            "a",
+            "\n",
+            "abcdefgh\n",
+            "abcdefghijklmnop",
+            "abcdefghijk\nlm",
+            "\u{80}\u{80}\n",
+        ] {
+            assert_eq!(
+                find_newline(s.as_bytes()),
+                s.bytes().position(|b| b == b'\n'),
+                "{s:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn floats_in_place() {
+        let line = b"  1.5 -2 3e2 0.002004008016032064 x\n";
+        let mut i = 2;
+        let mut got = Vec::new();
+        while let Some(v) = parse_f64_at(line, &mut i) {
+            got.push(v);
+            while line[i] == b' ' {
+                i += 1;
+            }
+        }
+        assert_eq!(got, [1.5, -2.0, 300.0, 0.002004008016032064]);
+        assert_eq!(line[i], b'x');
     }
 
     #[test]
