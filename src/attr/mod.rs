@@ -29,7 +29,7 @@ pub use registry::register;
 pub use rule::{Linear, Rule};
 pub use rules::{Conserved, Contagion, Discard, Incompatible, Interpolate, KeepFirst};
 pub use value::{Dynamic, Value, ValueType};
-pub use view::{AttrView, AttrViewMut};
+pub use view::{AttrView, AttrViewMut, ElementView};
 
 pub(crate) use column::ErasedColumn;
 
