@@ -10,7 +10,7 @@ use crate::harness::{Peer, Report};
 
 /// A triangle grid of `cols × rows` cells on a gently bumped plane:
 /// `(cols + 1)(rows + 1)` vertices.
-fn grid(cols: u32, rows: u32) -> Mesh {
+pub(crate) fn grid(cols: u32, rows: u32) -> Mesh {
     let mut positions = Vec::with_capacity(((cols + 1) * (rows + 1)) as usize);
     for y in 0..=rows {
         for x in 0..=cols {
@@ -33,7 +33,11 @@ fn grid(cols: u32, rows: u32) -> Mesh {
 /// `iterations` rounds of uniform Laplacian smoothing: every vertex moves to
 /// the mean of its neighbours, reading and writing positions through the
 /// position attribute's views.
-fn smooth(mesh: &mut Mesh, vertices: &[VertexKey], iterations: usize) -> meshloom::Result<()> {
+pub(crate) fn smooth(
+    mesh: &mut Mesh,
+    vertices: &[VertexKey],
+    iterations: usize,
+) -> meshloom::Result<()> {
     let pos = mesh.position_attr().ok_or(meshloom::Error::NoPositions)?;
     let mut next = vec![[0.0f64; 3]; vertices.len()];
     for _ in 0..iterations {
@@ -61,9 +65,51 @@ fn smooth(mesh: &mut Mesh, vertices: &[VertexKey], iterations: usize) -> meshloo
     Ok(())
 }
 
+/// The same smoothing navigating checked views: each vertex's key is
+/// checked once, its ring is walked with half-edge views, and positions are
+/// read with [`AttrView::at`](meshloom::attr::AttrView::at) (no generation
+/// check).
+pub(crate) fn smooth_views(
+    mesh: &mut Mesh,
+    vertices: &[VertexKey],
+    iterations: usize,
+) -> meshloom::Result<()> {
+    let pos = mesh.position_attr().ok_or(meshloom::Error::NoPositions)?;
+    let mut next = vec![[0.0f64; 3]; vertices.len()];
+    for _ in 0..iterations {
+        let view = mesh.attr_view(&pos)?;
+        for (out, &v) in next.iter_mut().zip(vertices) {
+            let start = mesh.vertex(v)?.halfedge();
+            let mut h = start;
+            let mut sum = [0.0; 3];
+            let mut n = 0.0;
+            loop {
+                if let Some(p) = view.at(h.dest()) {
+                    sum[0] += p[0];
+                    sum[1] += p[1];
+                    sum[2] += p[2];
+                    n += 1.0;
+                }
+                h = h.rotate_cw();
+                if h == start {
+                    break;
+                }
+            }
+            *out = if n > 0.0 { sum.map(|c| c / n) } else { sum };
+        }
+        let mut view = mesh.attr_view_mut(&pos)?;
+        for (p, &v) in next.iter().zip(vertices) {
+            if let Some(slot) = view.get_mut(v) {
+                *slot = *p;
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The same smoothing on the raw position slice and raw neighbour slots,
 /// without keys or the attribute API: what the API's checks cost.
-fn smooth_raw(mesh: &mut Mesh, vertices: &[VertexKey], iterations: usize) {
+pub(crate) fn smooth_raw(mesh: &mut Mesh, vertices: &[VertexKey], iterations: usize) {
     let rings: Vec<Vec<usize>> = vertices
         .iter()
         .map(|&v| {
@@ -110,6 +156,19 @@ pub fn run(r: &mut Report) {
         },
     );
 
+    r.time(
+        "attr: same, ring walked with views and view.at",
+        Some(Peer {
+            name: "pmp-library",
+            seconds: 0.049,
+            ratio: 1.0,
+        }),
+        || mesh.clone(),
+        |mut m| {
+            smooth_views(&mut m, &vertices, 10).expect("the grid has positions");
+            m
+        },
+    );
     r.time(
         "attr: same on raw slices, rings precomputed (ref.)",
         None,

@@ -38,6 +38,17 @@ macro_rules! element_view {
                 (self.mesh, self.$field as usize)
             }
         }
+
+        /// Two views are equal when they show the same element of the same
+        /// mesh (no generation read: both were checked when made).
+        impl PartialEq for $view<'_> {
+            #[inline]
+            fn eq(&self, other: &Self) -> bool {
+                self.$field == other.$field && std::ptr::eq(self.mesh, other.mesh)
+            }
+        }
+
+        impl Eq for $view<'_> {}
     };
 }
 
