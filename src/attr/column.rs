@@ -7,6 +7,9 @@ use super::attribute::Attribute;
 use super::rule::Rule;
 use super::value::Value;
 
+/// A rule's merge or interpolate, as a function.
+type RuleFn<T> = fn(&[(Option<&T>, f64)]) -> Option<T>;
+
 /// The values of one attribute for every slot of one arena.
 ///
 /// Values sit in a plain `Vec<T>` indexed by slot. Presence is a bitset that
@@ -110,7 +113,7 @@ impl<T: Default + Clone, R> Column<T, R> {
     fn with_inputs(
         &self,
         inputs: &[(usize, f64)],
-        rule: fn(&[(Option<&T>, f64)]) -> Option<T>,
+        rule: RuleFn<T>,
     ) -> Option<T> {
         const SMALL: usize = 8;
         if inputs.len() <= SMALL {
