@@ -71,7 +71,8 @@ quickcheck! {
     fn incompatible_never_mixes(raw: Vec<(bool, i16, u8)>) -> bool {
         let c = contributors(&raw);
         match <Incompatible as Rule<f64>>::merge(&args(&c)) {
-            None => c.is_empty() || c.iter().any(|(v, _)| *v != c[0].0),
+            // Absent: nobody, someone without a value, or a disagreement.
+            None => c.is_empty() || c.iter().any(|(v, _)| v.is_none() || *v != c[0].0),
             Some(m) => c.iter().all(|(v, _)| *v == Some(m)),
         }
     }

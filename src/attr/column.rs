@@ -110,11 +110,7 @@ impl<T: Default + Clone, R> Column<T, R> {
     /// eight contributors (every operator but the merges of whole rings)
     /// need no allocation.
     #[inline]
-    fn with_inputs(
-        &self,
-        inputs: &[(usize, f64)],
-        rule: RuleFn<T>,
-    ) -> Option<T> {
+    fn with_inputs(&self, inputs: &[(usize, f64)], rule: RuleFn<T>) -> Option<T> {
         const SMALL: usize = 8;
         if inputs.len() <= SMALL {
             let mut args: [(Option<&T>, f64); SMALL] = [(None, 0.0); SMALL];
