@@ -53,7 +53,7 @@ fn non_convex_polygons_give_valid_triangles() {
     // Shares are by area.
     for &g in &tris {
         let share = *m.attr(&t.face, g).unwrap().unwrap();
-        assert!((share - signed_area(&m, g) / 9.0).abs() < 1e-12);
+        assert!((share - signed_area(&m, g) / 11.0).abs() < 1e-12);
     }
 }
 
