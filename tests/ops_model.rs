@@ -1,0 +1,414 @@
+//! Model tests: random streams of every operator on random small shapes and
+//! on real meshes. After every step the mesh validates, χ changes as the
+//! operator's doc says, conserved totals are kept, and `check_x` agreed with
+//! `x`; after every refusal the mesh equals its snapshot.
+
+mod common;
+use common::*;
+use meshloom::{shapes, Mesh};
+use quickcheck::{Arbitrary, Gen, QuickCheck, TestResult};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::OnceLock;
+
+#[derive(Clone, Debug)]
+enum Op {
+    SplitEdge(usize, u8),
+    SplitFace(usize, usize, usize),
+    Poke(usize),
+    Collapse(usize),
+    CollapseAt(usize, u8),
+    Flip(usize),
+    RemoveEdge(usize),
+    MergeFaces(usize, usize),
+    RemoveVertex(usize),
+    RemoveFace(usize),
+    FillHole(usize),
+    Triangulate(usize),
+    TriangulateAll,
+    Compact,
+}
+
+impl Arbitrary for Op {
+    fn arbitrary(g: &mut Gen) -> Op {
+        let i = usize::arbitrary(g);
+        let j = usize::arbitrary(g);
+        let k = usize::arbitrary(g);
+        let t = u8::arbitrary(g) % 11;
+        // Weighted so that meshes both grow and shrink.
+        match u8::arbitrary(g) % 24 {
+            0..=2 => Op::SplitEdge(i, t),
+            3..=4 => Op::SplitFace(i, j, k),
+            5..=6 => Op::Poke(i),
+            7..=10 => Op::Collapse(i),
+            11 => Op::CollapseAt(i, t),
+            12..=14 => Op::Flip(i),
+            15..=16 => Op::RemoveEdge(i),
+            17 => Op::MergeFaces(i, j),
+            18 => Op::RemoveVertex(i),
+            19 => Op::RemoveFace(i),
+            20 => Op::FillHole(i),
+            21 => Op::Triangulate(i),
+            22 => Op::TriangulateAll,
+            _ => Op::Compact,
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+struct Case {
+    shape: u8,
+    ops: Vec<Op>,
+}
+
+impl Arbitrary for Case {
+    fn arbitrary(g: &mut Gen) -> Case {
+        Case {
+            shape: u8::arbitrary(g),
+            ops: (0..(usize::arbitrary(g) % 40 + 1))
+                .map(|_| Op::arbitrary(g))
+                .collect(),
+        }
+    }
+
+    fn shrink(&self) -> Box<dyn Iterator<Item = Case>> {
+        let shape = self.shape;
+        Box::new(self.ops.shrink().map(move |ops| Case { shape, ops }))
+    }
+}
+
+fn small_shape(i: u8) -> Mesh {
+    match i % 11 {
+        0 => one_ring(),
+        1 => boundary_fan(),
+        2 => l_shape(),
+        3 => open_cone(),
+        4 => bowtie(),
+        5 => quad_grid(3),
+        6 => shapes::tetrahedron(),
+        7 => shapes::cube(),
+        8 => shapes::icosahedron(),
+        9 => Mesh::from_faces(6, &[vec![0u32, 1, 2, 3, 4, 5]]).unwrap(),
+        _ => Mesh::from_polygons(
+            &[
+                [0.0, 0.0, 0.0],
+                [3.0, 0.0, 0.0],
+                [3.0, 3.0, 0.0],
+                [2.0, 1.0, 0.0],
+                [1.0, 2.0, 0.0],
+                [0.0, 3.0, 0.0],
+            ],
+            &[[0u32, 1, 2, 3, 4, 5]],
+        )
+        .unwrap(),
+    }
+}
+
+fn real_meshes() -> &'static Vec<Mesh> {
+    static MESHES: OnceLock<Vec<Mesh>> = OnceLock::new();
+    MESHES.get_or_init(|| {
+        [
+            "boundary/cgal_open_cube.off",
+            "boundary/cgal_triangular_hole.off",
+            "boundary/cgal_quads_to_stitch.off",
+            "boundary/cgal_mesh_with_border.off",
+            "closed/cgal_sphere966.off",
+            "dirty/cgal_cube-ouvert.off",
+        ]
+        .iter()
+        .map(|p| read_off(&mesh_path(p)))
+        .collect()
+    })
+}
+
+fn nth<T>(it: impl Iterator<Item = T>, count: usize, i: usize) -> Option<T> {
+    if count == 0 {
+        None
+    } else {
+        it.into_iter().nth(i % count)
+    }
+}
+
+/// Run one op with every check. Returns false when the op does not apply
+/// (no element to pick).
+fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
+    let chi = m.euler_characteristic();
+    let (ft, vt) = (face_total(m, totals), vertex_total(m, totals));
+    let fcount = m.face_count();
+    let before = snapshot(m);
+    // (check result, op result, χ change, face total kept, vertex total kept)
+    let (check, ok, dchi, keep_f, keep_v): (bool, bool, i64, bool, bool) = match *op {
+        Op::SplitEdge(i, t) => {
+            let Some(e) = nth(m.edges(), m.edge_count(), i) else {
+                return;
+            };
+            let t = f64::from(t) / 10.0;
+            (
+                m.check_split_edge(e, t).is_ok(),
+                m.split_edge(e, t).is_ok(),
+                0,
+                true,
+                true,
+            )
+        }
+        Op::SplitFace(i, j, k) => {
+            let Some(f) = nth(m.faces(), m.face_count(), i) else {
+                return;
+            };
+            let c: Vec<_> = m.face(f).unwrap().vertices().collect();
+            let (a, b) = (c[j % c.len()], c[k % c.len()]);
+            (
+                m.check_split_face(f, a, b).is_ok(),
+                m.split_face(f, a, b).is_ok(),
+                0,
+                true,
+                true,
+            )
+        }
+        Op::Poke(i) => {
+            let Some(f) = nth(m.faces_and_holes(), m.face_count() + m.hole_count(), i) else {
+                return;
+            };
+            (
+                m.check_poke_face(f).is_ok(),
+                m.poke_face(f).is_ok(),
+                0,
+                true,
+                true,
+            )
+        }
+        Op::Collapse(i) | Op::CollapseAt(i, _) => {
+            let Some(h) = nth(m.halfedges(), m.halfedge_count(), i) else {
+                return;
+            };
+            let hv = m.halfedge(h).unwrap();
+            let closes = [hv.face(), hv.twin().face()]
+                .iter()
+                .any(|f| f.is_hole() && f.degree() == 3);
+            let t = if let Op::CollapseAt(_, t) = *op {
+                f64::from(t) / 10.0
+            } else {
+                1.0
+            };
+            let check = m.check_collapse_edge_at(h, t).is_ok();
+            (
+                check,
+                m.collapse_edge_at(h, t).is_ok(),
+                i64::from(closes),
+                true,
+                true,
+            )
+        }
+        Op::Flip(i) => {
+            let Some(e) = nth(m.edges(), m.edge_count(), i) else {
+                return;
+            };
+            (
+                m.check_flip_edge(e).is_ok(),
+                m.flip_edge(e).is_ok(),
+                0,
+                true,
+                true,
+            )
+        }
+        Op::RemoveEdge(i) => {
+            let Some(e) = nth(m.edges(), m.edge_count(), i) else {
+                return;
+            };
+            let boundary = m.edge(e).unwrap().is_boundary();
+            (
+                m.check_remove_edge(e).is_ok(),
+                m.remove_edge(e).is_ok(),
+                0,
+                !boundary,
+                true,
+            )
+        }
+        Op::MergeFaces(i, j) => {
+            let Some(f) = nth(m.faces(), m.face_count(), i) else {
+                return;
+            };
+            let ns: Vec<_> = m.face(f).unwrap().neighbors().collect();
+            let g = if ns.is_empty() { f } else { ns[j % ns.len()] };
+            (
+                m.check_merge_faces(f, g).is_ok(),
+                m.merge_faces(f, g).is_ok(),
+                0,
+                true,
+                true,
+            )
+        }
+        Op::RemoveVertex(i) => {
+            let Some(v) = nth(m.vertices(), m.vertex_count(), i) else {
+                return;
+            };
+            (
+                m.check_remove_vertex(v).is_ok(),
+                m.remove_vertex(v).is_ok(),
+                0,
+                true,
+                false,
+            )
+        }
+        Op::RemoveFace(i) => {
+            let Some(f) = nth(m.faces(), m.face_count(), i) else {
+                return;
+            };
+            let check = m.check_remove_face(f).is_ok();
+            let ok = m.remove_face(f).is_ok();
+            if ok {
+                assert_eq!(m.face_count(), fcount - 1);
+                m.validate().unwrap();
+            }
+            tally(op, ok);
+            return assert_eq!(check, ok);
+        }
+        Op::FillHole(i) => {
+            let Some(h) = nth(m.holes(), m.hole_count(), i) else {
+                return;
+            };
+            (
+                m.check_fill_hole(h).is_ok(),
+                m.fill_hole(h).is_ok(),
+                1,
+                true,
+                true,
+            )
+        }
+        Op::Triangulate(i) => {
+            let Some(f) = nth(m.faces(), m.face_count(), i) else {
+                return;
+            };
+            (
+                m.check_triangulate(f).is_ok(),
+                m.triangulate(f).is_ok(),
+                0,
+                true,
+                true,
+            )
+        }
+        Op::TriangulateAll => {
+            let left = m.triangulate_all();
+            for f in &left {
+                assert!(m.face(*f).unwrap().degree() > 3);
+            }
+            (true, true, 0, true, true)
+        }
+        Op::Compact => {
+            m.compact();
+            (true, true, 0, true, true)
+        }
+    };
+    assert_eq!(check, ok, "check_* disagrees with the operator on {op:?}");
+    tally(op, ok);
+    if ok {
+        if let Err(e) = m.validate() {
+            panic!("{op:?} broke the mesh: {e}");
+        }
+        assert_eq!(m.euler_characteristic(), chi + dchi, "χ after {op:?}");
+        if keep_f {
+            assert!(
+                (face_total(m, totals) - ft).abs() < 1e-6 * ft.max(1.0),
+                "face total after {op:?}"
+            );
+        }
+        if keep_v {
+            assert!(
+                (vertex_total(m, totals) - vt).abs() < 1e-6 * vt.max(1.0),
+                "vertex total after {op:?}"
+            );
+        }
+    } else {
+        assert_eq!(snapshot(m), before, "refused {op:?} changed the mesh");
+    }
+}
+
+static TALLY: [[AtomicUsize; 2]; 14] =
+    [const { [const { AtomicUsize::new(0) }, const { AtomicUsize::new(0) }] }; 14];
+
+fn op_index(op: &Op) -> usize {
+    match op {
+        Op::SplitEdge(..) => 0,
+        Op::SplitFace(..) => 1,
+        Op::Poke(..) => 2,
+        Op::Collapse(..) => 3,
+        Op::CollapseAt(..) => 4,
+        Op::Flip(..) => 5,
+        Op::RemoveEdge(..) => 6,
+        Op::MergeFaces(..) => 7,
+        Op::RemoveVertex(..) => 8,
+        Op::RemoveFace(..) => 9,
+        Op::FillHole(..) => 10,
+        Op::Triangulate(..) => 11,
+        Op::TriangulateAll => 12,
+        Op::Compact => 13,
+    }
+}
+
+fn tally(op: &Op, ok: bool) {
+    TALLY[op_index(op)][usize::from(ok)].fetch_add(1, Ordering::Relaxed);
+}
+
+/// Every operator must both succeed and be refused somewhere in the run, or
+/// the streams test nothing.
+fn assert_coverage() {
+    let names = [
+        "split_edge",
+        "split_face",
+        "poke",
+        "collapse",
+        "collapse_at",
+        "flip",
+        "remove_edge",
+        "merge_faces",
+        "remove_vertex",
+        "remove_face",
+        "fill_hole",
+        "triangulate",
+        "triangulate_all",
+        "compact",
+    ];
+    for (i, name) in names.iter().enumerate() {
+        let (no, yes) = (
+            TALLY[i][0].load(Ordering::Relaxed),
+            TALLY[i][1].load(Ordering::Relaxed),
+        );
+        eprintln!("{name:>16}: {yes} done, {no} refused");
+        assert!(yes > 0, "{name} never succeeded");
+    }
+}
+
+fn run(mut m: Mesh, ops: &[Op]) {
+    m.validate().unwrap();
+    let totals = add_totals(&mut m);
+    for op in ops {
+        step(&mut m, &totals, op);
+    }
+}
+
+#[test]
+fn random_streams_on_small_shapes() {
+    fn prop(case: Case) -> TestResult {
+        run(small_shape(case.shape), &case.ops);
+        TestResult::passed()
+    }
+    QuickCheck::new()
+        .tests(600)
+        .quickcheck(prop as fn(Case) -> TestResult);
+}
+
+#[test]
+fn random_streams_on_real_meshes() {
+    fn prop(case: Case) -> TestResult {
+        let meshes = real_meshes();
+        let m = meshes[case.shape as usize % meshes.len()].clone();
+        run(m, &case.ops);
+        TestResult::passed()
+    }
+    QuickCheck::new()
+        .tests(60)
+        .quickcheck(prop as fn(Case) -> TestResult);
+    let mut g = Gen::new(1000);
+    let ops: Vec<Op> = (0..600).map(|_| Op::arbitrary(&mut g)).collect();
+    run(quad_grid(6), &ops);
+    assert_coverage();
+}
