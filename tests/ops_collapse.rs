@@ -2,7 +2,7 @@
 
 mod common;
 use common::*;
-use meshloom::{shapes, Error, Mesh, Refusal};
+use meshloom::{shapes, Error, Refusal};
 
 fn refusal<T: std::fmt::Debug>(r: meshloom::Result<T>) -> Refusal {
     match r {

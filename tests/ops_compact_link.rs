@@ -63,7 +63,7 @@ fn raw_edit_reports_broken_rules_and_stale_keys() {
     let v = m.vertices().next().unwrap();
     {
         let mut edit = m.raw_edit();
-        assert_eq!(edit.next(hs[0]).unwrap().is_some(), true);
+        assert!(edit.next(hs[0]).unwrap().is_some());
         // Point a half-edge at itself: next is no longer a permutation.
         edit.link(hs[0], hs[0]).unwrap();
         assert!(matches!(edit.validate(), Err(Error::Invalid(_))));

@@ -356,12 +356,12 @@ impl Mesh {
         h: &Attr<K, T, R>,
     ) -> Result<AttrView<'_, K, T>> {
         let col = self.typed_column(h)?;
-        let (slots, shift) = self.arena_slots(K::KIND);
+        let (slots, _) = self.arena_slots(K::KIND);
         Ok(AttrView {
+            mesh: self,
             values: col.raw(),
             present: col.present_bits(),
-            slots,
-            shift,
+            generations: slots.generations(),
             marker: PhantomData,
         })
     }

@@ -7,6 +7,9 @@ use super::attribute::Attribute;
 use super::rule::Rule;
 use super::value::Value;
 
+/// A rule's merge or interpolate, as a function.
+type RuleFn<T> = fn(&[(Option<&T>, f64)]) -> Option<T>;
+
 /// The values of one attribute for every slot of one arena.
 ///
 /// Values sit in a plain `Vec<T>` indexed by slot. Presence is a bitset that
@@ -103,6 +106,25 @@ impl<T: Default + Clone, R> Column<T, R> {
         &self.values
     }
 
+    /// Run `rule` on the values of `inputs` (slot, weight), in order. Up to
+    /// eight contributors (every operator but the merges of whole rings)
+    /// need no allocation.
+    #[inline]
+    fn with_inputs(&self, inputs: &[(usize, f64)], rule: RuleFn<T>) -> Option<T> {
+        const SMALL: usize = 8;
+        if inputs.len() <= SMALL {
+            let mut args: [(Option<&T>, f64); SMALL] = [(None, 0.0); SMALL];
+            for (a, &(s, w)) in args.iter_mut().zip(inputs) {
+                *a = (self.get(s), w);
+            }
+            rule(&args[..inputs.len()])
+        } else {
+            let args: Vec<(Option<&T>, f64)> =
+                inputs.iter().map(|&(s, w)| (self.get(s), w)).collect();
+            rule(&args)
+        }
+    }
+
     /// The presence bits (`None`: every slot has a value).
     #[inline]
     pub(crate) fn present_bits(&self) -> Option<&[u64]> {
@@ -196,20 +218,12 @@ where
     }
 
     fn merge(&mut self, dst: usize, inputs: &[(usize, f64)]) {
-        let result = {
-            let args: Vec<(Option<&T>, f64)> =
-                inputs.iter().map(|&(s, w)| (self.get(s), w)).collect();
-            R::merge(&args)
-        };
+        let result = self.with_inputs(inputs, R::merge);
         self.set(dst, result);
     }
 
     fn interpolate(&mut self, dst: usize, inputs: &[(usize, f64)]) {
-        let result = {
-            let args: Vec<(Option<&T>, f64)> =
-                inputs.iter().map(|&(s, w)| (self.get(s), w)).collect();
-            R::interpolate(&args)
-        };
+        let result = self.with_inputs(inputs, R::interpolate);
         self.set(dst, result);
     }
 

@@ -7,6 +7,9 @@ use crate::mesh::Mesh;
 
 struct CollapsePlan {
     h: u32,
+    /// The half-edges before `h` and before its twin.
+    ph: u32,
+    pt: u32,
     /// Whether the face of `h` (resp. its twin) is a triangle (or a
     /// triangular hole) that disappears.
     left_goes: bool,
@@ -20,39 +23,78 @@ impl Mesh {
         let t = h ^ 1;
         let (a, b) = (self.origin_of(h), self.origin_of(t));
         let (f_left, f_right) = (self.face_of(h), self.face_of(t));
-        let left_goes = self.face_degree_raw(f_left) == 3;
-        let right_goes = self.face_degree_raw(f_right) == 3;
+        let left_goes = self.is_triangle_at(h);
+        let right_goes = self.is_triangle_at(t);
         let c = self.dest_of(self.next_of(h));
         let d = self.dest_of(self.next_of(t));
         if left_goes && right_goes && c == d {
             return Err(refuse(OP, hk, Refusal::LinkCondition));
         }
         // Link condition: the common neighbours of a and b are exactly the
-        // apexes of the triangles that disappear.
-        let mut around_a: Vec<u32> = self.outgoing_raw(a).map(|o| self.dest_of(o)).collect();
-        around_a.sort_unstable();
-        for o in self.outgoing_raw(b) {
+        // apexes of the triangles that disappear. Walking a's ring also
+        // notes whether a is on a boundary; b's ring, whether b is.
+        let mut small = [0u32; 16];
+        let mut large = Vec::new();
+        let mut k = 0;
+        let mut a_boundary = false;
+        // a's ring from h: the last one is twin(prev(h)).
+        let mut last_a = h;
+        for o in self.ring_from(h) {
+            last_a = o;
+            a_boundary |= self.in_hole_raw(o);
             let w = self.dest_of(o);
-            if w == a || around_a.binary_search(&w).is_err() {
+            if k < small.len() {
+                small[k] = w;
+            } else {
+                if large.is_empty() {
+                    large.extend_from_slice(&small);
+                }
+                large.push(w);
+            }
+            k += 1;
+        }
+        let around_a: &mut [u32] = if k <= small.len() {
+            &mut small[..k]
+        } else {
+            large.sort_unstable();
+            &mut large
+        };
+        let sorted = k > 16;
+        let mut b_boundary = false;
+        let mut last_b = t;
+        for o in self.ring_from(t) {
+            last_b = o;
+            b_boundary |= self.in_hole_raw(o);
+            let w = self.dest_of(o);
+            if w == a {
                 continue;
             }
-            let allowed = (left_goes && w == c) || (right_goes && w == d);
-            if !allowed {
+            let common = if sorted {
+                around_a.binary_search(&w).is_ok()
+            } else {
+                around_a.contains(&w)
+            };
+            if common && !((left_goes && w == c) || (right_goes && w == d)) {
                 return Err(refuse(OP, hk, Refusal::LinkCondition));
             }
         }
         // An interior edge between two boundary vertices would pinch.
-        if !self.is_hole_raw(f_left)
-            && !self.is_hole_raw(f_right)
-            && self.is_boundary_vertex_raw(a)
-            && self.is_boundary_vertex_raw(b)
-        {
+        if !self.is_hole_raw(f_left) && !self.is_hole_raw(f_right) && a_boundary && b_boundary {
             return Err(refuse(OP, hk, Refusal::NonManifold));
         }
-        // No other face or hole may hold both a and b.
+        // No other face or hole may hold both a and b. Triangles around a
+        // cannot (their third corner would be a common neighbour).
         for o in self.outgoing_raw(a) {
             let f = self.face_of(o);
-            if f != f_left && f != f_right && self.face_loop_raw(f).any(|x| self.origin_of(x) == b)
+            if f == f_left || f == f_right {
+                continue;
+            }
+            let n = self.next_of(o);
+            if self.next_of(self.next_of(n)) == o {
+                continue;
+            }
+            if crate::circulate::FaceHalfedges::from_halfedge(self, n)
+                .any(|x| self.origin_of(x) == b)
             {
                 return Err(refuse(OP, hk, Refusal::NonManifold));
             }
@@ -70,9 +112,32 @@ impl Mesh {
         }
         Ok(CollapsePlan {
             h,
+            ph: last_a ^ 1,
+            pt: last_b ^ 1,
             left_goes,
             right_goes,
         })
+    }
+
+    /// The half-edges leaving `origin(h)`, starting at `h`, clockwise.
+    #[inline]
+    fn ring_from(&self, h: u32) -> impl Iterator<Item = u32> + '_ {
+        let mut cur = Some(h);
+        let mut budget = self.he.len();
+        std::iter::from_fn(move || {
+            let o = cur?;
+            budget = budget.checked_sub(1)?;
+            let n = self.next_of(o ^ 1);
+            cur = (n != h).then_some(n);
+            Some(o)
+        })
+    }
+
+    /// Whether the loop through `h` has exactly three half-edges.
+    #[inline]
+    fn is_triangle_at(&self, h: u32) -> bool {
+        let n = self.next_of(h);
+        n != h && self.next_of(self.next_of(n)) == h
     }
 
     /// Whether [`collapse_edge`](Mesh::collapse_edge) would succeed;
@@ -159,17 +224,23 @@ impl Mesh {
     /// # Complexity
     /// As `collapse_edge`.
     pub fn collapse_edge_at(&mut self, hk: HalfedgeKey, t: f64) -> Result<VertexKey> {
-        self.check_collapse_edge_at(hk, t)?;
+        if !(0.0..=1.0).contains(&t) {
+            return Err(refuse(
+                "collapse_edge",
+                hk,
+                Refusal::Parameter("t must lie in 0..=1"),
+            ));
+        }
         let CollapsePlan {
             h,
+            ph,
+            pt,
             left_goes,
             right_goes,
         } = self.plan_collapse(hk)?;
         let tw = h ^ 1;
         let (a, b) = (self.origin_of(h), self.origin_of(tw));
         let (f_left, f_right) = (self.face_of(h), self.face_of(tw));
-        let ph = self.prev_of(h);
-        let pt = self.prev_of(tw);
         let nh = self.next_of(h);
         let nt = self.next_of(tw);
         self.attrs

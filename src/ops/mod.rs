@@ -284,12 +284,6 @@ impl Mesh {
         out
     }
 
-    /// Whether vertex slot `v` touches a hole.
-    #[inline]
-    pub(crate) fn is_boundary_vertex_raw(&self, v: u32) -> bool {
-        self.outgoing_raw(v).any(|h| self.in_hole_raw(h))
-    }
-
     /// Debug check after every operator.
     #[inline]
     pub(crate) fn debug_validate(&self) {

@@ -6,6 +6,9 @@ use crate::error::{Refusal, Result};
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 use crate::mesh::{HalfedgeRecord, Mesh};
 
+/// Faces up to this degree are handled without heap allocation.
+const SMALL: usize = 8;
+
 struct SplitEdgePlan {
     h: u32,
     t: u32,
@@ -299,22 +302,33 @@ impl Mesh {
     /// ```
     pub fn poke_face(&mut self, f: FaceKey) -> Result<VertexKey> {
         let f = self.plan_poke_face(f)?;
-        let ring: Vec<u32> = self.face_loop_raw(f).collect();
-        let n = ring.len() as u32;
+        // Small faces stay on the stack.
+        let mut stack = [0u32; 3 * SMALL];
+        let mut heap = Vec::new();
+        let n = self.face_degree_raw(f);
+        let buf: &mut [u32] = if n <= SMALL {
+            &mut stack[..3 * n]
+        } else {
+            heap.resize(3 * n, 0);
+            &mut heap
+        };
+        let (ring, rest) = buf.split_at_mut(n);
+        let (spokes, faces) = rest.split_at_mut(n);
+        for (slot, h) in ring.iter_mut().zip(self.face_loop_raw(f)) {
+            *slot = h;
+        }
         let c = self.alloc_vertex();
         // Spoke i joins c and corner v_i = origin(ring[i]):
         // out_i = c -> v_i (even), in_i = v_i -> c (odd).
-        let mut spokes = Vec::with_capacity(ring.len());
-        for _ in 0..n {
-            spokes.push(self.alloc_edge());
+        for s in spokes.iter_mut() {
+            *s = self.alloc_edge();
         }
-        let mut faces = Vec::with_capacity(ring.len());
-        faces.push(f);
-        for _ in 1..n {
-            faces.push(self.alloc_face(false));
+        faces[0] = f;
+        for g in faces[1..].iter_mut() {
+            *g = self.alloc_face(false);
         }
-        for i in 0..n as usize {
-            let j = (i + 1) % n as usize;
+        for i in 0..n {
+            let j = (i + 1) % n;
             let h = ring[i];
             let face = faces[i];
             let out_i = 2 * spokes[i];
@@ -335,23 +349,38 @@ impl Mesh {
         }
         self.v_halfedge[c as usize] = 2 * spokes[0];
         // Attributes.
-        let w = 1.0 / f64::from(n);
-        let corners: Vec<(usize, f64)> = ring
-            .iter()
-            .map(|&h| (self.origin_of(h) as usize, w))
-            .collect();
-        self.attrs.vertex.interpolate(c as usize, &corners);
-        let old_corners: Vec<(usize, f64)> = ring.iter().map(|&h| (h as usize, w)).collect();
-        for (i, &s) in spokes.iter().enumerate() {
-            self.attrs.edge.interpolate(s as usize, &[]);
-            self.attrs
-                .halfedge
-                .interpolate(2 * s as usize, &old_corners);
-            self.attrs
-                .halfedge
-                .copy(ring[i] as usize, 2 * s as usize + 1);
+        let w = 1.0 / n as f64;
+        if !self.attrs.vertex.cols.is_empty() {
+            let mut corners = [(0usize, 0.0f64); SMALL];
+            let mut corners_heap = Vec::new();
+            let corners: &mut [(usize, f64)] = if n <= SMALL {
+                &mut corners[..n]
+            } else {
+                corners_heap.resize(n, (0, 0.0));
+                &mut corners_heap
+            };
+            for (slot, &h) in corners.iter_mut().zip(ring.iter()) {
+                *slot = (self.origin_of(h) as usize, w);
+            }
+            self.attrs.vertex.interpolate(c as usize, corners);
         }
-        self.split_face_values(f, &faces);
+        if !self.attrs.edge.cols.is_empty() {
+            for &s in spokes.iter() {
+                self.attrs.edge.interpolate(s as usize, &[]);
+            }
+        }
+        if !self.attrs.halfedge.cols.is_empty() {
+            let old_corners: Vec<(usize, f64)> = ring.iter().map(|&h| (h as usize, w)).collect();
+            for (i, &s) in spokes.iter().enumerate() {
+                self.attrs
+                    .halfedge
+                    .interpolate(2 * s as usize, &old_corners);
+                self.attrs
+                    .halfedge
+                    .copy(ring[i] as usize, 2 * s as usize + 1);
+            }
+        }
+        self.split_face_values(f, faces);
         self.debug_validate();
         Ok(self.vkey(c))
     }
