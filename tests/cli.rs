@@ -372,6 +372,7 @@ fn every_command_has_help_with_an_example() {
         "convert",
         "repair",
         "triangulate",
+        "fill-holes",
         "render",
     ] {
         assert!(
@@ -523,4 +524,47 @@ fn components_lists_each_piece() {
     assert!(rows[0].contains("genus"));
     let cells: Vec<&str> = rows[1].split_whitespace().collect();
     assert_eq!(cells, ["0", "2775", "8337", "5558", "0", "-4", "3"]);
+}
+
+#[test]
+fn fill_holes_closes_the_mesh() {
+    let dir = scratch("fill");
+    let rel = "boundary/cgal_holes.off";
+    let m = manifest(rel);
+    let loops: i64 = m["boundary_loops"].parse().unwrap();
+    let chi: i64 = m["euler_char"].parse().unwrap();
+    let out = dir.join("closed.off");
+    let o = run(&[
+        "fill-holes",
+        &shared(rel),
+        path_str(&out),
+        "--triangulate",
+        "--json",
+    ]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let j = json(&o);
+    assert_eq!(j["holes_before"].as_i64(), Some(loops));
+    assert_eq!(j["filled"].as_i64(), Some(loops));
+    assert_eq!(j["holes"], 0);
+    let s = json(&run(&["stats", "--json", path_str(&out)]));
+    assert_eq!(s["closed"], true);
+    // Each filled hole adds one face (χ + 1); triangulating keeps χ.
+    assert_eq!(s["euler_characteristic"].as_i64(), Some(chi + loops));
+    assert_eq!(s["genus"], 0);
+    assert_eq!(s["face_degrees"].as_object().map(|h| h.len()), Some(1));
+    // Only small holes: the bigger ones stay.
+    let o = run(&[
+        "fill-holes",
+        &shared(rel),
+        path_str(&out),
+        "--max-sides",
+        "3",
+    ]);
+    assert_eq!(code(&o), 0);
+    assert!(
+        stdout(&o).contains("have more than 3 sides"),
+        "{}",
+        stdout(&o)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

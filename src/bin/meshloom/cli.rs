@@ -82,6 +82,16 @@ Example:
   meshloom triangulate quads.obj triangles.obj
   meshloom triangulate part.off part.stl --json")]
     Triangulate(TriangulateArgs),
+    /// Close holes with new faces.
+    ///
+    /// Each hole (boundary loop) of at most --max-sides sides becomes one
+    /// polygon, cut into triangles with --triangulate. Holes whose loop
+    /// passes a vertex twice are left open and counted.
+    #[command(after_help = "\
+Example:
+  meshloom fill-holes scan.ply closed.ply --triangulate
+  meshloom fill-holes part.off part-filled.off --max-sides 12 --json")]
+    FillHoles(FillHolesArgs),
     /// Draw a shaded picture of a mesh as PNG.
     ///
     /// Orthographic, flat or smooth shading, optional wireframe and
@@ -163,6 +173,28 @@ pub struct TriangulateArgs {
     /// The mesh file to write (format from its extension).
     #[arg(value_parser = mesh_path)]
     pub output: PathBuf,
+    /// Print the summary as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
+/// `meshloom fill-holes`.
+#[derive(Args, Debug)]
+pub struct FillHolesArgs {
+    /// The mesh file to read.
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// The mesh file to write (format from its extension).
+    #[arg(value_parser = mesh_path)]
+    pub output: PathBuf,
+    /// Fill only holes of at most this many sides.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(3..))]
+    pub max_sides: Option<u64>,
+    /// Cut each new face into triangles.
+    #[arg(long)]
+    pub triangulate: bool,
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,

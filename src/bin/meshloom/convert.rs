@@ -1,9 +1,10 @@
 //! `meshloom convert IN OUT [--repair]`, `meshloom repair IN OUT [--json]`
-//! and `meshloom triangulate IN OUT [--json]`: read, change, write.
+//! `meshloom triangulate IN OUT [--json]` and `meshloom fill-holes IN OUT`:
+//! read, change, write.
 
 use serde_json::json;
 
-use crate::cli::{ConvertArgs, ReadArgs, RepairArgs, TriangulateArgs};
+use crate::cli::{ConvertArgs, FillHolesArgs, ReadArgs, RepairArgs, TriangulateArgs};
 use crate::output::{self, to_json};
 use crate::progress::Progress;
 use crate::{input, Failure};
@@ -84,5 +85,65 @@ pub fn triangulate(args: &TriangulateArgs) -> Result<(), Failure> {
             left.len()
         ));
     }
+    output::print(&text)
+}
+
+/// Read, fill the holes asked for (and triangulate the new faces), write.
+pub fn fill_holes(args: &FillHolesArgs) -> Result<(), Failure> {
+    let (mut mesh, _) = input::read(&args.input, args.read)?;
+    let holes_before = mesh.hole_count();
+    let max = args.max_sides.unwrap_or(u64::MAX);
+    let (mut filled, mut too_big, mut refused, mut untriangulated) = (0, 0, 0, 0);
+    {
+        let _progress = Progress::spinner("filling holes");
+        let holes: Vec<_> = mesh.holes().collect();
+        for hole in holes {
+            let sides = mesh.face(hole).map_or(0, |h| h.degree()) as u64;
+            if sides > max {
+                too_big += 1;
+                continue;
+            }
+            match mesh.fill_hole(hole) {
+                Ok(face) => {
+                    filled += 1;
+                    if args.triangulate && mesh.triangulate(face).is_err() {
+                        untriangulated += 1;
+                    }
+                }
+                Err(_) => refused += 1,
+            }
+        }
+    }
+    input::write(&mesh, &args.output)?;
+    if args.json {
+        return output::json(&json!({
+            "input": args.input.display().to_string(),
+            "output": args.output.display().to_string(),
+            "holes_before": holes_before,
+            "filled": filled,
+            "larger_than_max_sides": too_big,
+            "refused": refused,
+            "left_untriangulated": untriangulated,
+            "holes": mesh.hole_count(),
+        }));
+    }
+    let mut text = format!(
+        "filled {filled} of {holes_before} holes; {} left\n",
+        mesh.hole_count()
+    );
+    if too_big > 0 {
+        text.push_str(&format!("{too_big} holes have more than {max} sides\n"));
+    }
+    if refused > 0 {
+        text.push_str(&format!(
+            "{refused} holes pass a vertex twice (bowtie) and were left open\n"
+        ));
+    }
+    if untriangulated > 0 {
+        text.push_str(&format!(
+            "{untriangulated} new faces could not be triangulated (every cut needs an existing edge)\n"
+        ));
+    }
+    text.push_str(&format!("wrote {}\n", args.output.display()));
     output::print(&text)
 }

@@ -65,6 +65,7 @@ fn main() -> ExitCode {
         Command::Convert(a) => convert::convert(&a),
         Command::Repair(a) => convert::repair(&a),
         Command::Triangulate(a) => convert::triangulate(&a),
+        Command::FillHoles(a) => convert::fill_holes(&a),
         Command::Render(a) => render::run(&a),
     };
     match done {
