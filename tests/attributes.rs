@@ -562,12 +562,14 @@ fn same_operations_give_same_values() {
 
 /// The cube with a conserved face area of 1 per face, a face colour and a
 /// conserved vertex mass of 1 per vertex.
-fn weighed_cube() -> (
+type Weighed = (
     Mesh,
     FaceAttr<f64, Conserved>,
     FaceAttr<[f32; 3]>,
     VertexAttr<f64, Conserved>,
-) {
+);
+
+fn weighed_cube() -> Weighed {
     let mut mesh = meshloom::shapes::cube();
     let area = mesh
         .add_attr_with_rule::<FaceKey, f64, Conserved>("area")
