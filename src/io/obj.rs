@@ -136,8 +136,8 @@ pub fn write_obj(mesh: &Mesh, writer: impl Write) -> Result<(), Error> {
             }
         }
         out.push(b'f');
-        for _ in f {
-            let (v, t, n) = corners[c];
+        for &index in f {
+            let (v, t, n) = corners.get(c).copied().unwrap_or((index, 0, 0));
             c += 1;
             match (t, n) {
                 (0, 0) => write!(out, " {}", v + 1),
