@@ -235,7 +235,7 @@ pub fn write(mesh: &Mesh, path: impl AsRef<Path>) -> Result<(), Error> {
     write_with(mesh, path, &WriteOptions::default())
 }
 
-/// [`write`] with the encodings of PLY and STL chosen.
+/// [`write()`] with the encodings of PLY and STL chosen.
 ///
 /// ```
 /// use meshloom::io::{self, WriteOptions};
@@ -248,7 +248,7 @@ pub fn write(mesh: &Mesh, path: impl AsRef<Path>) -> Result<(), Error> {
 /// ```
 ///
 /// # Errors
-/// As [`write`].
+/// As [`write()`].
 pub fn write_with(
     mesh: &Mesh,
     path: impl AsRef<Path>,
