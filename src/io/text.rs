@@ -243,7 +243,9 @@ fn div_pow10(mant: u64, k: u32) -> f64 {
     if rest > half || (rest == half && (r != 0 || m & 1 == 1)) {
         m += 1;
     }
-    (m as f64) * 2f64.powi(shift - s)
+    // m <= 2^53 and the exponent is well inside the normal range here.
+    let scale = f64::from_bits(((1023 + shift - s) as u64) << 52);
+    (m as u64 as f64) * scale
 }
 
 /// Parse a decimal floating-point number; `None` if `tok` is not one.
