@@ -41,22 +41,34 @@ pub(super) fn parse_halves(bytes: &[u8]) -> Option<Soup> {
     let mut soup = Soup::new(false);
     let base = a.indices.len() as u32;
     let p = &mut soup.polygons;
-    p.positions = a.positions;
-    p.positions.extend_from_slice(&b.positions);
-    p.indices = a.indices;
-    p.indices.extend_from_slice(&b.indices);
+    p.positions = join(a.positions, &b.positions);
+    p.indices = join(a.indices, &b.indices);
     p.offsets = a.offsets;
     p.offsets.extend(b.offsets[1..].iter().map(|&o| o + base));
     Some(soup)
+}
+
+/// `first` then `second`, in `first`'s buffer when it has room.
+fn join<T: Copy>(mut first: Vec<T>, second: &[T]) -> Vec<T> {
+    if first.capacity() - first.len() < second.len() {
+        let mut all = Vec::with_capacity(first.len() + second.len());
+        all.extend_from_slice(&first);
+        first = all;
+    }
+    first.extend_from_slice(second);
+    first
 }
 
 /// Parse a chunk of plain OBJ; `None` at anything else.
 fn plain(bytes: &[u8]) -> Option<Plain> {
     let n = bytes.len();
     let mut out = Plain {
-        positions: Vec::with_capacity(n / 96),
-        offsets: Vec::with_capacity(n / 48),
-        indices: Vec::with_capacity(n / 16),
+        // Room for a chunk of only vertices, or only faces: capacity never
+        // touched costs address space, not memory, and is bounded by the
+        // chunk's size.
+        positions: Vec::with_capacity(n / 24),
+        offsets: Vec::with_capacity(n / 12),
+        indices: Vec::with_capacity(n / 4),
         needs: 0,
     };
     out.offsets.push(0);

@@ -46,9 +46,9 @@ pub(super) fn parse_serial(bytes: &[u8], record: bool) -> Result<Soup, Error> {
     let mut objects = Names::new("object");
     let mut materials = Names::new("material");
     // Reserve by the input's size only: about 30 bytes per statement.
-    soup.polygons.positions.reserve(bytes.len() / 96);
-    soup.polygons.indices.reserve(bytes.len() / 16);
-    soup.polygons.offsets.reserve(bytes.len() / 48);
+    soup.polygons.positions.reserve(bytes.len() / 48);
+    soup.polygons.indices.reserve(bytes.len() / 8);
+    soup.polygons.offsets.reserve(bytes.len() / 24);
     let n = bytes.len();
     let mut pos = 0;
     while pos < n {
