@@ -99,6 +99,11 @@ pub(crate) struct SoupAttrs {
 }
 
 impl SoupAttrs {
+    /// Whether no attribute was read.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.vertex.is_empty() && self.face.is_empty() && self.corner.is_empty()
+    }
+
     /// A weld class per vertex: vertices weld only within a class, so two
     /// vertices at one position with different attribute values stay apart.
     pub(crate) fn weld_classes(&self, n: usize) -> Vec<u32> {

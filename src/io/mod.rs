@@ -196,21 +196,72 @@ fn read_soup(
     }
 }
 
+/// How to write the formats that have several encodings.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WriteOptions {
+    /// PLY body encoding (default binary little endian).
+    pub ply: PlyEncoding,
+    /// STL encoding (default binary).
+    pub stl: StlEncoding,
+}
+
+impl Default for WriteOptions {
+    fn default() -> Self {
+        WriteOptions {
+            ply: PlyEncoding::BinaryLittleEndian,
+            stl: StlEncoding::Binary,
+        }
+    }
+}
+
+impl WriteOptions {
+    /// Text encodings for every format.
+    pub fn ascii() -> WriteOptions {
+        WriteOptions {
+            ply: PlyEncoding::Ascii,
+            stl: StlEncoding::Ascii,
+        }
+    }
+}
+
 /// Write a mesh file; the format comes from the extension, `.gz` compresses.
-/// PLY is written as binary little endian, STL as binary.
+/// PLY is written as binary little endian, STL as binary
+/// ([`write_with`] chooses).
 ///
 /// # Errors
 /// [`Error::UnsupportedFormat`] for an unknown extension, [`Error::Io`],
 /// [`Error::Unwritable`] for a mesh without positions.
 pub fn write(mesh: &Mesh, path: impl AsRef<Path>) -> Result<(), Error> {
+    write_with(mesh, path, &WriteOptions::default())
+}
+
+/// [`write()`] with the encodings of PLY and STL chosen.
+///
+/// ```
+/// use meshloom::io::{self, WriteOptions};
+/// let path = std::env::temp_dir().join(format!("meshloom-doc-{}.stl", std::process::id()));
+/// io::write_with(&meshloom::shapes::cube(), &path, &WriteOptions::ascii())?;
+/// assert!(std::fs::read(&path)?.starts_with(b"solid"));
+/// assert_eq!(io::read(&path)?.face_count(), 12);
+/// # std::fs::remove_file(&path)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// As [`write()`].
+pub fn write_with(
+    mesh: &Mesh,
+    path: impl AsRef<Path>,
+    options: &WriteOptions,
+) -> Result<(), Error> {
     let path = path.as_ref();
     let (format, gz) = format_of(path)?;
     let mut bytes = Vec::new();
     let written = match format {
         Format::Obj => write_obj(mesh, &mut bytes),
         Format::Off => write_off(mesh, &mut bytes),
-        Format::Ply => write_ply(mesh, &mut bytes, PlyEncoding::BinaryLittleEndian),
-        Format::Stl => write_stl(mesh, &mut bytes, StlEncoding::Binary),
+        Format::Ply => write_ply(mesh, &mut bytes, options.ply),
+        Format::Stl => write_stl(mesh, &mut bytes, options.stl),
     };
     written.map_err(|e| e.with_path(path))?;
     source::store(path, gz, &bytes)

@@ -2,7 +2,7 @@
 //! face was read, and the attribute values read beside them. `finish`
 //! repairs (by the caller's policies) and builds.
 
-use crate::build::Polygons;
+use crate::build::{Built, Polygons};
 use crate::error::{BuildError, Error as MeshError};
 use crate::mesh::Mesh;
 use crate::repair::{repair_with, Provenance, RepairReport};
@@ -99,7 +99,26 @@ impl Soup {
         } else {
             (RepairReport::default(), Provenance::default())
         };
-        let built = match Mesh::build_buffers(&self.polygons) {
+        // Keys of the input's elements are needed only to attach attributes.
+        let with_keys = !self.attrs.is_empty();
+        let built = if with_keys {
+            Mesh::build_buffers(&self.polygons)
+        } else {
+            Mesh::from_buffers(&self.polygons).map(|mesh| {
+                let unreferenced = self
+                    .polygons
+                    .positions
+                    .len()
+                    .saturating_sub(mesh.vertex_count());
+                Built {
+                    mesh,
+                    vertices: Vec::new(),
+                    faces: Vec::new(),
+                    unreferenced,
+                }
+            })
+        };
+        let built = match built {
             Ok(b) => b,
             Err(MeshError::Build(e)) => return Err(self.build_error(e, &prov)),
             Err(other) => {
@@ -110,26 +129,32 @@ impl Soup {
             }
         };
         if built.unreferenced > 0 {
-            let first = built.vertices.iter().position(Option::is_none).unwrap_or(0);
+            let mut used = vec![false; self.polygons.positions.len()];
+            for &i in &self.polygons.indices {
+                used[i as usize] = true;
+            }
+            let first = used.iter().position(|&u| !u).unwrap_or(0);
             return Err(Error::Unreferenced {
                 at: Location::whole(),
                 count: built.unreferenced,
                 first: source(&prov.vertex_source, first),
             });
         }
-        if built.faces.is_empty() {
+        let mut mesh = built.mesh;
+        if mesh.face_count() == 0 {
             return Err(Error::Empty {
                 at: Location::whole(),
             });
         }
-        let mut mesh = built.mesh;
-        self.attrs.attach(
-            &mut mesh,
-            &built.vertices,
-            &built.faces,
-            &self.polygons.offsets,
-            &prov,
-        )?;
+        if with_keys {
+            self.attrs.attach(
+                &mut mesh,
+                &built.vertices,
+                &built.faces,
+                &self.polygons.offsets,
+                &prov,
+            )?;
+        }
         Ok((mesh, report))
     }
 

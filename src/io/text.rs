@@ -2,9 +2,12 @@
 //!
 //! Numbers are parsed from bytes without building strings. Decimal numbers
 //! of at most 19 significant digits and a small exponent take an exact fast
-//! path (the mantissa and the power of ten are both exact `f64`, so one
-//! correctly rounded division or multiplication gives the correctly rounded
-//! result); anything else goes to the standard library's parser.
+//! path: when the mantissa fits 53 bits, it and the power of ten are both
+//! exact `f64`, so one correctly rounded division or multiplication gives
+//! the correctly rounded result; a longer mantissa (the 17 digits of a
+//! shortest round-trip float) over a power of ten is divided in 128-bit
+//! integers and rounded once. Anything else goes to the standard library's
+//! parser. Tests compare every path with it.
 
 use super::error::{Error, Location};
 
@@ -194,24 +197,55 @@ pub(crate) fn parse_f64_at(s: &[u8], i: &mut usize) -> Option<f64> {
         }
     }
     let ends = |j: usize| s.get(j).map_or(true, |&b| is_space(b) || b == b'\n');
-    if any && digits <= 19 && mant <= (1u64 << 53) && (-22..=0).contains(&exp) && ends(j) {
-        let m = mant as f64;
-        let v = if exp == 0 {
-            m
+    if any && digits <= 19 && (-22..=0).contains(&exp) && ends(j) {
+        let v = if mant <= (1u64 << 53) {
+            let m = mant as f64;
+            if exp == 0 {
+                m
+            } else {
+                m / POW10[(-exp) as usize]
+            }
+        } else if (-21..0).contains(&exp) {
+            div_pow10(mant, (-exp) as u32)
         } else {
-            m / POW10[(-exp) as usize]
+            f64::NAN
         };
-        *i = j;
-        return Some(if neg { -v } else { v });
+        if !v.is_nan() {
+            *i = j;
+            return Some(if neg { -v } else { v });
+        }
     }
-    // Anything else (exponents, long mantissas): cut the token out.
+    // Anything else (exponents, more digits): cut the token out.
     let mut end = j;
     while end < s.len() && !is_space(s[end]) && s[end] != b'\n' {
         end += 1;
     }
-    let v = parse_f64(&s[start..end])?;
+    let v = slow_f64(&s[start..end])?;
     *i = end;
     Some(v)
+}
+
+/// `mant / 10^k`, correctly rounded, for `2^53 < mant < 2^64` and
+/// `1 <= k <= 21`: the quotient is taken in 128-bit integers with 54 to 56
+/// significant bits and rounded to 53 (to nearest, ties to even, the
+/// remainder deciding near ties). The result is that integer times a power
+/// of two, exact and normal for these inputs.
+fn div_pow10(mant: u64, k: u32) -> f64 {
+    let d = 10u128.pow(k);
+    let bits = |x: u128| 128 - x.leading_zeros() as i32;
+    let s = (55 + bits(d) - bits(u128::from(mant))).max(0);
+    let n = u128::from(mant) << s;
+    let (q, r) = (n / d, n % d);
+    let shift = bits(q) - 53;
+    let mut m = q >> shift;
+    let rest = q & ((1u128 << shift) - 1);
+    let half = 1u128 << (shift - 1);
+    if rest > half || (rest == half && (r != 0 || m & 1 == 1)) {
+        m += 1;
+    }
+    // m <= 2^53 and the exponent is well inside the normal range here.
+    let scale = f64::from_bits(((1023 + shift - s) as u64) << 52);
+    (m as u64 as f64) * scale
 }
 
 /// Parse a decimal floating-point number; `None` if `tok` is not one.
@@ -280,8 +314,14 @@ fn fast_f64(tok: &[u8]) -> Option<f64> {
         }
         exp += if eneg { -e } else { e };
     }
-    if i != tok.len() || mant > (1u64 << 53) {
+    if i != tok.len() {
         return None;
+    }
+    if mant > (1u64 << 53) {
+        let v = (-21..0)
+            .contains(&exp)
+            .then(|| div_pow10(mant, (-exp) as u32))?;
+        return Some(if neg { -v } else { v });
     }
     let m = mant as f64;
     let v = if exp == 0 {
@@ -411,6 +451,49 @@ mod tests {
                 find_newline(s.as_bytes()),
                 s.bytes().position(|b| b == b'\n'),
                 "{s:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn long_mantissas_round_like_std() {
+        // A small deterministic generator: many 17- to 19-digit decimals.
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let digits = 17 + (x % 3) as usize;
+            let text = format!("{:019}", x % 10_000_000_000_000_000_000)[..digits].to_string();
+            let point = 1 + (x >> 40) as usize % (digits - 1);
+            for s in [
+                format!("{}.{}", &text[..point], &text[point..]),
+                format!("{}.{}e-2", &text[..point], &text[point..]),
+                format!("0.{}", &text[..digits.min(18)]),
+                format!("-0.000{}", &text[..digits.min(18)]),
+            ] {
+                let mut i = 0;
+                assert_eq!(
+                    parse_f64_at(s.as_bytes(), &mut i),
+                    s.parse::<f64>().ok(),
+                    "{s}"
+                );
+                assert_eq!(parse_f64(s.as_bytes()), s.parse::<f64>().ok(), "{s}");
+            }
+        }
+        // Ties and near ties at the 53-bit boundary.
+        for s in [
+            "9007199254740993.0",
+            "9007199254740995.0",
+            "18014398509481986.5",
+            "0.0014027596028405353",
+            "1844674407370955161.5",
+        ] {
+            let mut i = 0;
+            assert_eq!(
+                parse_f64_at(s.as_bytes(), &mut i),
+                s.parse::<f64>().ok(),
+                "{s}"
             );
         }
     }
