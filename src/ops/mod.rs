@@ -17,6 +17,9 @@
 //! | [`Mesh::fill_hole`] | `holes.rs` | the new face | +1 |
 //! | [`Mesh::triangulate`] | `triangulate.rs` | the triangles | 0 |
 //! | [`Mesh::triangulate_all`] | `triangulate.rs` | faces left as they were | 0 |
+//! | [`Mesh::extrude_face`] | `extrude.rs` | the side quads | 0 |
+//! | [`Mesh::split_vertex`] | `vertex_split.rs` | the new half-edge `a → b` | 0 |
+//! | [`Mesh::split_components`] | `components.rs` | one mesh per piece | — |
 //! | [`Mesh::compact`] | `compact.rs` | old → new key maps | 0 |
 //!
 //! # Check, then commit
@@ -64,11 +67,14 @@
 
 mod collapse;
 mod compact;
+mod components;
+mod extrude;
 mod flip;
 mod holes;
 mod remove;
 mod split;
 mod triangulate;
+mod vertex_split;
 
 pub use compact::KeyMaps;
 
