@@ -28,6 +28,8 @@ enum Op {
     Compact,
     Extrude(usize),
     SplitVertex(usize, usize, usize),
+    CutOpen(usize, usize),
+    CutLoop(usize),
 }
 
 impl Arbitrary for Op {
@@ -37,7 +39,7 @@ impl Arbitrary for Op {
         let k = usize::arbitrary(g);
         let t = u8::arbitrary(g) % 11;
         // Weighted so that meshes both grow and shrink.
-        match u8::arbitrary(g) % 26 {
+        match u8::arbitrary(g) % 28 {
             0..=2 => Op::SplitEdge(i, t),
             3..=4 => Op::SplitFace(i, j, k),
             5..=6 => Op::Poke(i),
@@ -53,6 +55,8 @@ impl Arbitrary for Op {
             22 => Op::TriangulateAll,
             23 => Op::Extrude(i),
             24 => Op::SplitVertex(i, j, k),
+            25 => Op::CutOpen(i, j),
+            26 => Op::CutLoop(i),
             _ => Op::Compact,
         }
     }
@@ -327,6 +331,49 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
                 true,
             )
         }
+        Op::CutOpen(i, j) => {
+            let Some(v) = nth(m.vertices(), m.vertex_count(), i) else {
+                return;
+            };
+            // A walk of up to four steps that never meets a vertex twice.
+            let mut path = vec![v];
+            let mut salt = j;
+            for _ in 0..4 {
+                let last = *path.last().unwrap();
+                let ns: Vec<_> = m
+                    .vertex(last)
+                    .unwrap()
+                    .neighbors()
+                    .filter(|n| !path.contains(n))
+                    .collect();
+                if ns.is_empty() {
+                    break;
+                }
+                path.push(ns[salt % ns.len()]);
+                salt /= 7;
+            }
+            (
+                m.check_cut_path(&path).is_ok(),
+                m.cut_path(&path).is_ok(),
+                -1,
+                true,
+                true,
+            )
+        }
+        Op::CutLoop(i) => {
+            let Some(v) = nth(m.vertices(), m.vertex_count(), i) else {
+                return;
+            };
+            let mut ring: Vec<_> = m.vertex(v).unwrap().neighbors().collect();
+            ring.push(ring[0]);
+            (
+                m.check_cut_path(&ring).is_ok(),
+                m.cut_path(&ring).is_ok(),
+                0,
+                true,
+                true,
+            )
+        }
     };
     assert_eq!(check, ok, "check_* disagrees with the operator on {op:?}");
     tally(op, ok);
@@ -352,8 +399,8 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
     }
 }
 
-static TALLY: [[AtomicUsize; 2]; 16] =
-    [const { [const { AtomicUsize::new(0) }, const { AtomicUsize::new(0) }] }; 16];
+static TALLY: [[AtomicUsize; 2]; 18] =
+    [const { [const { AtomicUsize::new(0) }, const { AtomicUsize::new(0) }] }; 18];
 
 fn op_index(op: &Op) -> usize {
     match op {
@@ -373,6 +420,8 @@ fn op_index(op: &Op) -> usize {
         Op::Compact => 13,
         Op::Extrude(..) => 14,
         Op::SplitVertex(..) => 15,
+        Op::CutOpen(..) => 16,
+        Op::CutLoop(..) => 17,
     }
 }
 
@@ -400,6 +449,8 @@ fn assert_coverage() {
         "compact",
         "extrude",
         "split_vertex",
+        "cut_open",
+        "cut_loop",
     ];
     for (i, name) in names.iter().enumerate() {
         let (no, yes) = (

@@ -19,6 +19,7 @@
 //! | [`Mesh::triangulate_all`] | `triangulate.rs` | faces left as they were | 0 |
 //! | [`Mesh::extrude_face`] | `extrude.rs` | the side quads | 0 |
 //! | [`Mesh::split_vertex`] | `vertex_split.rs` | the new half-edge `a → b` | 0 |
+//! | [`Mesh::cut_path`] | `cut.rs` | the new holes | −1 (open path), 0 (closed) |
 //! | [`Mesh::split_components`] | `components.rs` | one mesh per piece | — |
 //! | [`Mesh::compact`] | `compact.rs` | old → new key maps | 0 |
 //!
@@ -68,6 +69,7 @@
 mod collapse;
 mod compact;
 mod components;
+mod cut;
 mod extrude;
 mod flip;
 mod holes;
