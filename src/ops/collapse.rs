@@ -10,6 +10,7 @@ struct CollapsePlan {
     /// The half-edges before `h` and before its twin.
     ph: u32,
     pt: u32,
+    before_tph: Option<u32>,
     /// Whether the face of `h` (resp. its twin) is a triangle (or a
     /// triangular hole) that disappears.
     left_goes: bool,
@@ -39,7 +40,9 @@ impl Mesh {
         let mut a_boundary = false;
         // a's ring from h: the last one is twin(prev(h)).
         let mut last_a = h;
+        let mut before_last_a = h;
         for o in self.ring_from(h) {
+            before_last_a = last_a;
             last_a = o;
             a_boundary |= self.in_hole_raw(o);
             let w = self.dest_of(o);
@@ -113,6 +116,9 @@ impl Mesh {
         Ok(CollapsePlan {
             h,
             ph: last_a ^ 1,
+            // The half-edge before twin(ph) = last_a once h is gone: the
+            // twin of the one before it in a's ring, unless that is h.
+            before_tph: (k >= 3).then_some(before_last_a ^ 1),
             pt: last_b ^ 1,
             left_goes,
             right_goes,
@@ -235,6 +241,7 @@ impl Mesh {
             h,
             ph,
             pt,
+            before_tph,
             left_goes,
             right_goes,
         } = self.plan_collapse(hk)?;
@@ -269,11 +276,11 @@ impl Mesh {
         self.free_vertex(a);
         if left_goes {
             // Two-sided loop (ph: c -> b, nh: b -> c): keep nh.
-            self.dissolve_two_gon(ph, nh);
+            self.dissolve_two_gon(ph, nh, before_tph);
         }
         if right_goes {
             // Two-sided loop (pt: d -> b, nt: b -> d): keep pt.
-            self.dissolve_two_gon(nt, pt);
+            self.dissolve_two_gon(nt, pt, None);
         }
         self.debug_validate();
         Ok(self.vkey(b))
@@ -282,12 +289,14 @@ impl Mesh {
     /// A face (or hole) left with the two half-edges `p` and `n` (parallel
     /// edges between the same vertices) disappears: `n` takes the place of
     /// `twin(p)` in its face and `p`'s edge goes. The mesh must be consistent
-    /// apart from this two-sided loop.
-    fn dissolve_two_gon(&mut self, p: u32, n: u32) {
+    /// apart from this two-sided loop. `before_tp`, when known, is the
+    /// half-edge before `twin(p)` (else it is found by turning).
+    fn dissolve_two_gon(&mut self, p: u32, n: u32, before_tp: Option<u32>) {
         let f = self.face_of(p);
         let tp = p ^ 1;
         let g = self.face_of(tp);
-        let q = self.prev_of(tp);
+        let q = before_tp.unwrap_or_else(|| self.prev_of(tp));
+        debug_assert_eq!(q, self.prev_of(tp));
         let r = self.next_of(tp);
         self.set_next(q, n);
         self.set_next(n, r);
