@@ -29,8 +29,7 @@
 //! returns `Ok(())` exactly when `x` would succeed and never changes the
 //! mesh. Inside, `x` runs a private planning phase (`&self`: gather every
 //! element into role-named locals named after the doc diagram, and refuse
-//! with [`Error::Refused`](crate::Error::Refused) or
-//! [`Error::StaleKey`](crate::Error::StaleKey)); then a commit phase
+//! with [`Error::Refused`] or [`Error::StaleKey`]); then a commit phase
 //! (`&mut self`) that cannot fail; then the attribute rules; then, in debug
 //! builds, [`Mesh::validate`]. On any error the mesh is exactly as it was.
 //!
@@ -63,8 +62,27 @@
 //! - **remove_face**: the face's values are dropped (it becomes a hole).
 //!   **fill_hole**: the new face gets `interpolate` of nothing.
 //!
-//! Conserved quantities (sum on merge, share on split) thus keep their totals
-//! through every operator except `remove_face`, which deletes.
+//! - **extrude_face**: new corners `interpolate` the corners below them;
+//!   side faces, new edges and corners get `interpolate` of nothing.
+//! - **split_vertex**: the new vertex is `interpolate(b: 1)`; new edges,
+//!   faces and corners get `interpolate` of nothing.
+//! - **cut_path**: a vertex copy is `interpolate` of the original; each cut
+//!   edge splits into its two copies with equal shares.
+//!
+//! With a conserved rule (sum on merge, share on split, nothing from
+//! interpolate), totals over faces (holes excluded) are kept by every
+//! operator except `remove_face` and `remove_edge` on a boundary edge, where
+//! a face is deleted; totals over vertices by every operator except
+//! `remove_vertex` and `remove_face`, which delete vertices. Edge values
+//! merge where two edges become one (a disappearing triangle) and split
+//! where one becomes two (`split_edge`, `cut_path`); an edge that is removed
+//! takes its value with it. The model tests (`tests/ops_model.rs`) check
+//! face and vertex totals after every step.
+//!
+//! # Writing your own
+//!
+//! The reflecting setters in [`link`](crate::link) edit raw links; check the
+//! result with [`RawEdit::validate`](crate::link::RawEdit::validate).
 
 mod collapse;
 mod compact;
