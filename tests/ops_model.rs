@@ -267,6 +267,16 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
                 assert_eq!(m.face_count(), fcount - 1);
                 m.validate().unwrap();
             }
+            if ok && i % 3 == 0 {
+                // Also: a bridge removed on request, on the first boundary edge.
+                if let Some(e) = m.edges().find(|&e| m.edge(e).unwrap().is_boundary()) {
+                    let f_before = m.face_count();
+                    assert!(m.check_remove_edge_allowing_bridge(e).is_ok());
+                    m.remove_edge_allowing_bridge(e).unwrap();
+                    m.validate().unwrap();
+                    assert_eq!(m.face_count(), f_before - 1);
+                }
+            }
             tally(op, ok);
             return assert_eq!(check, ok);
         }

@@ -11,6 +11,7 @@
 //! | [`Mesh::collapse_edge`] | `collapse.rs` | the surviving vertex | 0, or +1 when a triangular hole closes |
 //! | [`Mesh::flip_edge`] | `flip.rs` | the same edge, turned | 0 |
 //! | [`Mesh::remove_edge`] | `remove.rs` | the merged face (or hole) | 0 |
+//! | [`Mesh::remove_edge_allowing_bridge`] | `remove.rs` | the merged face, or the holes | as `remove_edge` / `remove_face` |
 //! | [`Mesh::merge_faces`] | `remove.rs` | the merged face | 0 |
 //! | [`Mesh::remove_vertex`] | `remove.rs` | the merged face | 0 |
 //! | [`Mesh::remove_face`] | `holes.rs` | the holes now covering it | −1 + edges removed − vertices removed |
