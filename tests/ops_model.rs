@@ -269,7 +269,8 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
             }
             if ok && i % 3 == 0 {
                 // Also: a bridge removed on request, on the first boundary edge.
-                if let Some(e) = m.edges().find(|&e| m.edge(e).unwrap().is_boundary()) {
+                let boundary = m.edges().find(|&e| m.edge(e).unwrap().is_boundary());
+                if let Some(e) = boundary {
                     let f_before = m.face_count();
                     assert!(m.check_remove_edge_allowing_bridge(e).is_ok());
                     m.remove_edge_allowing_bridge(e).unwrap();
