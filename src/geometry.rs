@@ -5,9 +5,11 @@
 //! [`Interpolate`](crate::attr::Interpolate) rule. The standard column
 //! ([`attr::POSITION`](crate::attr::POSITION)) holds `[f64; 3]`; the `_in`
 //! measures read any vertex column whose type implements [`Point`], so a
-//! user can keep `[f32; 3]`, or with the optional features `mint` and
-//! `glam`, their types. (nalgebra is not a dependency: its `mint` feature
-//! converts its points to and from mint's.)
+//! user can keep `[f32; 3]`, or with the optional features `glam` and
+//! `nalgebra`, their 3D points and vectors (as columns with the
+//! [`Interpolate`](crate::attr::Interpolate) rule); with `mint`, mint's
+//! types read and write as points (they have no `Default`, so they cannot
+//! be columns themselves).
 
 use crate::attr::{Attr, Attribute, Rule};
 use crate::error::{Error, Result};
@@ -125,6 +127,58 @@ mod glam_points {
     }
     glam_point!(glam::Vec3, f32, F32);
     glam_point!(glam::DVec3, f64, F64);
+}
+
+#[cfg(feature = "nalgebra")]
+mod nalgebra_points {
+    use super::Point;
+    use crate::attr::{Attribute, Interpolate, Linear, Value};
+
+    macro_rules! nalgebra_point {
+        ($t:ty, $s:ty, $variant:ident) => {
+            impl Point for $t {
+                #[inline]
+                fn xyz(&self) -> [f64; 3] {
+                    [self.x.into(), self.y.into(), self.z.into()]
+                }
+                #[inline]
+                #[allow(clippy::unnecessary_cast)]
+                fn from_xyz(p: [f64; 3]) -> Self {
+                    <$t>::new(p[0] as $s, p[1] as $s, p[2] as $s)
+                }
+            }
+            impl Linear for $t {
+                #[inline]
+                fn zero() -> Self {
+                    <$t>::from_xyz([0.0; 3])
+                }
+                #[inline]
+                #[allow(clippy::unnecessary_cast)]
+                fn add_scaled(&mut self, other: &Self, w: f64) {
+                    self.x += other.x * (w as $s);
+                    self.y += other.y * (w as $s);
+                    self.z += other.z * (w as $s);
+                }
+            }
+            impl Attribute for $t {
+                type Rule = Interpolate;
+                fn to_value(&self) -> Option<Value> {
+                    Some(Value::List(vec![
+                        Value::$variant(self.x),
+                        Value::$variant(self.y),
+                        Value::$variant(self.z),
+                    ]))
+                }
+                fn from_value(value: &Value) -> Option<Self> {
+                    <[$s; 3]>::from_value(value).map(|[x, y, z]| <$t>::new(x, y, z))
+                }
+            }
+        };
+    }
+    nalgebra_point!(nalgebra::Point3<f32>, f32, F32);
+    nalgebra_point!(nalgebra::Point3<f64>, f64, F64);
+    nalgebra_point!(nalgebra::Vector3<f32>, f32, F32);
+    nalgebra_point!(nalgebra::Vector3<f64>, f64, F64);
 }
 
 #[inline]
@@ -338,6 +392,32 @@ mod tests {
         assert_eq!(cube.face_centroid_in(&g, f).unwrap(), [0.5, 0.5, 0.0]);
         let v = glam::Vec3::new(1.0, 2.0, 3.0);
         assert_eq!(glam::Vec3::from_value(&v.to_value().unwrap()), Some(v));
+    }
+
+    #[cfg(feature = "nalgebra")]
+    #[test]
+    fn nalgebra_positions() {
+        use crate::attr::Attribute;
+        use crate::geometry::Point;
+        let mut cube = crate::shapes::cube();
+        let n = cube.add_vertex_attr::<nalgebra::Point3<f64>>("n").unwrap();
+        for v in cube.vertices().collect::<Vec<_>>() {
+            let p = cube.position(v).unwrap();
+            cube.set_attr(&n, v, nalgebra::Point3::from_xyz(p)).unwrap();
+        }
+        let f = cube.faces().next().unwrap();
+        assert_eq!(cube.face_normal_in(&n, f).unwrap(), [0.0, 0.0, -1.0]);
+        let e = cube.edges().next().unwrap();
+        let m = cube.split_edge(e, 0.5).unwrap();
+        assert_eq!(
+            cube.attr(&n, m).unwrap().map(Point::xyz),
+            Some(cube.position(m).unwrap())
+        );
+        let v = nalgebra::Vector3::<f32>::new(1.0, 2.0, 3.0);
+        assert_eq!(
+            nalgebra::Vector3::<f32>::from_value(&v.to_value().unwrap()),
+            Some(v)
+        );
     }
 
     #[cfg(feature = "mint")]

@@ -265,11 +265,20 @@ impl Mesh {
         cols.cols
             .iter()
             .zip(&cols.meta)
-            .map(|((name, c), m)| AttrInfo {
-                name: name.clone(),
-                type_name: c.type_name(),
-                value_type: m.value_type.or_else(|| c.portable_type()),
-                dynamic: m.value_type.is_some(),
+            .map(|((name, c), m)| {
+                // A dynamic column without a declared type (one read back
+                // from a file with mixed values) has no single value type.
+                let dynamic = c.as_any().is::<Column<Value, Dynamic>>();
+                AttrInfo {
+                    name: name.clone(),
+                    type_name: c.type_name(),
+                    value_type: if dynamic {
+                        m.value_type
+                    } else {
+                        c.portable_type()
+                    },
+                    dynamic,
+                }
             })
             .collect()
     }
@@ -356,12 +365,12 @@ impl Mesh {
         h: &Attr<K, T, R>,
     ) -> Result<AttrView<'_, K, T>> {
         let col = self.typed_column(h)?;
-        let (slots, shift) = self.arena_slots(K::KIND);
+        let (slots, _) = self.arena_slots(K::KIND);
         Ok(AttrView {
+            mesh: self,
             values: col.raw(),
             present: col.present_bits(),
-            slots,
-            shift,
+            generations: slots.generations(),
             marker: PhantomData,
         })
     }

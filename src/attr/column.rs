@@ -7,6 +7,9 @@ use super::attribute::Attribute;
 use super::rule::Rule;
 use super::value::Value;
 
+/// A rule's merge or interpolate, as a function.
+type RuleFn<T> = fn(&[(Option<&T>, f64)]) -> Option<T>;
+
 /// The values of one attribute for every slot of one arena.
 ///
 /// Values sit in a plain `Vec<T>` indexed by slot. Presence is a bitset that
@@ -67,16 +70,6 @@ impl<T: Default + Clone, R> Column<T, R> {
         }
     }
 
-    /// Mutable access to slot `i`'s value, if it has one.
-    #[inline]
-    pub(crate) fn get_mut(&mut self, i: usize) -> Option<&mut T> {
-        if self.has(i) {
-            self.values.get_mut(i)
-        } else {
-            None
-        }
-    }
-
     /// Whether slot `i` holds a value.
     #[inline]
     pub(crate) fn has(&self, i: usize) -> bool {
@@ -113,6 +106,25 @@ impl<T: Default + Clone, R> Column<T, R> {
         &self.values
     }
 
+    /// Run `rule` on the values of `inputs` (slot, weight), in order. Up to
+    /// eight contributors (every operator but the merges of whole rings)
+    /// need no allocation.
+    #[inline]
+    fn with_inputs(&self, inputs: &[(usize, f64)], rule: RuleFn<T>) -> Option<T> {
+        const SMALL: usize = 8;
+        if inputs.len() <= SMALL {
+            let mut args: [(Option<&T>, f64); SMALL] = [(None, 0.0); SMALL];
+            for (a, &(s, w)) in args.iter_mut().zip(inputs) {
+                *a = (self.get(s), w);
+            }
+            rule(&args[..inputs.len()])
+        } else {
+            let args: Vec<(Option<&T>, f64)> =
+                inputs.iter().map(|&(s, w)| (self.get(s), w)).collect();
+            rule(&args)
+        }
+    }
+
     /// The presence bits (`None`: every slot has a value).
     #[inline]
     pub(crate) fn present_bits(&self) -> Option<&[u64]> {
@@ -145,8 +157,6 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     fn copy(&mut self, from: usize, to: usize);
     /// Reorder: slot `i` of the result holds old slot `order[i]`.
     fn permute(&mut self, order: &[u32]);
-    /// Whether slot `i` holds a value.
-    fn is_present(&self, i: usize) -> bool;
     /// Heap bytes held.
     fn heap_bytes(&self) -> usize;
     /// Slot `i`'s value as a dynamic [`Value`] (`None`: absent, or the type
@@ -160,6 +170,7 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     fn portable_type(&self) -> Option<super::ValueType>;
     /// `"value type/rule type"`: the key typed columns are registered under
     /// for deserialization.
+    #[cfg(feature = "serde")]
     fn type_key(&self) -> String;
     /// A boxed deep copy.
     fn clone_box(&self) -> Box<dyn ErasedColumn>;
@@ -207,20 +218,12 @@ where
     }
 
     fn merge(&mut self, dst: usize, inputs: &[(usize, f64)]) {
-        let result = {
-            let args: Vec<(Option<&T>, f64)> =
-                inputs.iter().map(|&(s, w)| (self.get(s), w)).collect();
-            R::merge(&args)
-        };
+        let result = self.with_inputs(inputs, R::merge);
         self.set(dst, result);
     }
 
     fn interpolate(&mut self, dst: usize, inputs: &[(usize, f64)]) {
-        let result = {
-            let args: Vec<(Option<&T>, f64)> =
-                inputs.iter().map(|&(s, w)| (self.get(s), w)).collect();
-            R::interpolate(&args)
-        };
+        let result = self.with_inputs(inputs, R::interpolate);
         self.set(dst, result);
     }
 
@@ -255,10 +258,6 @@ where
         self.present = present;
     }
 
-    fn is_present(&self, i: usize) -> bool {
-        self.has(i)
-    }
-
     fn heap_bytes(&self) -> usize {
         self.values.capacity() * std::mem::size_of::<T>()
             + self.present.as_ref().map_or(0, |b| b.capacity() * 8)
@@ -291,12 +290,9 @@ where
         T::default().to_value().map(|v| v.value_type())
     }
 
+    #[cfg(feature = "serde")]
     fn type_key(&self) -> String {
-        format!(
-            "{}/{}",
-            std::any::type_name::<T>(),
-            std::any::type_name::<R>()
-        )
+        super::registry::type_key::<T, R>()
     }
 
     fn clone_box(&self) -> Box<dyn ErasedColumn> {

@@ -16,6 +16,10 @@ mod sealed {
 pub trait Element: Copy + Eq + fmt::Debug + Send + Sync + sealed::Sealed + 'static {
     /// The arena.
     const KIND: ElementKind;
+    /// Slot `i`'s generation is at `i >> SHIFT` (half-edges share their
+    /// edge's).
+    #[doc(hidden)]
+    const SHIFT: u32;
     /// The key as an [`AnyKey`], for errors.
     fn any_key(self) -> AnyKey;
     /// The key's slot index.
@@ -28,10 +32,11 @@ pub trait Element: Copy + Eq + fmt::Debug + Send + Sync + sealed::Sealed + 'stat
 }
 
 macro_rules! element {
-    ($key:ident, $kind:ident) => {
+    ($key:ident, $kind:ident, $shift:literal) => {
         impl sealed::Sealed for $key {}
         impl Element for $key {
             const KIND: ElementKind = ElementKind::$kind;
+            const SHIFT: u32 = $shift;
             #[inline]
             fn any_key(self) -> AnyKey {
                 AnyKey::$kind(self)
@@ -52,10 +57,10 @@ macro_rules! element {
     };
 }
 
-element!(VertexKey, Vertex);
-element!(HalfedgeKey, Halfedge);
-element!(EdgeKey, Edge);
-element!(FaceKey, Face);
+element!(VertexKey, Vertex, 0);
+element!(HalfedgeKey, Halfedge, 1);
+element!(EdgeKey, Edge, 0);
+element!(FaceKey, Face, 0);
 
 /// A typed handle to one attribute column: the element kind `K`, the value
 /// type `T` and the rule `R` are in the type, so reads and writes through it
@@ -77,8 +82,11 @@ pub struct Attr<K, T: Attribute, R = <T as Attribute>::Rule> {
     pub(crate) index: usize,
     pub(crate) id: u64,
     pub(crate) name: String,
-    marker: PhantomData<fn() -> (K, T, R)>,
+    marker: Marker<K, T, R>,
 }
+
+/// Ties a handle to its key, value and rule types without owning any.
+type Marker<K, T, R> = PhantomData<fn() -> (K, T, R)>;
 
 /// A vertex attribute handle.
 pub type VertexAttr<T, R = <T as Attribute>::Rule> = Attr<VertexKey, T, R>;

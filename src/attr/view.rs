@@ -9,7 +9,53 @@ use super::attribute::Attribute;
 use super::handle::Element;
 use super::value::{Value, ValueType};
 use crate::error::{Error, Result};
+use crate::mesh::Mesh;
 use crate::slots::Slots;
+use crate::view::{EdgeView, FaceView, HalfedgeView, VertexView};
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// A checked element view ([`VertexView`], [`HalfedgeView`], [`EdgeView`],
+/// [`FaceView`]): its key was checked when it was made, so
+/// [`AttrView::at`] reads without a generation check. Sealed.
+pub trait ElementView<'m>: Copy + sealed::Sealed {
+    /// The key type of its arena.
+    type Key: Element;
+    /// The mesh and the slot.
+    #[doc(hidden)]
+    fn parts(self) -> (&'m Mesh, usize);
+}
+
+macro_rules! element_view {
+    ($view:ident, $key:ty, $field:ident) => {
+        impl sealed::Sealed for $view<'_> {}
+        impl<'m> ElementView<'m> for $view<'m> {
+            type Key = $key;
+            #[inline(always)]
+            fn parts(self) -> (&'m Mesh, usize) {
+                (self.mesh, self.$field as usize)
+            }
+        }
+
+        /// Two views are equal when they show the same element of the same
+        /// mesh (no generation read: both were checked when made).
+        impl PartialEq for $view<'_> {
+            #[inline]
+            fn eq(&self, other: &Self) -> bool {
+                self.$field == other.$field && std::ptr::eq(self.mesh, other.mesh)
+            }
+        }
+
+        impl Eq for $view<'_> {}
+    };
+}
+
+element_view!(VertexView, crate::VertexKey, v);
+element_view!(HalfedgeView, crate::HalfedgeKey, h);
+element_view!(EdgeView, crate::EdgeKey, e);
+element_view!(FaceView, crate::FaceKey, f);
 
 #[inline]
 fn bit(bits: Option<&[u64]>, i: usize) -> bool {
@@ -33,11 +79,23 @@ fn bit(bits: Option<&[u64]>, i: usize) -> bool {
 /// # Ok::<(), meshloom::Error>(())
 /// ```
 pub struct AttrView<'m, K, T> {
+    /// The mesh the column belongs to, for [`AttrView::at`].
+    pub(crate) mesh: &'m Mesh,
     pub(crate) values: &'m [T],
     pub(crate) present: Option<&'m [u64]>,
-    pub(crate) slots: &'m Slots,
-    pub(crate) shift: u32,
+    /// The arena's generations (odd = live).
+    pub(crate) generations: &'m [u32],
     pub(crate) marker: PhantomData<K>,
+}
+
+/// Whether a key's generation is the live one stored for its slot. Both
+/// tests are evaluated without a branch between them.
+#[inline(always)]
+fn current(generations: &[u32], index: usize, generation: u32) -> bool {
+    match generations.get(index) {
+        Some(&g) => (g == generation) & (generation & 1 == 1),
+        None => false,
+    }
 }
 
 impl<'m, K: Element, T> AttrView<'m, K, T> {
@@ -45,15 +103,36 @@ impl<'m, K: Element, T> AttrView<'m, K, T> {
     /// stale.
     #[inline]
     pub fn get(&self, key: K) -> Option<&'m T> {
-        let i = key.slot();
-        if !self
-            .slots
-            .is_current(i >> self.shift, key.generation_of_key())
-        {
-            return None;
+        let i = key.slot() as usize;
+        // Both loads are issued before either is tested, so a random access
+        // waits for one cache miss, not two in a row.
+        let value = self.values.get(i);
+        let live = current(self.generations, i >> K::SHIFT, key.generation_of_key());
+        if live && bit(self.present, i) {
+            value
+        } else {
+            None
         }
-        let i = i as usize;
-        if bit(self.present, i) {
+    }
+
+    /// The value of a checked element (from [`Mesh::vertex`] and its
+    /// siblings, or navigation from one): no generation check, only a test
+    /// that the element belongs to the same mesh; `None` if it has no value
+    /// or is of another mesh. The fastest read in a loop that navigates.
+    ///
+    /// ```
+    /// let mesh = meshloom::shapes::tetrahedron();
+    /// let pos = mesh.position_attr().unwrap();
+    /// let view = mesh.attr_view(&pos)?;
+    /// let v = mesh.vertex(mesh.vertices().next().unwrap())?;
+    /// let far = v.halfedge().dest();
+    /// assert_eq!(view.at(far).copied(), far.position());
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    #[inline]
+    pub fn at<V: ElementView<'m, Key = K>>(&self, element: V) -> Option<&'m T> {
+        let (mesh, i) = element.parts();
+        if std::ptr::eq(mesh, self.mesh) && bit(self.present, i) {
             self.values.get(i)
         } else {
             None
@@ -63,9 +142,9 @@ impl<'m, K: Element, T> AttrView<'m, K, T> {
     /// Every live element that has a value, with it, in slot order (faces:
     /// holes included).
     pub fn iter(&self) -> impl Iterator<Item = (K, &'m T)> + '_ {
-        let (slots, shift, present) = (self.slots, self.shift, self.present);
+        let (generations, present) = (self.generations, self.present);
         self.values.iter().enumerate().filter_map(move |(i, v)| {
-            let g = slots.generation((i >> shift) as usize)?;
+            let g = *generations.get(i >> K::SHIFT)?;
             (g & 1 == 1 && bit(present, i)).then(|| (K::from_parts(i as u32, g), v))
         })
     }
@@ -181,7 +260,7 @@ impl<K: Element, T: Attribute> AttrViewMut<'_, K, T> {
     pub fn iter(&self) -> impl Iterator<Item = (K, &T)> + '_ {
         let (slots, shift, present) = (self.slots, self.shift, self.present.as_deref());
         self.values.iter().enumerate().filter_map(move |(i, v)| {
-            let g = slots.generation((i >> shift) as usize)?;
+            let g = slots.generation(i >> shift)?;
             (g & 1 == 1 && bit(present, i)).then(|| (K::from_parts(i as u32, g), v))
         })
     }
@@ -193,7 +272,7 @@ impl<K: Element, T: Attribute> AttrViewMut<'_, K, T> {
             .iter_mut()
             .enumerate()
             .filter_map(move |(i, v)| {
-                let g = slots.generation((i >> shift) as usize)?;
+                let g = slots.generation(i >> shift)?;
                 (g & 1 == 1 && bit(present, i)).then(|| (K::from_parts(i as u32, g), v))
             })
     }
