@@ -32,19 +32,16 @@ impl Mesh {
             return Err(refuse(OP, hk, Refusal::LinkCondition));
         }
         // Link condition: the common neighbours of a and b are exactly the
-        // apexes of the triangles that disappear. Walking a's ring also
-        // notes whether a is on a boundary; b's ring, whether b is.
+        // apexes of the triangles that disappear.
         let mut small = [0u32; 16];
         let mut large = Vec::new();
         let mut k = 0;
-        let mut a_boundary = false;
         // a's ring from h: the last one is twin(prev(h)).
         let mut last_a = h;
         let mut before_last_a = h;
         for o in self.ring_from(h) {
             before_last_a = last_a;
             last_a = o;
-            a_boundary |= self.in_hole_raw(o);
             let w = self.dest_of(o);
             if k < small.len() {
                 small[k] = w;
@@ -63,11 +60,9 @@ impl Mesh {
             &mut large
         };
         let sorted = k > 16;
-        let mut b_boundary = false;
         let mut last_b = t;
         for o in self.ring_from(t) {
             last_b = o;
-            b_boundary |= self.in_hole_raw(o);
             let w = self.dest_of(o);
             if w == a {
                 continue;
@@ -82,7 +77,15 @@ impl Mesh {
             }
         }
         // An interior edge between two boundary vertices would pinch.
-        if !self.is_hole_raw(f_left) && !self.is_hole_raw(f_right) && a_boundary && b_boundary {
+        // (Hole flags cost a random read each: looked up only when needed.)
+        let on_boundary =
+            |v_ring_start: u32| self.ring_from(v_ring_start).any(|o| self.in_hole_raw(o));
+        if self.holes > 0
+            && !self.is_hole_raw(f_left)
+            && !self.is_hole_raw(f_right)
+            && on_boundary(h)
+            && on_boundary(t)
+        {
             return Err(refuse(OP, hk, Refusal::NonManifold));
         }
         // No other face or hole may hold both a and b. Triangles around a
