@@ -285,13 +285,22 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
             let Some(h) = nth(m.holes(), m.hole_count(), i) else {
                 return;
             };
-            (
-                m.check_fill_hole(h).is_ok(),
-                m.fill_hole(h).is_ok(),
-                1,
-                true,
-                true,
-            )
+            if i % 2 == 0 {
+                (
+                    m.check_fill_hole(h).is_ok(),
+                    m.fill_hole(h).is_ok(),
+                    1,
+                    true,
+                    true,
+                )
+            } else {
+                let check = m.check_fill_hole_triangulated(h).is_ok();
+                let r = m.fill_hole_triangulated(h);
+                if let Ok(tris) = &r {
+                    assert!(tris.iter().all(|&t| m.face(t).unwrap().degree() == 3));
+                }
+                (check, r.is_ok(), 1, true, true)
+            }
         }
         Op::Triangulate(i) => {
             let Some(f) = nth(m.faces(), m.face_count(), i) else {

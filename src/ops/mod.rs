@@ -16,6 +16,7 @@
 //! | [`Mesh::remove_vertex`] | `remove.rs` | the merged face | 0 |
 //! | [`Mesh::remove_face`] | `holes.rs` | the holes now covering it | −1 + edges removed − vertices removed |
 //! | [`Mesh::fill_hole`] | `holes.rs` | the new face | +1 |
+//! | [`Mesh::fill_hole_triangulated`] | `triangulate.rs` | the triangles | +1 |
 //! | [`Mesh::triangulate`] | `triangulate.rs` | the triangles | 0 |
 //! | [`Mesh::triangulate_all`] | `triangulate.rs` | faces left as they were | 0 |
 //! | [`Mesh::extrude_face`] | `extrude.rs` | the side quads | 0 |
