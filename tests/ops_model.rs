@@ -143,6 +143,7 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
     let (ft, vt) = (face_total(m, totals), vertex_total(m, totals));
     let fcount = m.face_count();
     let before = snapshot(m);
+    let dchi_cut: i64;
     // (check result, op result, χ change, face total kept, vertex total kept)
     let (check, ok, dchi, keep_f, keep_v): (bool, bool, i64, bool, bool) = match *op {
         Op::SplitEdge(i, t) => {
@@ -374,8 +375,16 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
             }
             (
                 m.check_cut_path(&path).is_ok(),
-                m.cut_path(&path).is_ok(),
-                -1,
+                {
+                    // χ: −1 for a slit, +1 for each end on a boundary.
+                    let ends = [path[0], *path.last().unwrap()]
+                        .iter()
+                        .filter(|&&v| m.vertex(v).unwrap().is_boundary())
+                        .count() as i64;
+                    dchi_cut = ends - 1;
+                    m.cut_path(&path).is_ok()
+                },
+                dchi_cut,
                 true,
                 true,
             )

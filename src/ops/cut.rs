@@ -5,18 +5,39 @@ use std::collections::HashMap;
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::keys::{FaceKey, VertexKey};
-use crate::mesh::{HalfedgeRecord, Mesh};
+use crate::mesh::{HalfedgeRecord, Mesh, NONE};
+
+/// A face link to be set when the new loops are labelled.
+const NONE_FACE: u32 = NONE;
 
 struct CutPlan {
     /// Path half-edges `h_i = v_i -> v_i+1`.
     hs: Vec<u32>,
     closed: bool,
+    /// For an open path: the hole half-edge leaving `v_0` (resp. `v_k`)
+    /// when that end lies on a boundary.
+    hole_out: [Option<u32>; 2],
     /// Per path vertex index that splits: the outgoing half-edges right of
-    /// the path (clockwise from `h_i`, exclusive, to `twin(h_i-1)`).
+    /// the path, which move to its copy.
     wedges: Vec<(usize, Vec<u32>)>,
 }
 
 impl Mesh {
+    /// The half-edges leaving `origin(from)` clockwise after `from` up to
+    /// `stop`, both excluded.
+    fn ring_between(&self, from: u32, stop: u32) -> Vec<u32> {
+        let mut wedge = Vec::new();
+        let mut o = self.next_of(from ^ 1);
+        for _ in 0..self.he.len() {
+            if o == stop {
+                break;
+            }
+            wedge.push(o);
+            o = self.next_of(o ^ 1);
+        }
+        wedge
+    }
+
     fn plan_cut(&self, path: &[VertexKey]) -> Result<CutPlan> {
         const OP: &str = "cut_path";
         let mut vs = Vec::with_capacity(path.len());
@@ -24,19 +45,41 @@ impl Mesh {
             vs.push(self.check_vertex(v)?);
         }
         let Some(&first) = path.first() else {
-            return Err(refuse(
-                OP,
-                crate::keys::AnyKey::Vertex(VertexKey::new(0, 0)),
-                Refusal::Empty,
-            ));
+            // No vertex to name: generation 0 is never live, so this key
+            // names no element.
+            return Err(refuse(OP, VertexKey::new(0, 0), Refusal::Empty));
         };
         let closed = vs.len() > 1 && vs[0] == vs[vs.len() - 1];
         let k = vs.len().saturating_sub(1);
-        if (closed && k < 3) || (!closed && k < 2) {
+        let holes_at = |v: u32| -> Vec<u32> {
+            self.outgoing_raw(v)
+                .filter(|&o| self.in_hole_raw(o))
+                .collect()
+        };
+        let mut hole_out = [None, None];
+        if !closed && k >= 1 {
+            for (end, &v) in [vs[0], vs[k]].iter().enumerate() {
+                match holes_at(v)[..] {
+                    [] => {}
+                    [o] => hole_out[end] = Some(o),
+                    _ => return Err(refuse(OP, path[end * k], Refusal::NonManifold)),
+                }
+            }
+        }
+        let min_edges = if closed {
+            3
+        } else if hole_out == [None, None] {
+            2
+        } else {
+            1
+        };
+        if k < min_edges {
             return Err(refuse(
                 OP,
                 first,
-                Refusal::Parameter("the path needs two edges (three if closed)"),
+                Refusal::Parameter(
+                    "the path needs two edges (one from a boundary, three if closed)",
+                ),
             ));
         }
         let mut distinct = vs[..if closed { k } else { k + 1 }].to_vec();
@@ -54,32 +97,32 @@ impl Mesh {
             }
             hs.push(h);
         }
-        for (i, &v) in vs.iter().enumerate().take(k + 1) {
-            if self.outgoing_raw(v).any(|o| self.in_hole_raw(o)) {
+        let inner = if closed { 0..k } else { 1..k };
+        for i in inner.clone() {
+            if !holes_at(vs[i]).is_empty() {
                 return Err(refuse(OP, path[i], Refusal::Boundary));
             }
         }
-        let split: Vec<usize> = if closed {
-            (0..k).collect()
-        } else {
-            (1..k).collect()
-        };
-        let mut wedges = Vec::with_capacity(split.len());
-        for i in split {
-            let h = hs[i];
+        let mut wedges = Vec::with_capacity(k + 1);
+        for i in inner {
             let stop = hs[(i + k - 1) % k] ^ 1;
-            let mut wedge = Vec::new();
-            let mut o = self.next_of(h ^ 1);
-            for _ in 0..self.he.len() {
-                if o == stop {
-                    break;
-                }
-                wedge.push(o);
-                o = self.next_of(o ^ 1);
-            }
-            wedges.push((i, wedge));
+            wedges.push((i, self.ring_between(hs[i], stop)));
         }
-        Ok(CutPlan { hs, closed, wedges })
+        if let Some(ho) = hole_out[0] {
+            wedges.push((0, self.ring_between(hs[0], ho)));
+        }
+        if let Some(ho) = hole_out[1] {
+            // From the hole's half-edge (included) round to twin(h_k-1).
+            let mut wedge = vec![ho];
+            wedge.extend(self.ring_between(ho, hs[k - 1] ^ 1));
+            wedges.push((k, wedge));
+        }
+        Ok(CutPlan {
+            hs,
+            closed,
+            hole_out,
+            wedges,
+        })
     }
 
     /// Whether [`cut_path`](Mesh::cut_path) would succeed; changes nothing.
@@ -91,13 +134,17 @@ impl Mesh {
     }
 
     /// Cut the surface open along a path of edges `v_0, v_1, …, v_k`
-    /// (consecutive vertices joined by edges). Every path edge becomes two,
-    /// one on each side, and every vertex inside the path splits in two
-    /// (the copy takes the faces on the right of the path). An open path
-    /// makes a slit: one new hole whose ends are `v_0` and `v_k`. A closed
-    /// path (`v_k == v_0`) makes two holes, one on each side, and may split
-    /// the mesh in two (see [`split_components`](Mesh::split_components)):
-    /// Plexus' `split_at_path`.
+    /// (consecutive vertices joined by edges not on a boundary). Every path
+    /// edge becomes two, one on each side, and every path vertex inside the
+    /// surface splits in two (the copy takes the faces on the right of the
+    /// path); an end on a boundary splits too, and the cut joins that hole.
+    ///
+    /// - An open path between interior vertices makes a slit: a new hole.
+    /// - An open path from a boundary opens that hole further; from
+    ///   boundary to boundary it joins two holes, or, when both ends are on
+    ///   the same hole, cuts the mesh apart (or through a handle): Plexus'
+    ///   `split_at_path`, then [`split_components`](Mesh::split_components).
+    /// - A closed path (`v_k == v_0`) makes two holes, one on each side.
     ///
     /// ```text
     ///   . --- . --- .         . --- . --- .
@@ -107,22 +154,24 @@ impl Mesh {
     ///   . --- . --- .         . --- . --- .
     /// ```
     ///
-    /// Returns the new holes (one for an open path, two for a closed one,
-    /// the left side's first). Attributes: a copy `v_i'` =
+    /// Returns the holes along the cut: the one on the left side first, and
+    /// a second one when the cut made two loops. Attributes: a copy `v_i'` =
     /// `interpolate(v_i: 1)`; each path edge splits into its two copies with
-    /// equal shares; a right-side corner keeps its value. χ drops by 1 for an
-    /// open path (V + k − 1, E + k) and is unchanged for a closed one.
+    /// equal shares; a right-side corner keeps its value. χ changes by
+    /// (vertices split) − k: −1 for a slit, 0 from one boundary or for a
+    /// closed path, +1 from boundary to boundary.
     ///
     /// # Errors
     /// [`Error::StaleKey`](crate::Error::StaleKey);
-    /// [`Refusal::Parameter`] for fewer than two edges (three when closed);
-    /// [`Refusal::NonManifold`] when the path meets a vertex twice;
-    /// [`Refusal::NotAdjacent`] when consecutive vertices are not joined;
-    /// [`Refusal::Boundary`] when a path edge or vertex touches a hole (this
-    /// version cuts inside the surface only).
+    /// [`Refusal::Parameter`] for too short a path (two edges between
+    /// interior vertices, one from a boundary, three when closed);
+    /// [`Refusal::NonManifold`] when the path meets a vertex twice or an end
+    /// is a vertex where several holes meet; [`Refusal::NotAdjacent`] when
+    /// consecutive vertices are not joined; [`Refusal::Boundary`] when a path
+    /// edge lies on a boundary or an inner path vertex touches a hole.
     ///
     /// # Complexity
-    /// O(Σ degree of the path vertices).
+    /// O(Σ degree of the path vertices + degree of the holes joined).
     ///
     /// # Examples
     /// ```
@@ -139,13 +188,21 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn cut_path(&mut self, path: &[VertexKey]) -> Result<Vec<FaceKey>> {
-        let CutPlan { hs, closed, wedges } = self.plan_cut(path)?;
+        let CutPlan {
+            hs,
+            closed,
+            hole_out,
+            wedges,
+        } = self.plan_cut(path)?;
         let k = hs.len();
         let ts: Vec<u32> = hs.iter().map(|&h| h ^ 1).collect();
         let index_of_t: HashMap<u32, usize> = ts.iter().enumerate().map(|(i, &t)| (t, i)).collect();
         let prevs: Vec<u32> = ts.iter().map(|&t| self.prev_of(t)).collect();
         let nexts: Vec<u32> = ts.iter().map(|&t| self.next_of(t)).collect();
         let rights: Vec<u32> = ts.iter().map(|&t| self.face_of(t)).collect();
+        // The hole half-edges entering the boundary ends, and their holes.
+        let hole_in = hole_out.map(|o| o.map(|o| self.prev_of(o)));
+        let old_holes = hole_out.map(|o| o.map(|o| self.face_of(o)));
         // Vertices: v_i and their right-side copies.
         let vs: Vec<u32> = (0..=k)
             .map(|i| {
@@ -166,12 +223,6 @@ impl Mesh {
         let new_edges: Vec<u32> = (0..k).map(|_| self.alloc_edge()).collect();
         let g = |i: usize| 2 * new_edges[i];
         let map = |x: u32| index_of_t.get(&x).map_or(x, |&j| g(j));
-        let hole_left = self.alloc_face(true);
-        let hole_right = if closed {
-            self.alloc_face(true)
-        } else {
-            hole_left
-        };
         // g_i = v'_i+1 -> v'_i takes t_i's place in its right face.
         for i in 0..k {
             self.he[g(i) as usize] = HalfedgeRecord {
@@ -187,47 +238,72 @@ impl Mesh {
                 self.set_face_link(rights[i], g(i));
             }
         }
-        // The holes: t_i run backwards along the left side, gt_i forwards
-        // along the right side.
+        // The new boundary: t_i run backwards along the left side, gt_i
+        // forwards along the right side; at a boundary end they join the
+        // hole that was there.
         for i in 0..k {
-            let gt = g(i) + 1;
             let next_t = if i > 0 {
                 ts[i - 1]
             } else if closed {
                 ts[k - 1]
             } else {
-                g(0) + 1
+                hole_out[0].unwrap_or(g(0) + 1)
             };
             self.he[ts[i] as usize].next = next_t;
-            self.he[ts[i] as usize].face = hole_left;
             let next_gt = if i + 1 < k {
                 g(i + 1) + 1
             } else if closed {
                 g(0) + 1
             } else {
-                ts[k - 1]
+                hole_out[1].unwrap_or(ts[k - 1])
             };
-            self.he[gt as usize] = HalfedgeRecord {
+            self.he[g(i) as usize + 1] = HalfedgeRecord {
                 origin: copy[i],
                 next: next_gt,
-                face: hole_right,
+                face: NONE_FACE,
             };
         }
-        self.set_face_link(hole_left, ts[0]);
-        if closed {
-            self.set_face_link(hole_right, g(0) + 1);
+        if let Some(hi) = hole_in[0] {
+            self.set_next(hi, g(0) + 1);
+        }
+        if let Some(hi) = hole_in[1] {
+            self.set_next(hi, ts[k - 1]);
         }
         for (i, wedge) in &wedges {
             for &o in wedge {
                 self.he[o as usize].origin = copy[*i];
             }
-            self.v_halfedge[copy[*i] as usize] = g(*i) + 1;
+            let out = if *i < k { g(*i) + 1 } else { wedge[0] };
+            self.v_halfedge[copy[*i] as usize] = out;
         }
         for i in 0..k {
             self.v_halfedge[vs[i] as usize] = hs[i];
         }
         if !closed {
             self.v_halfedge[vs[k] as usize] = ts[k - 1];
+        }
+        // Hole faces: the loop through t_0, then the one through gt_0 if it
+        // is another loop. Old holes are reused, one left over is freed.
+        let mut spare: Vec<u32> = old_holes.iter().flatten().copied().collect();
+        spare.dedup();
+        let mut made = Vec::new();
+        let first = spare
+            .first()
+            .copied()
+            .unwrap_or_else(|| self.alloc_face(true));
+        self.he[ts[0] as usize].face = NONE_FACE;
+        self.relabel_loop(ts[0], first);
+        made.push(first);
+        if self.face_of(g(0) + 1) != first {
+            let second = if spare.len() > 1 {
+                spare[1]
+            } else {
+                self.alloc_face(true)
+            };
+            self.relabel_loop(g(0) + 1, second);
+            made.push(second);
+        } else if spare.len() > 1 {
+            self.free_face(spare[1]);
         }
         // Attributes.
         for (i, _) in &wedges {
@@ -243,13 +319,12 @@ impl Mesh {
             self.attrs.halfedge.copy(ts[i] as usize, g(i) as usize);
             self.attrs.halfedge.interpolate(g(i) as usize + 1, &[]);
         }
-        self.attrs.face.interpolate(hole_left as usize, &[]);
-        self.attrs.face.interpolate(hole_right as usize, &[]);
-        self.debug_validate();
-        let mut out = vec![self.fkey(hole_left)];
-        if closed {
-            out.push(self.fkey(hole_right));
+        for &h in &made {
+            if !spare.contains(&h) {
+                self.attrs.face.interpolate(h as usize, &[]);
+            }
         }
-        Ok(out)
+        self.debug_validate();
+        Ok(made.into_iter().map(|h| self.fkey(h)).collect())
     }
 }
