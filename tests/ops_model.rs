@@ -524,5 +524,11 @@ fn random_streams_on_real_meshes() {
     let mut g = Gen::new(1000);
     let ops: Vec<Op> = (0..600).map(|_| Op::arbitrary(&mut g)).collect();
     run(quad_grid(6), &ops);
+    // Long streams reach states the short ones do not.
+    for (seed, m) in real_meshes().iter().enumerate() {
+        let mut g = Gen::new(10_000 + seed);
+        let ops: Vec<Op> = (0..400).map(|_| Op::arbitrary(&mut g)).collect();
+        run(m.clone(), &ops);
+    }
     assert_coverage();
 }

@@ -73,7 +73,8 @@ impl Mesh {
     /// the edge's ends (the merged face would meet it twice);
     /// [`Refusal::Bridge`] on a boundary edge whose face has another
     /// boundary edge: removing it would leave a dangling edge or cut the
-    /// mesh apart (use [`remove_face`](Mesh::remove_face) for that).
+    /// mesh apart (ask for that with
+    /// [`remove_edge_allowing_bridge`](Mesh::remove_edge_allowing_bridge)).
     ///
     /// # Complexity
     /// O(degree of both faces · log degree + degree of `a` and `b`).
