@@ -298,7 +298,7 @@ impl Mesh {
         let f = self.face_of(p);
         let tp = p ^ 1;
         let g = self.face_of(tp);
-        let q = before_tp.unwrap_or_else(|| self.prev_of(tp));
+        let q = before_tp.unwrap_or_else(|| self.prev_fast(tp));
         debug_assert_eq!(q, self.prev_of(tp));
         let r = self.next_of(tp);
         self.set_next(q, n);

@@ -259,7 +259,7 @@ impl Mesh {
         }
         if nx == y {
             // b has degree 1: ... px -> x -> y -> ny ...
-            let px = self.prev_of(x);
+            let px = self.prev_fast(x);
             self.set_next(px, ny);
             self.free_vertex(b);
             if self.v_halfedge[a as usize] == x {
@@ -273,7 +273,7 @@ impl Mesh {
             return out;
         }
         if ny == x {
-            let py = self.prev_of(y);
+            let py = self.prev_fast(y);
             self.set_next(py, nx);
             self.free_vertex(a);
             if self.v_halfedge[b as usize] == y {
@@ -286,8 +286,8 @@ impl Mesh {
             self.free_edge(e);
             return out;
         }
-        let px = self.prev_of(x);
-        let py = self.prev_of(y);
+        let px = self.prev_fast(x);
+        let py = self.prev_fast(y);
         self.set_next(px, ny);
         self.set_next(py, nx);
         if self.v_halfedge[a as usize] == x {
@@ -310,6 +310,22 @@ impl Mesh {
         }
         self.free_edge(e);
         out
+    }
+
+    /// The half-edge before `h` in its face: a few steps along the face
+    /// when it is small (triangles, quads), else by turning around
+    /// `origin(h)` (`prev_of`).
+    #[inline]
+    pub(crate) fn prev_fast(&self, h: u32) -> u32 {
+        let mut x = self.next_of(h);
+        for _ in 0..6 {
+            let n = self.next_of(x);
+            if n == h {
+                return x;
+            }
+            x = n;
+        }
+        self.prev_of(h)
     }
 
     /// Debug check after every operator.
