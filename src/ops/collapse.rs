@@ -108,7 +108,7 @@ impl Mesh {
         // A disappearing triangle must not leave an edge with holes on both
         // sides.
         for (goes, x) in [(left_goes, h), (right_goes, t)] {
-            if goes && !self.in_hole_raw(x) {
+            if goes && self.holes > 0 && !self.in_hole_raw(x) {
                 let n = self.next_of(x);
                 let p = self.next_of(n);
                 if self.in_hole_raw(n ^ 1) && self.in_hole_raw(p ^ 1) {
@@ -319,7 +319,7 @@ impl Mesh {
             (n >> 1) as usize,
             &[((n >> 1) as usize, 0.5), ((p >> 1) as usize, 0.5)],
         );
-        if !self.is_hole_raw(f) {
+        if !self.attrs.face.cols.is_empty() && !self.is_hole_raw(f) {
             // The triangle's values go to a real face beside the kept edge.
             let k = if self.is_hole_raw(g) {
                 self.face_of(n ^ 1)
