@@ -11,6 +11,8 @@
 use crate::attr::{Column, Interpolate, POSITION};
 use crate::error::{BuildError, Error, Result};
 use crate::keys::{FaceKey, VertexKey};
+use std::borrow::Cow;
+
 use crate::mesh::{HalfedgeRecord, Mesh, HOLE_BIT, NONE};
 use crate::slots::Slots;
 
@@ -134,7 +136,7 @@ impl Mesh {
         F: AsRef<[I]>,
         I: VertexIndex,
     {
-        Ok(Mesh::build(Some(positions), positions.len(), faces)?.mesh)
+        Ok(build_lists(Some(positions), positions.len(), faces, false)?.mesh)
     }
 
     /// Build a topology-only mesh (no positions) over `vertex_count`
@@ -151,40 +153,19 @@ impl Mesh {
         F: AsRef<[I]>,
         I: VertexIndex,
     {
-        Ok(Mesh::build(None, vertex_count, faces)?.mesh)
+        Ok(build_lists(None, vertex_count, faces, false)?.mesh)
     }
 
     /// Build from compact buffers, as [`Mesh::to_polygons`] returns them. A
     /// topology-only mesh results when `positions` is empty; then the vertex
     /// count is one past the largest index.
     pub fn from_buffers(polygons: &Polygons) -> Result<Mesh> {
-        Ok(Mesh::build_buffers(polygons)?.mesh)
+        Ok(build_buffers(polygons, false)?.mesh)
     }
 
     /// [`Mesh::from_buffers`], also returning the input's keys.
     pub fn build_buffers(polygons: &Polygons) -> Result<Built> {
-        let p = polygons;
-        if p.offsets.first().is_some_and(|&o| o != 0)
-            || p.offsets.windows(2).any(|w| w[1] < w[0])
-            || p.offsets
-                .last()
-                .is_some_and(|&o| o as usize != p.indices.len())
-        {
-            return Err(Error::Build(BuildError::TooLarge {
-                what: "offsets are not a non-decreasing cut of the index array",
-            }));
-        }
-        let (positions, n) = if p.positions.is_empty() {
-            (None, p.indices.iter().max().map_or(0, |&m| m as usize + 1))
-        } else {
-            (Some(&p.positions[..]), p.positions.len())
-        };
-        let offsets = if p.offsets.is_empty() {
-            vec![0]
-        } else {
-            p.offsets.clone()
-        };
-        build_flat(positions, n, offsets, p.indices.clone())
+        build_buffers(polygons, true)
     }
 
     /// Build, also returning the keys of the input's vertices and faces and
@@ -199,42 +180,7 @@ impl Mesh {
         F: AsRef<[I]>,
         I: VertexIndex,
     {
-        let n = positions.map_or(vertex_count, |p| p.len().min(vertex_count));
-        let total: usize = faces.iter().map(|f| f.as_ref().len()).sum();
-        if total >= (1 << 29) || faces.len() >= (1 << 29) || n >= (1 << 31) {
-            return Err(BuildError::TooLarge {
-                what: "more than 2^29 corners or faces, or 2^31 vertices",
-            }
-            .into());
-        }
-        let mut offsets = Vec::with_capacity(faces.len() + 1);
-        let mut indices = Vec::with_capacity(total);
-        offsets.push(0u32);
-        for (fi, face) in faces.iter().enumerate() {
-            for &i in face.as_ref() {
-                match i.to_index() {
-                    Ok(i) if i < n => indices.push(i as u32),
-                    Ok(i) => {
-                        return Err(BuildError::IndexOutOfRange {
-                            face: fi,
-                            index: i64::try_from(i).unwrap_or(i64::MAX),
-                            vertex_count: n,
-                        }
-                        .into())
-                    }
-                    Err(raw) => {
-                        return Err(BuildError::IndexOutOfRange {
-                            face: fi,
-                            index: raw,
-                            vertex_count: n,
-                        }
-                        .into())
-                    }
-                }
-            }
-            offsets.push(indices.len() as u32);
-        }
-        build_flat(positions.map(|p| &p[..n]), n, offsets, indices)
+        build_lists(positions, vertex_count, faces, true)
     }
 
     /// The mesh as compact buffers (vertices and faces numbered densely in
@@ -291,6 +237,93 @@ impl Mesh {
     }
 }
 
+fn build_buffers(polygons: &Polygons, want_keys: bool) -> Result<Built> {
+    let p = polygons;
+    if p.offsets.first().is_some_and(|&o| o != 0)
+        || p.offsets.windows(2).any(|w| w[1] < w[0])
+        || p.offsets
+            .last()
+            .map_or(!p.indices.is_empty(), |&o| o as usize != p.indices.len())
+    {
+        return Err(Error::Build(BuildError::MalformedOffsets {
+            offsets: p.offsets.len(),
+            indices: p.indices.len(),
+        }));
+    }
+    let (positions, n) = if p.positions.is_empty() {
+        (None, p.indices.iter().max().map_or(0, |&m| m as usize + 1))
+    } else {
+        (Some(&p.positions[..]), p.positions.len())
+    };
+    let offsets: &[u32] = if p.offsets.is_empty() {
+        &[0]
+    } else {
+        &p.offsets
+    };
+    build_flat(positions, n, offsets, &p.indices, want_keys)
+}
+
+/// Flatten face lists (checking index ranges) and build.
+fn build_lists<F, I>(
+    positions: Option<&[[f64; 3]]>,
+    vertex_count: usize,
+    faces: &[F],
+    want_keys: bool,
+) -> Result<Built>
+where
+    F: AsRef<[I]>,
+    I: VertexIndex,
+{
+    let n = positions.map_or(vertex_count, |p| p.len().min(vertex_count));
+    let total: usize = faces.iter().map(|f| f.as_ref().len()).sum();
+    if total >= (1 << 29) || faces.len() >= (1 << 29) || n >= (1 << 31) {
+        return Err(BuildError::TooLarge {
+            what: "more than 2^29 corners or faces, or 2^31 vertices",
+        }
+        .into());
+    }
+    let mut offsets = Vec::with_capacity(faces.len() + 1);
+    let mut indices = Vec::with_capacity(total);
+    offsets.push(0u32);
+    for (fi, face) in faces.iter().enumerate() {
+        for &i in face.as_ref() {
+            match i.to_index() {
+                Ok(i) if i < n => indices.push(i as u32),
+                Ok(i) => {
+                    return Err(BuildError::IndexOutOfRange {
+                        face: fi,
+                        index: i64::try_from(i).unwrap_or(i64::MAX),
+                        vertex_count: n,
+                    }
+                    .into())
+                }
+                Err(raw) => {
+                    return Err(BuildError::IndexOutOfRange {
+                        face: fi,
+                        index: raw,
+                        vertex_count: n,
+                    }
+                    .into())
+                }
+            }
+        }
+        offsets.push(indices.len() as u32);
+    }
+    build_flat(positions.map(|p| &p[..n]), n, &offsets, &indices, want_keys)
+}
+
+/// Call `f(corner, origin, dest)` for every side of every face.
+#[inline]
+fn for_each_side(offsets: &[u32], indices: &[u32], mut f: impl FnMut(usize, u32, u32)) {
+    for w in offsets.windows(2) {
+        let (s, e) = (w[0] as usize, w[1] as usize);
+        for c in s..e - 1 {
+            f(c, indices[c], indices[c + 1]);
+        }
+        f(e - 1, indices[e - 1], indices[s]);
+    }
+}
+
 /// The face a corner belongs to (error paths only).
 fn face_of_corner(offsets: &[u32], c: usize) -> usize {
     offsets.partition_point(|&o| o as usize <= c) - 1
@@ -300,8 +333,9 @@ fn face_of_corner(offsets: &[u32], c: usize) -> usize {
 fn build_flat(
     positions: Option<&[[f64; 3]]>,
     n_in: usize,
-    offsets: Vec<u32>,
-    mut indices: Vec<u32>,
+    offsets: &[u32],
+    indices: &[u32],
+    want_keys: bool,
 ) -> Result<Built> {
     let nf = offsets.len() - 1;
     let nc = indices.len();
@@ -317,7 +351,7 @@ fn build_flat(
             .position(|&i| i as usize >= n_in)
             .unwrap_or(0);
         return Err(BuildError::IndexOutOfRange {
-            face: face_of_corner(&offsets, c),
+            face: face_of_corner(offsets, c),
             index: i64::from(indices[c]),
             vertex_count: n_in,
         }
@@ -354,116 +388,123 @@ fn build_flat(
         }
     }
 
-    // 2. Drop unreferenced vertices; remap to dense slots.
-    let mut slot_of = vec![NONE; n_in];
-    for &i in &indices {
-        slot_of[i as usize] = 0;
+    // 2. Drop unreferenced vertices; remap to dense slots (only when some
+    //    vertex is unreferenced: otherwise slots are the input indices).
+    // Sized by the largest index, not the vertex count: a caller may claim
+    // billions of vertices and use three.
+    let span = indices.iter().max().map_or(0, |&m| m as usize + 1);
+    let mut used = vec![0u64; span.div_ceil(64)];
+    for &i in indices {
+        used[i as usize / 64] |= 1 << (i % 64);
     }
-    let mut nv = 0u32;
-    let mut input_of_slot = Vec::new();
-    for (i, s) in slot_of.iter_mut().enumerate() {
-        if *s == 0 {
-            *s = nv;
-            nv += 1;
-            input_of_slot.push(i as u32);
+    let nv = used.iter().map(|w| w.count_ones() as usize).sum::<usize>();
+    let unreferenced = n_in - nv;
+    // Input index of each slot; `None` when it is the identity.
+    let input_of_slot: Option<Vec<u32>> = (unreferenced > 0).then(|| {
+        (0..span as u32)
+            .filter(|&i| used[i as usize / 64] >> (i % 64) & 1 == 1)
+            .collect()
+    });
+    drop(used);
+    let input = |slot: u32| input_of_slot.as_ref().map_or(slot, |m| m[slot as usize]) as usize;
+    let indices: Cow<'_, [u32]> = match &input_of_slot {
+        None => Cow::Borrowed(indices),
+        Some(map) => {
+            let mut slot_of = vec![NONE; span];
+            for (slot, &i) in map.iter().enumerate() {
+                slot_of[i as usize] = slot as u32;
+            }
+            Cow::Owned(indices.iter().map(|&i| slot_of[i as usize]).collect())
         }
-    }
-    let unreferenced = n_in - nv as usize;
-    if unreferenced > 0 {
-        for i in &mut indices {
-            *i = slot_of[*i as usize];
-        }
-    }
+    };
     if let Some(p) = positions {
-        for &input in &input_of_slot {
-            let q = p[input as usize];
+        for slot in 0..nv as u32 {
+            let q = p[input(slot)];
             if !q.iter().all(|c| c.is_finite()) {
                 return Err(BuildError::NonFinitePosition {
-                    vertex: input as usize,
+                    vertex: input(slot),
                     position: q,
                 }
                 .into());
             }
         }
     }
-    let nv = nv as usize;
 
-    // 3. The corner after each corner in its face.
-    let mut next_corner = vec![0u32; nc];
-    for f in 0..nf {
-        let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
-        for c in s..e - 1 {
-            next_corner[c] = c as u32 + 1;
-        }
-        next_corner[e - 1] = s as u32;
-    }
-    let dest = |c: usize| indices[next_corner[c] as usize];
-
-    // 4. Bucket corners by their edge's lower vertex (counting sort).
+    // 3. Bucket corners by their edge's lower vertex (counting sort). Each
+    //    entry packs the higher vertex, the direction and the corner, so a
+    //    bucket sorts as plain integers.
     let mut start = vec![0u32; nv + 1];
-    for c in 0..nc {
-        let lo = indices[c].min(dest(c));
-        start[lo as usize + 1] += 1;
-    }
+    for_each_side(offsets, &indices, |_, a, b| {
+        start[a.min(b) as usize + 1] += 1
+    });
     for i in 0..nv {
         start[i + 1] += start[i];
     }
-    let mut fill = start.clone();
-    let mut bucket = vec![0u32; nc];
-    for c in 0..nc {
-        let lo = indices[c].min(dest(c)) as usize;
-        bucket[fill[lo] as usize] = c as u32;
-        fill[lo] += 1;
-    }
-    drop(fill);
+    // Placing advances start[lo] to the end of bucket lo, which is where
+    // bucket lo + 1 begins: afterwards bucket v is start[v - 1]..start[v].
+    let mut bucket = vec![0u64; nc];
+    for_each_side(offsets, &indices, |c, a, b| {
+        let (lo, hi, dir) = if a < b { (a, b, 0) } else { (b, a, 1) };
+        let slot = &mut start[lo as usize];
+        bucket[*slot as usize] = (u64::from(hi) << 33) | (dir << 32) | c as u64;
+        *slot += 1;
+    });
 
-    // 5. Pair each directed edge with its twin.
-    let key = |c: u32| {
-        let (a, b) = (indices[c as usize], dest(c as usize));
-        (u64::from(a.max(b)) << 1) | u64::from(a > b)
-    };
-    let mut partner = vec![NONE; nc];
+    // 4. Pair each directed edge with its twin and number the edges in
+    //    bucket order, so the edges of a vertex sit together in memory.
+    //    Corner c's half-edge is he_of[c]; an unpaired side's twin lies in a
+    //    hole and is recorded, with its origin, in `boundary`.
+    let corner = |x: u64| (x & 0xffff_ffff) as usize;
+    let mut he_of = vec![NONE; nc];
+    let mut boundary: Vec<(u32, u32)> = Vec::new();
+    let mut ne = 0u32;
     for v in 0..nv {
-        let group = &mut bucket[start[v] as usize..start[v + 1] as usize];
-        if group.len() > 1 {
-            group.sort_unstable_by_key(|&c| (key(c), c));
-        }
+        let begin = if v == 0 { 0 } else { start[v - 1] as usize };
+        let group = &mut bucket[begin..start[v] as usize];
+        group.sort_unstable();
         let mut i = 0;
         while i < group.len() {
-            let hi = key(group[i]) >> 1;
+            let hi = group[i] >> 33;
             let mut j = i + 1;
-            while j < group.len() && key(group[j]) >> 1 == hi {
+            while j < group.len() && group[j] >> 33 == hi {
                 j += 1;
             }
-            let (a_slot, b_slot) = (indices[group[i] as usize], dest(group[i] as usize));
-            let (a, b) = (
-                input_of_slot[a_slot as usize] as usize,
-                input_of_slot[b_slot as usize] as usize,
-            );
             match j - i {
-                1 => {}
+                1 => {
+                    let dir = (group[i] >> 32) & 1;
+                    // The hole half-edge runs against the corner's side.
+                    let origin = if dir == 1 { v as u32 } else { hi as u32 };
+                    he_of[corner(group[i])] = 2 * ne;
+                    boundary.push((2 * ne + 1, origin));
+                }
                 2 => {
                     let (c0, c1) = (group[i], group[i + 1]);
-                    if key(c0) == key(c1) {
+                    if (c0 >> 32) & 1 == (c1 >> 32) & 1 {
+                        let (a, b) = if (c0 >> 32) & 1 == 1 {
+                            (input(hi as u32), input(v as u32))
+                        } else {
+                            (input(v as u32), input(hi as u32))
+                        };
                         return Err(BuildError::InconsistentOrientation {
                             a,
                             b,
                             faces: [
-                                face_of_corner(&offsets, c0 as usize),
-                                face_of_corner(&offsets, c1 as usize),
+                                face_of_corner(offsets, corner(c0)),
+                                face_of_corner(offsets, corner(c1)),
                             ],
                         }
                         .into());
                     }
-                    partner[c0 as usize] = c1;
-                    partner[c1 as usize] = c0;
+                    he_of[corner(c0)] = 2 * ne;
+                    he_of[corner(c1)] = 2 * ne + 1;
                 }
                 _ => {
                     let mut fs: Vec<usize> = group[i..j]
                         .iter()
-                        .map(|&c| face_of_corner(&offsets, c as usize))
+                        .map(|&x| face_of_corner(offsets, corner(x)))
                         .collect();
                     fs.sort_unstable();
+                    let (a, b) = (input(v as u32), input(hi as u32));
                     return Err(BuildError::NonManifoldEdge {
                         a: a.min(b),
                         b: a.max(b),
@@ -472,36 +513,26 @@ fn build_flat(
                     .into());
                 }
             }
+            ne += 1;
             i = j;
         }
     }
     drop(bucket);
     drop(start);
-
-    // 6. Number edges in corner order; corner c's half-edge is he_of[c].
-    let mut he_of = vec![NONE; nc];
-    let mut ne = 0u32;
-    for c in 0..nc {
-        if he_of[c] == NONE {
-            he_of[c] = 2 * ne;
-            if partner[c] != NONE {
-                he_of[partner[c] as usize] = 2 * ne + 1;
-            }
-            ne += 1;
-        }
-    }
     let nh = 2 * ne as usize;
 
-    // 7. Interior half-edges.
+    // 5. Interior half-edges.
     let mut he = vec![HalfedgeRecord::VACANT; nh];
     let mut v_halfedge = vec![NONE; nv];
     let mut out_degree = vec![0u32; nv];
     for f in 0..nf {
-        for c in offsets[f] as usize..offsets[f + 1] as usize {
+        let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
+        for c in s..e {
+            let n = if c + 1 < e { c + 1 } else { s };
             let h = he_of[c] as usize;
             he[h] = HalfedgeRecord {
                 origin: indices[c],
-                next: he_of[next_corner[c] as usize],
+                next: he_of[n],
                 face: f as u32,
             };
             v_halfedge[indices[c] as usize] = h as u32;
@@ -509,46 +540,40 @@ fn build_flat(
         }
     }
 
-    // 8. Boundary half-edges: origins; one hole half-edge leaving each
-    //    boundary vertex, or a count > 1 at a bowtie.
+    // 6. Boundary half-edges: origins, and the hole half-edge leaving each
+    //    boundary vertex (MANY at a bowtie, where several leave).
+    const MANY: u32 = NONE - 1;
     let mut hole_out = vec![NONE; nv];
-    let mut hole_out_count = vec![0u32; nv];
-    let mut boundary = Vec::new();
-    for c in 0..nc {
-        if partner[c] == NONE {
-            let g = he_of[c] ^ 1; // dest(c) -> origin(c)
-            let o = dest(c);
-            he[g as usize].origin = o;
-            hole_out[o as usize] = g;
-            hole_out_count[o as usize] += 1;
-            out_degree[o as usize] += 1;
-            boundary.push(g);
-        }
+    for &(g, o) in &boundary {
+        he[g as usize].origin = o;
+        let slot = &mut hole_out[o as usize];
+        *slot = if *slot == NONE { g } else { MANY };
+        out_degree[o as usize] += 1;
     }
-    drop(partner);
+    let boundary: Vec<u32> = boundary.into_iter().map(|(g, _)| g).collect();
     // Link each hole half-edge to the one leaving the vertex it enters.
     let mut bowtie = false;
     for &g in &boundary {
         let a = he[(g ^ 1) as usize].origin; // g enters a
-        if hole_out_count[a as usize] == 1 {
-            he[g as usize].next = hole_out[a as usize];
-        } else {
-            bowtie = true;
+        match hole_out[a as usize] {
+            MANY => bowtie = true,
+            k => he[g as usize].next = k,
         }
     }
+    drop(hole_out);
     if bowtie {
-        link_bowties(&mut he, &boundary, &hole_out_count, &input_of_slot)?;
+        link_bowties(&mut he, &boundary, &input)?;
     }
     if let Some(&g) = boundary.iter().find(|&&g| he[g as usize].next == NONE) {
         let a = he[(g ^ 1) as usize].origin;
         return Err(BuildError::NonManifoldVertex {
-            vertex: input_of_slot[a as usize] as usize,
+            vertex: input(a),
             face: he[(g ^ 1) as usize].face as usize,
         }
         .into());
     }
 
-    // 9. Hole faces: walk every unassigned boundary loop.
+    // 7. Hole faces: walk every unassigned boundary loop.
     let mut hole_starts = Vec::new();
     for &g in &boundary {
         if he[g as usize].face != NONE {
@@ -566,62 +591,68 @@ fn build_flat(
         }
     }
     let mut f_halfedge = Vec::with_capacity(nf + hole_starts.len());
-    for f in 0..nf {
-        f_halfedge.push(he_of[offsets[f] as usize]);
-    }
-    for &g in &hole_starts {
-        f_halfedge.push(g | HOLE_BIT);
-    }
+    f_halfedge.extend(offsets[..nf].iter().map(|&c| he_of[c as usize]));
+    f_halfedge.extend(hole_starts.iter().map(|&g| g | HOLE_BIT));
     drop(he_of);
 
-    let holes = hole_starts.len();
-    let mut mesh = Mesh {
-        v_halfedge,
-        v_slots: Slots::from_generations(vec![1; nv]),
-        he,
-        e_slots: Slots::from_generations(vec![1; ne as usize]),
-        f_halfedge,
-        f_slots: Slots::from_generations(vec![1; nf + holes]),
-        holes,
-        attrs: Default::default(),
-    };
-
-    // 10. Every vertex's ring must reach all its half-edges.
+    // 8. Every vertex's ring must reach all its half-edges: faces that meet
+    //    at a vertex in separate closed fans cannot share one ring.
     for v in 0..nv {
-        let ring = mesh.outgoing_raw(v as u32).count();
-        if ring != out_degree[v] as usize {
-            let h = mesh.v_halfedge[v];
-            let face = mesh
-                .outgoing_raw(v as u32)
-                .map(|h| mesh.face_of(h) as usize)
-                .find(|&f| f < nf)
-                .unwrap_or(mesh.face_of(h) as usize);
+        let start = v_halfedge[v];
+        let (mut h, mut ring) = (start, 0u32);
+        loop {
+            ring += 1;
+            h = he[(h ^ 1) as usize].next;
+            if h == start || ring > out_degree[v] {
+                break;
+            }
+        }
+        if ring != out_degree[v] {
             return Err(BuildError::NonManifoldVertex {
-                vertex: input_of_slot[v] as usize,
-                face,
+                vertex: input(v as u32),
+                face: he[start as usize].face.min(he[(start ^ 1) as usize].face) as usize,
             }
             .into());
         }
     }
+    drop(out_degree);
 
+    let holes = hole_starts.len();
+    let mut mesh = Mesh {
+        v_halfedge,
+        v_slots: Slots::full(nv),
+        he,
+        e_slots: Slots::full(ne as usize),
+        f_halfedge,
+        f_slots: Slots::full(nf + holes),
+        holes,
+        attrs: Default::default(),
+    };
     if let Some(p) = positions {
-        let values: Vec<[f64; 3]> = if unreferenced == 0 {
-            p.to_vec()
-        } else {
-            input_of_slot.iter().map(|&i| p[i as usize]).collect()
+        let values: Vec<[f64; 3]> = match &input_of_slot {
+            None => p.to_vec(),
+            Some(map) => map.iter().map(|&i| p[i as usize]).collect(),
         };
         mesh.attrs.position = Some(mesh.attrs.vertex.push(
             POSITION,
             Box::new(Column::<[f64; 3], Interpolate>::dense(values)),
         ));
     }
-
-    let mut vertices = vec![None; n_in];
-    for (slot, &input) in input_of_slot.iter().enumerate() {
-        vertices[input as usize] = Some(VertexKey::new(slot as u32, 1));
-    }
-    let faces = (0..nf as u32).map(|f| FaceKey::new(f, 1)).collect();
     debug_assert_eq!(mesh.validate(), Ok(()));
+
+    let (vertices, faces) = if want_keys {
+        // One entry per input vertex: the caller asked for this map.
+        let mut vertices = vec![None; n_in];
+        for slot in 0..nv as u32 {
+            vertices[input(slot)] = Some(VertexKey::new(slot, 1));
+        }
+        (
+            vertices,
+            (0..nf as u32).map(|f| FaceKey::new(f, 1)).collect(),
+        )
+    } else {
+        (Vec::new(), Vec::new())
+    };
     Ok(Built {
         mesh,
         vertices,
@@ -636,16 +667,23 @@ fn build_flat(
 fn link_bowties(
     he: &mut [HalfedgeRecord],
     boundary: &[u32],
-    count: &[u32],
-    input_of_slot: &[u32],
+    input: &dyn Fn(u32) -> usize,
 ) -> Result<()> {
     // Hole half-edges leaving each bowtie vertex, grouped by vertex.
     let mut leaving: Vec<(u32, u32)> = boundary
         .iter()
         .map(|&k| (he[k as usize].origin, k))
-        .filter(|&(a, _)| count[a as usize] > 1)
         .collect();
     leaving.sort_unstable();
+    let mut kept = Vec::with_capacity(leaving.len());
+    for (i, &(a, k)) in leaving.iter().enumerate() {
+        let shared =
+            (i > 0 && leaving[i - 1].0 == a) || leaving.get(i + 1).is_some_and(|n| n.0 == a);
+        if shared {
+            kept.push((a, k));
+        }
+    }
+    let leaving = kept;
     let budget = he.len();
     let mut i = 0;
     while i < leaving.len() {
@@ -669,7 +707,7 @@ fn link_bowties(
             }
             if end == NONE {
                 return Err(BuildError::NonManifoldVertex {
-                    vertex: input_of_slot[a as usize] as usize,
+                    vertex: input(a),
                     face: he[(k ^ 1) as usize].face as usize,
                 }
                 .into());

@@ -111,3 +111,45 @@ impl Mesh {
         FaceHalfedges::new(self, f)
     }
 }
+
+/// Neighbours of a vertex, clockwise: the twin record read for the step
+/// also gives the neighbour, so each step costs one record load.
+#[derive(Clone)]
+pub(crate) struct VertexNeighbors<'m> {
+    mesh: &'m Mesh,
+    start: u32,
+    cur: u32,
+    budget: usize,
+}
+
+impl<'m> VertexNeighbors<'m> {
+    #[inline]
+    pub(crate) fn new(mesh: &'m Mesh, v: u32) -> Self {
+        let start = mesh.v_halfedge.get(v as usize).copied().unwrap_or(NONE);
+        VertexNeighbors {
+            mesh,
+            start,
+            cur: start,
+            budget: mesh.he.len(),
+        }
+    }
+}
+
+impl Iterator for VertexNeighbors<'_> {
+    type Item = u32;
+
+    #[inline]
+    fn next(&mut self) -> Option<u32> {
+        if self.cur == NONE || self.budget == 0 {
+            return None;
+        }
+        self.budget -= 1;
+        let twin = self.mesh.he.get((self.cur ^ 1) as usize)?;
+        self.cur = if twin.next == self.start {
+            NONE
+        } else {
+            twin.next
+        };
+        Some(twin.origin)
+    }
+}

@@ -201,6 +201,15 @@ pub enum BuildError {
         /// Its position.
         position: [f64; 3],
     },
+    /// Occurs when compact buffers' offsets do not cut the index array into
+    /// faces: they must start at 0, never decrease and end at its length.
+    #[error("the {offsets} face offsets do not cut the {indices} indices into faces (they must start at 0, never decrease and end at the index count)")]
+    MalformedOffsets {
+        /// How many offsets were given.
+        offsets: usize,
+        /// How many indices were given.
+        indices: usize,
+    },
     /// Occurs when the input has more elements than 32-bit indices address.
     #[error("the input is too large: {what}")]
     TooLarge {

@@ -134,6 +134,25 @@ impl Mesh {
                 }
             }
         }
+        for (slots, kind) in [
+            (&self.v_slots, "vertices"),
+            (&self.e_slots, "edges"),
+            (&self.f_slots, "faces"),
+        ] {
+            let live = (0..slots.slot_count())
+                .filter(|&i| slots.is_live(i))
+                .count();
+            if live != slots.live() {
+                return Err(broken(
+                    1,
+                    None,
+                    format!(
+                        "{live} {kind} have live generations but the count says {}",
+                        slots.live()
+                    ),
+                ));
+            }
+        }
         let flagged = self.holes().count();
         if flagged != self.holes {
             return Err(broken(

@@ -19,7 +19,7 @@
 //! side its normal points to (the order given when building); a hole runs
 //! the other way round, as the twins of its boundary's half-edges.
 
-use crate::circulate::{FaceHalfedges, VertexOutgoing};
+use crate::circulate::{FaceHalfedges, VertexNeighbors, VertexOutgoing};
 use crate::error::Result;
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 use crate::mesh::Mesh;
@@ -263,7 +263,7 @@ impl<'m> VertexView<'m> {
     #[inline]
     pub fn neighbors(self) -> impl Iterator<Item = VertexKey> + 'm {
         let m = self.mesh;
-        VertexOutgoing::new(m, self.v).map(move |h| m.vkey(m.dest_of(h)))
+        VertexNeighbors::new(m, self.v).map(move |w| m.vkey(w))
     }
 
     /// Faces around the vertex (holes skipped), same order: the face left of

@@ -557,3 +557,162 @@ fn same_operations_give_same_values() {
         .tests(60)
         .quickcheck(deterministic as fn(u8, u16, Vec<Step>) -> bool);
 }
+
+// ----- one test per remaining operator ------------------------------------------
+
+/// The cube with a conserved face area of 1 per face, a face colour and a
+/// conserved vertex mass of 1 per vertex.
+type Weighed = (
+    Mesh,
+    FaceAttr<f64, Conserved>,
+    FaceAttr<[f32; 3]>,
+    VertexAttr<f64, Conserved>,
+);
+
+fn weighed_cube() -> Weighed {
+    let mut mesh = meshloom::shapes::cube();
+    let area = mesh
+        .add_attr_with_rule::<FaceKey, f64, Conserved>("area")
+        .unwrap();
+    let colour = mesh.add_face_attr::<[f32; 3]>("colour").unwrap();
+    let mass = mesh
+        .add_attr_with_rule::<VertexKey, f64, Conserved>("mass")
+        .unwrap();
+    for (i, f) in mesh.faces().collect::<Vec<_>>().into_iter().enumerate() {
+        mesh.set_attr(&area, f, 1.0).unwrap();
+        mesh.set_attr(&colour, f, [i as f32, 0.0, 0.0]).unwrap();
+    }
+    mesh.fill_attr(&mass, 1.0).unwrap();
+    (mesh, area, colour, mass)
+}
+
+#[test]
+fn poke_face_centre_is_the_centroid_and_pieces_share_the_area() {
+    let (mut mesh, area, colour, mass) = weighed_cube();
+    let f = mesh.faces().next().unwrap();
+    let centroid = mesh.face_centroid(f).unwrap();
+    let c = mesh.poke_face(f).unwrap();
+    assert_eq!(mesh.position(c).unwrap(), centroid);
+    assert_eq!(mesh.attr(&mass, c).unwrap(), None);
+    let pieces: Vec<FaceKey> = mesh.vertex(c).unwrap().faces().collect();
+    assert_eq!(pieces.len(), 4);
+    let shared: f64 = pieces
+        .iter()
+        .map(|&p| mesh.attr(&area, p).unwrap().unwrap())
+        .sum();
+    assert!((shared - 1.0).abs() < 1e-12);
+    for p in pieces {
+        assert_eq!(mesh.attr(&colour, p).unwrap(), Some(&[0.0, 0.0, 0.0]));
+    }
+    assert!((total(&mesh, &area) - 6.0).abs() < 1e-12);
+}
+
+#[test]
+fn triangulate_shares_out_and_copies() {
+    let (mut mesh, area, colour, _) = weighed_cube();
+    let f = mesh.faces().nth(1).unwrap();
+    let tris = mesh.triangulate(f).unwrap();
+    assert_eq!(tris.len(), 2);
+    for &t in &tris {
+        assert!((mesh.attr(&area, t).unwrap().unwrap() - 0.5).abs() < 1e-12);
+        assert_eq!(mesh.attr(&colour, t).unwrap(), Some(&[1.0, 0.0, 0.0]));
+    }
+}
+
+#[test]
+fn flip_edge_keeps_totals_and_edge_values() {
+    let mut mesh = meshloom::shapes::icosahedron();
+    let area = mesh
+        .add_attr_with_rule::<FaceKey, f64, Conserved>("area")
+        .unwrap();
+    let crease = mesh.add_edge_attr::<f32>("crease").unwrap();
+    let faces: Vec<FaceKey> = mesh.faces().collect();
+    for (i, &f) in faces.iter().enumerate() {
+        mesh.set_attr(&area, f, i as f64).unwrap();
+    }
+    let e = mesh.edges().next().unwrap();
+    mesh.set_attr(&crease, e, 0.75).unwrap();
+    let before = total(&mesh, &area);
+    let e = mesh.flip_edge(e).unwrap();
+    assert_eq!(total(&mesh, &area), before);
+    assert_eq!(mesh.attr(&crease, e).unwrap(), Some(&0.75));
+}
+
+#[test]
+fn remove_vertex_merges_its_ring() {
+    let (mut mesh, area, colour, mass) = weighed_cube();
+    let v = mesh.vertices().next().unwrap();
+    let f = mesh.remove_vertex(v).unwrap();
+    assert_eq!(mesh.attr(&area, f).unwrap(), Some(&3.0));
+    // Three different colours average.
+    assert!(mesh.attr(&colour, f).unwrap().is_some());
+    // The removed vertex's value goes with it.
+    assert!(mesh.attr(&mass, v).is_err());
+    assert_eq!(total(&mesh, &mass), 7.0);
+}
+
+#[test]
+fn remove_face_drops_and_fill_hole_starts_empty() {
+    let (mut mesh, area, colour, _) = weighed_cube();
+    let f = mesh.faces().next().unwrap();
+    let holes = mesh.remove_face(f).unwrap();
+    assert_eq!(total(&mesh, &area), 5.0);
+    let filled = mesh.fill_hole(holes[0]).unwrap();
+    assert_eq!(mesh.attr(&area, filled).unwrap(), None);
+    assert_eq!(mesh.attr(&colour, filled).unwrap(), None);
+    // Interpolated values can be inferred from the neighbours on demand.
+    assert!(mesh.infer_attr(&colour, filled).unwrap().is_some());
+}
+
+#[test]
+fn compact_moves_values_with_their_elements() {
+    let (mut mesh, area, colour, mass) = weighed_cube();
+    let uv = mesh.add_halfedge_attr::<[f32; 2]>("uv").unwrap();
+    for (i, h) in mesh.halfedges().collect::<Vec<_>>().into_iter().enumerate() {
+        mesh.set_attr(&uv, h, [i as f32, 0.0]).unwrap();
+    }
+    let h = mesh.halfedges().nth(5).unwrap();
+    mesh.collapse_edge(h).unwrap();
+    let before: Vec<(VertexKey, Option<f64>, [f64; 3])> = mesh
+        .vertices()
+        .map(|v| {
+            (
+                v,
+                mesh.attr(&mass, v).unwrap().copied(),
+                mesh.position(v).unwrap(),
+            )
+        })
+        .collect();
+    let corner_before: Vec<(HalfedgeKey, Option<[f32; 2]>)> = mesh
+        .halfedges()
+        .map(|h| (h, mesh.attr(&uv, h).unwrap().copied()))
+        .collect();
+    let face_before: Vec<(FaceKey, Option<f64>, Option<[f32; 3]>)> = mesh
+        .faces()
+        .map(|f| {
+            (
+                f,
+                mesh.attr(&area, f).unwrap().copied(),
+                mesh.attr(&colour, f).unwrap().copied(),
+            )
+        })
+        .collect();
+    let maps = mesh.compact();
+    for (v, m, p) in before {
+        let w = maps.vertex(v).unwrap();
+        assert_eq!(mesh.attr(&mass, w).unwrap().copied(), m);
+        assert_eq!(mesh.position(w).unwrap(), p);
+    }
+    for (h, x) in corner_before {
+        assert_eq!(
+            mesh.attr(&uv, maps.halfedge(h).unwrap()).unwrap().copied(),
+            x
+        );
+    }
+    for (f, a, c) in face_before {
+        let g = maps.face(f).unwrap();
+        assert_eq!(mesh.attr(&area, g).unwrap().copied(), a);
+        assert_eq!(mesh.attr(&colour, g).unwrap().copied(), c);
+    }
+    mesh.validate().unwrap();
+}

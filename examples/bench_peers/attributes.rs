@@ -4,30 +4,14 @@
 
 use std::hint::black_box;
 
+use meshloom::shapes::{self, GridFaces};
 use meshloom::{Mesh, VertexKey};
 
 use crate::harness::{Peer, Report};
 
-/// A triangle grid of `cols × rows` cells on a gently bumped plane:
-/// `(cols + 1)(rows + 1)` vertices.
-pub(crate) fn grid(cols: u32, rows: u32) -> Mesh {
-    let mut positions = Vec::with_capacity(((cols + 1) * (rows + 1)) as usize);
-    for y in 0..=rows {
-        for x in 0..=cols {
-            let z = f64::from((x * 7 + y * 13) % 10) / 10.0;
-            positions.push([f64::from(x), f64::from(y), z]);
-        }
-    }
-    let mut faces = Vec::with_capacity((2 * cols * rows) as usize);
-    for y in 0..rows {
-        for x in 0..cols {
-            let a = y * (cols + 1) + x;
-            let (b, c, d) = (a + 1, a + cols + 2, a + cols + 1);
-            faces.push([a, b, c]);
-            faces.push([a, c, d]);
-        }
-    }
-    Mesh::from_polygons(&positions, &faces).expect("the grid is a valid mesh")
+/// The benchmark grid: 499 × 499 cells in triangles, 250,000 vertices.
+pub(crate) fn grid() -> Mesh {
+    shapes::grid(499, 499, GridFaces::Triangles)
 }
 
 /// `iterations` rounds of uniform Laplacian smoothing: every vertex moves to
@@ -140,7 +124,7 @@ pub(crate) fn smooth_raw(mesh: &mut Mesh, vertices: &[VertexKey], iterations: us
 
 /// Run the attribute rows.
 pub fn run(r: &mut Report) {
-    let mesh = grid(499, 499);
+    let mesh = grid();
     let vertices: Vec<VertexKey> = mesh.vertices().collect();
     r.time(
         "attr: 10x uniform Laplacian, 250k-vertex grid",

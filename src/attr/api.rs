@@ -9,10 +9,10 @@ use super::handle::{Attr, EdgeAttr, Element, FaceAttr, HalfedgeAttr, VertexAttr}
 use super::rule::Rule;
 use super::rules::Interpolate;
 use super::value::{Dynamic, Value, ValueType};
-use super::view::{check_dynamic, AttrView, AttrViewMut};
+use super::view::{AttrView, AttrViewMut};
 use super::Columns;
 use crate::error::{Error, Result};
-use crate::keys::{ElementKind, VertexKey};
+use crate::keys::ElementKind;
 use crate::mesh::Mesh;
 use crate::slots::Slots;
 
@@ -57,7 +57,7 @@ impl Mesh {
     }
 
     #[inline]
-    fn element_slot<K: Element>(&self, key: K) -> Result<usize> {
+    pub(super) fn element_slot<K: Element>(&self, key: K) -> Result<usize> {
         let (slots, shift) = self.arena_slots(K::KIND);
         if slots.is_current(key.slot() >> shift, key.generation_of_key()) {
             Ok(key.slot() as usize)
@@ -409,79 +409,12 @@ impl Mesh {
             marker: PhantomData,
         })
     }
-
-    // ----- dynamic access by name ----------------------------------------------------
-
-    /// The value of `key`'s element in the column `name`, of any portable
-    /// type, as a [`Value`]: how file writers read attributes.
-    ///
-    /// # Errors
-    /// [`Error::StaleKey`], [`Error::AttributeMissing`].
-    pub fn attr_value<K: Element>(&self, name: &str, key: K) -> Result<Option<Value>> {
-        let i = self.element_slot(key)?;
-        let cols = self.columns_of(K::KIND);
-        let c = cols.find(name).ok_or_else(|| Error::AttributeMissing {
-            kind: K::KIND,
-            name: name.to_owned(),
-        })?;
-        Ok(cols.cols[c].1.value_at(i))
-    }
-
-    /// Set `key`'s value in the column `name` from a [`Value`] (`None`
-    /// clears it): how file readers write attributes.
-    ///
-    /// # Errors
-    /// [`Error::StaleKey`], [`Error::AttributeMissing`];
-    /// [`Error::AttributeType`] if the value does not convert to the
-    /// column's type.
-    pub fn set_attr_value<K: Element>(
-        &mut self,
-        name: &str,
-        key: K,
-        value: Option<&Value>,
-    ) -> Result<()> {
-        let i = self.element_slot(key)?;
-        let is_position_column = K::KIND == ElementKind::Vertex
-            && self.attrs.position.is_some()
-            && self.attrs.vertex.find(name) == self.attrs.position;
-        if is_position_column {
-            if let Some(v) = value {
-                let p =
-                    <[f64; 3]>::from_value(v).ok_or_else(|| mismatch::<K>(name, "[f64; 3]", v))?;
-                return self.set_position(VertexKey::new(key.slot(), key.generation_of_key()), p);
-            }
-        }
-        let cols = self.attrs.columns_mut(K::KIND);
-        let c = cols.find(name).ok_or_else(|| Error::AttributeMissing {
-            kind: K::KIND,
-            name: name.to_owned(),
-        })?;
-        if let (Some(ty), Some(v)) = (cols.meta[c].value_type, value) {
-            check_dynamic(K::KIND, name, ty, v)?;
-        }
-        let col = &mut cols.cols[c].1;
-        if col.set_value(i, value) {
-            Ok(())
-        } else {
-            let v = value.cloned().unwrap_or_default();
-            Err(mismatch::<K>(name, col.type_name(), &v))
-        }
-    }
 }
 
 fn stale_handle<K: Element, T: Attribute, R>(h: &Attr<K, T, R>) -> Error {
     Error::AttributeHandle {
         kind: K::KIND,
         name: h.name.clone(),
-    }
-}
-
-fn mismatch<K: Element>(name: &str, expected: &'static str, v: &Value) -> Error {
-    Error::AttributeType {
-        kind: K::KIND,
-        name: name.to_owned(),
-        expected,
-        found: v.value_type().name(),
     }
 }
 

@@ -54,6 +54,7 @@
 
 mod api;
 mod attribute;
+mod by_name;
 pub(crate) mod column;
 mod handle;
 mod infer;

@@ -1,0 +1,371 @@
+//! The OBJ statements, one after the other, with every feature and error;
+//! large plain files go to [`halves`](super::halves) first.
+
+use super::halves::{parse_halves, PARALLEL_MIN};
+use crate::io::attrs::{Data, SoupColumn};
+use crate::io::error::{Error, Location};
+use crate::io::soup::Soup;
+use crate::io::text::{is_space, parse_f64, parse_f64_at, parse_i64, Lines, Tokens};
+
+/// Resolve a 1-based or negative OBJ index against `count` elements.
+#[inline]
+fn resolve(index: i64, count: usize) -> Option<u32> {
+    let i = if index > 0 {
+        index - 1
+    } else {
+        count as i64 + index
+    };
+    (index != 0 && i >= 0 && (i as u64) < count as u64).then_some(i as u32)
+}
+
+/// Corner references to texture coordinates and normals (`NONE` = absent).
+#[derive(Default)]
+struct CornerRefs {
+    texcoords: Vec<[f64; 2]>,
+    normals: Vec<[f64; 3]>,
+    texcoord_of: Vec<u32>,
+    normal_of: Vec<u32>,
+}
+
+/// Parse OBJ bytes into a soup.
+pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
+    if !record && bytes.len() >= PARALLEL_MIN {
+        if let Some(soup) = parse_halves(bytes) {
+            return Ok(soup);
+        }
+    }
+    parse_serial(bytes, record)
+}
+
+/// Parse OBJ bytes into a soup, one statement after the other.
+pub(super) fn parse_serial(bytes: &[u8], record: bool) -> Result<Soup, Error> {
+    let mut soup = Soup::new(record);
+    let mut refs = CornerRefs::default();
+    let mut lines = Lines::new(bytes);
+    let mut groups = Names::new("group");
+    let mut objects = Names::new("object");
+    let mut materials = Names::new("material");
+    // Reserve by the input's size only: about 30 bytes per statement.
+    soup.polygons.positions.reserve(bytes.len() / 48);
+    soup.polygons.indices.reserve(bytes.len() / 8);
+    soup.polygons.offsets.reserve(bytes.len() / 24);
+    let n = bytes.len();
+    let mut pos = 0;
+    while pos < n {
+        lines.line += 1;
+        // The hot statements, `v x y z` and `f` with plain indices, are
+        // parsed in place in one pass; everything else goes by tokens.
+        let line_no = lines.line;
+        let at = || Location::line(line_no);
+        let head = &bytes[pos..n.min(pos + 2)];
+        if head.len() == 2
+            && (head[1] == b' ' || head[1] == b'\t')
+            && (head[0] == b'v' || head[0] == b'f')
+        {
+            let mut i = pos + 2;
+            if head[0] == b'v' {
+                let mut p = [0.0; 3];
+                for c in &mut p {
+                    while i < n && is_space(bytes[i]) {
+                        i += 1;
+                    }
+                    *c = parse_f64_at(bytes, &mut i).ok_or_else(|| {
+                        Error::syntax(at(), "a vertex coordinate", token_at(bytes, i))
+                    })?;
+                }
+                soup.polygons.positions.push(p);
+                soup.vertex_read_at(line_no);
+            } else {
+                let start = soup.polygons.indices.len();
+                loop {
+                    while i < n && is_space(bytes[i]) {
+                        i += 1;
+                    }
+                    if i >= n || bytes[i] == b'\n' || bytes[i] == b'#' {
+                        break;
+                    }
+                    // A plain index, parsed in place.
+                    let st = i;
+                    let mut v: u32 = 0;
+                    while i < n && i - st < 9 && bytes[i].is_ascii_digit() {
+                        v = v * 10 + u32::from(bytes[i] - b'0');
+                        i += 1;
+                    }
+                    let plain = i > st
+                        && v > 0
+                        && v as usize <= soup.polygons.positions.len()
+                        && refs.texcoord_of.is_empty()
+                        && refs.normal_of.is_empty()
+                        && (i == n || is_space(bytes[i]) || bytes[i] == b'\n');
+                    if plain {
+                        soup.polygons.indices.push(v - 1);
+                        continue;
+                    }
+                    let tok = token_at(bytes, st);
+                    i = st + tok.len();
+                    face_corner(tok, &mut soup, &mut refs, at)?;
+                }
+                if soup.polygons.indices.len() == start {
+                    return Err(Error::syntax(at(), "vertex indices after f", b""));
+                }
+                soup.end_face(line_no);
+            }
+            // The rest of the line (a `w`, vertex colours, a comment).
+            pos = match bytes[i.min(n)..].iter().position(|&b| b == b'\n') {
+                Some(k) => i + k + 1,
+                None => n,
+            };
+            continue;
+        }
+        let end = bytes[pos..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(n, |k| pos + k);
+        let line = &bytes[pos..end];
+        let line = line.strip_suffix(b"\r").unwrap_or(line);
+        pos = end + 1;
+        let mut t = Tokens::new(line);
+        let Some(key) = t.next() else { continue };
+        match key {
+            b"v" => {
+                let mut p = [0.0; 3];
+                for c in &mut p {
+                    let tok = t.next().unwrap_or_default();
+                    *c = parse_f64(tok)
+                        .ok_or_else(|| Error::syntax(at(), "a vertex coordinate", tok))?;
+                }
+                soup.polygons.positions.push(p);
+                soup.vertex_read_at(line_no);
+            }
+            b"f" => {
+                let start = soup.polygons.indices.len();
+                for corner in t {
+                    face_corner(corner, &mut soup, &mut refs, at)?;
+                }
+                if soup.polygons.indices.len() == start {
+                    return Err(Error::syntax(at(), "vertex indices after f", b""));
+                }
+                soup.end_face(line_no);
+            }
+            b"vt" => {
+                let tok = t.next().unwrap_or_default();
+                let u = parse_f64(tok)
+                    .ok_or_else(|| Error::syntax(at(), "a texture coordinate", tok))?;
+                let v = match t.next() {
+                    Some(tok) => parse_f64(tok)
+                        .ok_or_else(|| Error::syntax(at(), "a texture coordinate", tok))?,
+                    None => 0.0,
+                };
+                refs.texcoords.push([u, v]);
+            }
+            b"vn" => {
+                let mut n = [0.0; 3];
+                for c in &mut n {
+                    let tok = t.next().unwrap_or_default();
+                    *c = parse_f64(tok)
+                        .ok_or_else(|| Error::syntax(at(), "a normal coordinate", tok))?;
+                }
+                refs.normals.push(n);
+            }
+            b"g" | b"o" | b"usemtl" => {
+                let rest = line.trim_ascii();
+                let name = rest[key.len()..].trim_ascii();
+                let name = String::from_utf8_lossy(name).into_owned();
+                let face = soup.face_count();
+                match key {
+                    b"g" => groups.name(face, name),
+                    b"o" => objects.name(face, name),
+                    _ => materials.name(face, name),
+                }
+            }
+            _ => {}
+        }
+    }
+    let nf = soup.face_count();
+    let nc = soup.polygons.indices.len();
+    let a = &mut soup.attrs;
+    a.face.extend(objects.finish(nf));
+    a.face.extend(groups.finish(nf));
+    a.face.extend(materials.finish(nf));
+    if !refs.texcoord_of.is_empty() {
+        a.corner.push(corner_column(
+            "texcoord",
+            &refs.texcoord_of,
+            &refs.texcoords,
+            nc,
+            Data::Vec2,
+        ));
+    }
+    if !refs.normal_of.is_empty() {
+        a.corner.push(corner_column(
+            "normal",
+            &refs.normal_of,
+            &refs.normals,
+            nc,
+            Data::Vec3,
+        ));
+    }
+    Ok(soup)
+}
+
+/// A corner column from per-corner references into `values`.
+fn corner_column<T: Copy + Default>(
+    name: &str,
+    of: &[u32],
+    values: &[T],
+    corners: usize,
+    wrap: fn(Vec<T>) -> Data,
+) -> SoupColumn {
+    let mut present = vec![false; corners];
+    let mut data = vec![T::default(); corners];
+    for (c, &i) in of.iter().enumerate() {
+        if let Some(v) = values.get(i as usize) {
+            data[c] = *v;
+            present[c] = true;
+        }
+    }
+    let all = present.iter().all(|&p| p);
+    SoupColumn {
+        name: name.to_owned(),
+        data: wrap(data),
+        present: (!all).then_some(present),
+    }
+}
+
+/// The current name of a `g`, `o` or `usemtl` statement, per face.
+struct Names {
+    column: &'static str,
+    current: Option<String>,
+    values: Vec<String>,
+    present: Vec<bool>,
+    any: bool,
+}
+
+impl Names {
+    fn new(column: &'static str) -> Names {
+        Names {
+            column,
+            current: None,
+            values: Vec::new(),
+            present: Vec::new(),
+            any: false,
+        }
+    }
+
+    /// From face `face` on, the name is `name`.
+    fn name(&mut self, face: usize, name: String) {
+        self.fill(face);
+        self.current = Some(name);
+        self.any = true;
+    }
+
+    fn fill(&mut self, upto: usize) {
+        let current = self.current.clone();
+        while self.values.len() < upto {
+            self.present.push(current.is_some());
+            self.values.push(current.clone().unwrap_or_default());
+        }
+    }
+
+    fn finish(mut self, faces: usize) -> Option<SoupColumn> {
+        if !self.any {
+            return None;
+        }
+        self.fill(faces);
+        let all = self.present.iter().all(|&p| p);
+        Some(SoupColumn {
+            name: self.column.to_owned(),
+            data: Data::Text(self.values),
+            present: (!all).then_some(self.present),
+        })
+    }
+}
+
+/// The token that starts at `s[i]`: up to whitespace or the line end.
+fn token_at(s: &[u8], i: usize) -> &[u8] {
+    let rest = s.get(i..).unwrap_or_default();
+    let len = rest
+        .iter()
+        .position(|&b| is_space(b) || b == b'\n')
+        .unwrap_or(rest.len());
+    &rest[..len]
+}
+
+/// One `v[/vt][/vn]` corner of an `f` statement.
+#[inline]
+fn face_corner(
+    corner: &[u8],
+    soup: &mut Soup,
+    refs: &mut CornerRefs,
+    at: impl Fn() -> Location,
+) -> Result<(), Error> {
+    // The common case: a plain positive index.
+    if corner.len() <= 9 && corner.iter().all(u8::is_ascii_digit) {
+        let index = corner
+            .iter()
+            .fold(0u32, |a, &d| a * 10 + u32::from(d - b'0'));
+        let count = soup.polygons.positions.len();
+        if index == 0 || index as usize > count {
+            return Err(Error::IndexOutOfRange {
+                at: at(),
+                index: i64::from(index),
+                count,
+            });
+        }
+        soup.polygons.indices.push(index - 1);
+        if !refs.texcoord_of.is_empty() {
+            refs.texcoord_of.push(u32::MAX);
+        }
+        if !refs.normal_of.is_empty() {
+            refs.normal_of.push(u32::MAX);
+        }
+        return Ok(());
+    }
+    let mut parts = corner.splitn(3, |&b| b == b'/');
+    let v_tok = parts.next().unwrap_or_default();
+    let index = parse_i64(v_tok).ok_or_else(|| Error::syntax(at(), "a vertex index", corner))?;
+    let count = soup.polygons.positions.len();
+    let v = resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
+        at: at(),
+        index,
+        count,
+    })?;
+    soup.polygons.indices.push(v);
+    let vt = match parts.next() {
+        Some(tok) if !tok.is_empty() => {
+            let index = parse_i64(tok)
+                .ok_or_else(|| Error::syntax(at(), "a texture coordinate index", corner))?;
+            let count = refs.texcoords.len();
+            resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
+                at: at(),
+                index,
+                count,
+            })?
+        }
+        _ => u32::MAX,
+    };
+    let vn = match parts.next() {
+        Some(tok) if !tok.is_empty() => {
+            let index =
+                parse_i64(tok).ok_or_else(|| Error::syntax(at(), "a normal index", corner))?;
+            let count = refs.normals.len();
+            resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
+                at: at(),
+                index,
+                count,
+            })?
+        }
+        _ => u32::MAX,
+    };
+    if vt != u32::MAX || !refs.texcoord_of.is_empty() {
+        let c = soup.polygons.indices.len() - 1;
+        refs.texcoord_of.resize(c, u32::MAX);
+        refs.texcoord_of.push(vt);
+    }
+    if vn != u32::MAX || !refs.normal_of.is_empty() {
+        let c = soup.polygons.indices.len() - 1;
+        refs.normal_of.resize(c, u32::MAX);
+        refs.normal_of.push(vn);
+    }
+    Ok(())
+}

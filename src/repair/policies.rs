@@ -1,0 +1,450 @@
+//! The policies themselves, each a pass over the soup that keeps its
+//! provenance.
+
+use std::collections::HashMap;
+
+use super::Provenance;
+
+const NONE: u32 = u32::MAX;
+
+/// The soup under repair, with its provenance.
+pub(super) struct Soup {
+    pub(super) positions: Vec<[f64; 3]>,
+    pub(super) vertex_count: usize,
+    pub(super) offsets: Vec<u32>,
+    pub(super) indices: Vec<u32>,
+    pub(super) prov: Provenance,
+}
+
+impl Soup {
+    pub(super) fn face_count(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    fn face(&self, f: usize) -> std::ops::Range<usize> {
+        self.offsets[f] as usize..self.offsets[f + 1] as usize
+    }
+
+    /// Add a copy of vertex `v`; returns its index.
+    fn copy_vertex(&mut self, v: u32) -> u32 {
+        let n = self.vertex_count as u32;
+        if !self.positions.is_empty() {
+            self.positions.push(self.positions[v as usize]);
+        }
+        let src = self.prov.vertex_source[v as usize];
+        self.prov.vertex_source.push(src);
+        self.vertex_count += 1;
+        n
+    }
+
+    /// Keep the vertices with `keep[v]`, renumbered densely.
+    fn compact_vertices(&mut self, new_of: &[u32]) {
+        let mut positions = Vec::new();
+        let mut source = Vec::new();
+        for (v, &n) in new_of.iter().enumerate() {
+            if n != NONE && n as usize == source.len() {
+                if !self.positions.is_empty() {
+                    positions.push(self.positions[v]);
+                }
+                source.push(self.prov.vertex_source[v]);
+            }
+        }
+        for i in &mut self.indices {
+            *i = new_of[*i as usize];
+        }
+        self.vertex_count = source.len();
+        self.positions = positions;
+        self.prov.vertex_source = source;
+    }
+
+    /// Rebuild the faces from per-face corner lists (input corner indices).
+    fn rebuild_faces(&mut self, faces: impl Iterator<Item = (u32, Vec<u32>)>) {
+        let mut offsets = vec![0u32];
+        let mut indices = Vec::with_capacity(self.indices.len());
+        let mut face_source = Vec::with_capacity(self.face_count());
+        let mut corner_source = Vec::with_capacity(self.indices.len());
+        let faces: Vec<_> = faces.collect();
+        for (f, corners) in faces {
+            for c in corners {
+                indices.push(self.indices[c as usize]);
+                corner_source.push(self.prov.corner_source[c as usize]);
+            }
+            offsets.push(indices.len() as u32);
+            face_source.push(self.prov.face_source[f as usize]);
+        }
+        self.offsets = offsets;
+        self.indices = indices;
+        self.prov.face_source = face_source;
+        self.prov.corner_source = corner_source;
+    }
+
+    pub(super) fn weld(&mut self, class: &[u32]) -> usize {
+        if self.positions.is_empty() {
+            return 0;
+        }
+        let mut first: HashMap<([u64; 3], u32), u32> = HashMap::with_capacity(self.positions.len());
+        let mut new_of = vec![NONE; self.positions.len()];
+        let mut n = 0u32;
+        let mut rep = vec![0u32; self.positions.len()];
+        for (v, p) in self.positions.iter().enumerate() {
+            let key = (
+                [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()],
+                class.get(v).copied().unwrap_or(0),
+            );
+            let r = *first.entry(key).or_insert(v as u32);
+            rep[v] = r;
+            if r == v as u32 {
+                new_of[v] = n;
+                n += 1;
+            }
+        }
+        let welded = self.positions.len() - n as usize;
+        if welded == 0 {
+            return 0;
+        }
+        for v in 0..rep.len() {
+            new_of[v] = new_of[rep[v] as usize];
+        }
+        self.compact_vertices(&new_of);
+        welded
+    }
+
+    pub(super) fn drop_degenerate(&mut self) -> (usize, usize) {
+        let mut collapsed = 0;
+        let mut dropped = 0;
+        let mut kept = Vec::with_capacity(self.face_count());
+        let mut changed = false;
+        for f in 0..self.face_count() {
+            let r = self.face(f);
+            let n = r.len();
+            // Keep a corner unless the corner after it (cyclically) is the
+            // same vertex: the last of each run stays, the first corner of
+            // the face stays first.
+            let corners: Vec<u32> = r
+                .clone()
+                .filter(|&c| {
+                    let next = if c + 1 == r.end { r.start } else { c + 1 };
+                    n < 2 || self.indices[c] != self.indices[next]
+                })
+                .map(|c| c as u32)
+                .collect();
+            // A face whose corners are all one vertex keeps none above.
+            let distinct_ok = corners.len() >= 3 && {
+                let mut vs: Vec<u32> = corners.iter().map(|&c| self.indices[c as usize]).collect();
+                vs.sort_unstable();
+                vs.windows(2).all(|w| w[0] != w[1])
+            };
+            if !distinct_ok {
+                dropped += 1;
+                changed = true;
+                continue;
+            }
+            if corners.len() != n {
+                collapsed += n - corners.len();
+                changed = true;
+            }
+            kept.push((f as u32, corners));
+        }
+        if changed {
+            self.rebuild_faces(kept.into_iter());
+        }
+        (collapsed, dropped)
+    }
+
+    pub(super) fn drop_duplicates(&mut self) -> usize {
+        let mut sorted = self.indices.clone();
+        for f in 0..self.face_count() {
+            sorted[self.face(f)].sort_unstable();
+        }
+        let mut seen: HashMap<&[u32], ()> = HashMap::with_capacity(self.face_count());
+        let mut keep = vec![true; self.face_count()];
+        let mut dropped = 0;
+        for (f, k) in keep.iter_mut().enumerate() {
+            if seen.insert(&sorted[self.face(f)], ()).is_some() {
+                *k = false;
+                dropped += 1;
+            }
+        }
+        drop(seen);
+        if dropped > 0 {
+            let faces: Vec<(u32, Vec<u32>)> = (0..self.face_count())
+                .filter(|&f| keep[f])
+                .map(|f| (f as u32, self.face(f).map(|c| c as u32).collect()))
+                .collect();
+            self.rebuild_faces(faces.into_iter());
+        }
+        dropped
+    }
+
+    /// The corner after `c` in its face, for every corner.
+    fn next_corners(&self) -> Vec<u32> {
+        let mut next = vec![0u32; self.indices.len()];
+        for f in 0..self.face_count() {
+            let r = self.face(f);
+            for c in r.clone() {
+                next[c] = if c + 1 == r.end { r.start } else { c + 1 } as u32;
+            }
+        }
+        next
+    }
+
+    /// Corners grouped by their undirected edge: `(order, starts)` where
+    /// group `g` is `order[starts[g]..starts[g + 1]]`, each in corner order.
+    fn edge_groups(&self, next: &[u32]) -> (Vec<u32>, Vec<u32>) {
+        let key = |c: usize| {
+            let (a, b) = (self.indices[c], self.indices[next[c] as usize]);
+            (u64::from(a.min(b)) << 32) | u64::from(a.max(b))
+        };
+        let mut order: Vec<u32> = (0..self.indices.len() as u32).collect();
+        order.sort_unstable_by_key(|&c| (key(c as usize), c));
+        let mut starts = Vec::new();
+        for (i, &c) in order.iter().enumerate() {
+            if i == 0 || key(c as usize) != key(order[i - 1] as usize) {
+                starts.push(i as u32);
+            }
+        }
+        starts.push(order.len() as u32);
+        (order, starts)
+    }
+
+    /// The face of every corner.
+    fn corner_faces(&self) -> Vec<u32> {
+        let mut face_of = vec![0u32; self.indices.len()];
+        for f in 0..self.face_count() {
+            for c in self.face(f) {
+                face_of[c] = f as u32;
+            }
+        }
+        face_of
+    }
+
+    pub(super) fn orient(&mut self) -> (usize, usize) {
+        let next = self.next_corners();
+        let (order, starts) = self.edge_groups(&next);
+        let face_of = self.corner_faces();
+        // Partner corner across each edge used by exactly two faces.
+        let mut partner = vec![NONE; self.indices.len()];
+        for g in starts.windows(2) {
+            if g[1] - g[0] == 2 {
+                let (c, d) = (order[g[0] as usize], order[g[0] as usize + 1]);
+                if face_of[c as usize] != face_of[d as usize] {
+                    partner[c as usize] = d;
+                    partner[d as usize] = c;
+                }
+            }
+        }
+        let nf = self.face_count();
+        let mut flip: Vec<u8> = vec![2; nf]; // 2 = not reached
+        let mut conflicts = 0;
+        let mut queue = Vec::new();
+        let mut flips = 0;
+        for seed in 0..nf {
+            if flip[seed] != 2 {
+                continue;
+            }
+            flip[seed] = 0;
+            queue.clear();
+            queue.push(seed as u32);
+            let mut head = 0;
+            let mut flipped_here = 0;
+            while head < queue.len() {
+                let f = queue[head] as usize;
+                head += 1;
+                for c in self.face(f) {
+                    let p = partner[c];
+                    if p == NONE {
+                        continue;
+                    }
+                    let g = face_of[p as usize] as usize;
+                    let same = self.indices[c] == self.indices[p as usize];
+                    let want = flip[f] ^ u8::from(same);
+                    if flip[g] == 2 {
+                        flip[g] = want;
+                        flipped_here += usize::from(want);
+                        queue.push(g as u32);
+                    } else if flip[g] != want && f < g {
+                        conflicts += 1;
+                    }
+                }
+            }
+            if 2 * flipped_here > queue.len() {
+                for &f in &queue {
+                    flip[f as usize] ^= 1;
+                }
+                flipped_here = queue.len() - flipped_here;
+            }
+            flips += flipped_here;
+        }
+        if flips > 0 {
+            let faces: Vec<(u32, Vec<u32>)> = (0..nf)
+                .map(|f| {
+                    let r = self.face(f);
+                    let mut corners: Vec<u32> = r.clone().map(|c| c as u32).collect();
+                    if flip[f] == 1 {
+                        corners[1..].reverse();
+                    }
+                    (f as u32, corners)
+                })
+                .collect();
+            self.rebuild_faces(faces.into_iter());
+        }
+        (flips, conflicts)
+    }
+
+    pub(super) fn split_edges(&mut self) -> (usize, usize) {
+        let next = self.next_corners();
+        let (order, starts) = self.edge_groups(&next);
+        let face_of = self.corner_faces();
+        let mut bad = 0;
+        // (face, vertex) pairs that get their own copy.
+        let mut detach: Vec<(u32, u32)> = Vec::new();
+        for g in starts.windows(2) {
+            let group = &order[g[0] as usize..g[1] as usize];
+            if group.len() < 2 {
+                continue;
+            }
+            let dir = |c: u32| self.indices[c as usize] < self.indices[next[c as usize] as usize];
+            let distinct_faces =
+                group.len() == 2 && face_of[group[0] as usize] != face_of[group[1] as usize];
+            if group.len() == 2 && dir(group[0]) != dir(group[1]) && distinct_faces {
+                continue;
+            }
+            bad += 1;
+            // Keep the first pair of opposite uses, or the first use alone.
+            let mut keep = [group[0], NONE];
+            'pair: for (i, &c) in group.iter().enumerate() {
+                for &d in &group[i + 1..] {
+                    if dir(c) != dir(d) && face_of[c as usize] != face_of[d as usize] {
+                        keep = [c, d];
+                        break 'pair;
+                    }
+                }
+            }
+            for &c in group {
+                if !keep.contains(&c) {
+                    let f = face_of[c as usize];
+                    detach.push((f, self.indices[c as usize]));
+                    detach.push((f, self.indices[next[c as usize] as usize]));
+                }
+            }
+        }
+        detach.sort_unstable();
+        detach.dedup();
+        let copies = detach.len();
+        for &(f, v) in &detach {
+            let nv = self.copy_vertex(v);
+            for c in self.face(f as usize) {
+                if self.indices[c] == v {
+                    self.indices[c] = nv;
+                }
+            }
+        }
+        (bad, copies)
+    }
+
+    pub(super) fn split_vertices(&mut self) -> (usize, usize) {
+        let next = self.next_corners();
+        let (order, starts) = self.edge_groups(&next);
+        let nc = self.indices.len();
+        // Union corners at one vertex across each edge shared by two faces
+        // in opposite directions: corner c (a->b) and partner d (b->a) make
+        // corner next(d) at a the neighbour of c.
+        let mut parent: Vec<u32> = (0..nc as u32).collect();
+        let mut paired_out = vec![false; nc];
+        for g in starts.windows(2) {
+            if g[1] - g[0] != 2 {
+                continue;
+            }
+            let (c, d) = (order[g[0] as usize], order[g[0] as usize + 1]);
+            if self.indices[c as usize] == self.indices[d as usize] {
+                continue;
+            }
+            paired_out[c as usize] = true;
+            paired_out[d as usize] = true;
+            union(&mut parent, c, next[d as usize]);
+            union(&mut parent, d, next[c as usize]);
+        }
+        // prev corner of each corner: its incoming edge.
+        let mut prev = vec![0u32; nc];
+        for c in 0..nc {
+            prev[next[c] as usize] = c as u32;
+        }
+        // Per vertex: its fans (roots) and whether each is open.
+        let mut corners_by_vertex: Vec<(u32, u32, u32)> = (0..nc as u32)
+            .map(|c| (self.indices[c as usize], find(&mut parent, c), c))
+            .collect();
+        corners_by_vertex.sort_unstable();
+        let mut split = 0;
+        let mut copies = 0;
+        let mut i = 0;
+        while i < nc {
+            let v = corners_by_vertex[i].0;
+            let mut j = i;
+            while j < nc && corners_by_vertex[j].0 == v {
+                j += 1;
+            }
+            let fans = &corners_by_vertex[i..j];
+            let fan_count = 1 + fans.windows(2).filter(|w| w[0].1 != w[1].1).count();
+            if fan_count > 1 {
+                let any_closed = fans.chunk_by(|a, b| a.1 == b.1).any(|fan| {
+                    fan.iter().all(|&(_, _, c)| {
+                        paired_out[c as usize] && paired_out[prev[c as usize] as usize]
+                    })
+                });
+                if any_closed {
+                    split += 1;
+                    for fan in fans.chunk_by(|a, b| a.1 == b.1).skip(1) {
+                        let nv = self.copy_vertex(v);
+                        copies += 1;
+                        for &(_, _, c) in fan {
+                            self.indices[c as usize] = nv;
+                        }
+                    }
+                }
+            }
+            i = j;
+        }
+        (split, copies)
+    }
+
+    pub(super) fn drop_unreferenced(&mut self) -> usize {
+        let mut used = vec![false; self.vertex_count];
+        for &i in &self.indices {
+            used[i as usize] = true;
+        }
+        let dropped = used.iter().filter(|&&u| !u).count();
+        if dropped > 0 {
+            let mut n = 0u32;
+            let new_of: Vec<u32> = used
+                .iter()
+                .map(|&u| {
+                    if u {
+                        n += 1;
+                        n - 1
+                    } else {
+                        NONE
+                    }
+                })
+                .collect();
+            self.compact_vertices(&new_of);
+        }
+        dropped
+    }
+}
+
+fn find(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        let p = parent[parent[x as usize] as usize];
+        parent[x as usize] = p;
+        x = p;
+    }
+    x
+}
+
+fn union(parent: &mut [u32], a: u32, b: u32) {
+    let (ra, rb) = (find(parent, a), find(parent, b));
+    if ra != rb {
+        let (lo, hi) = (ra.min(rb), ra.max(rb));
+        parent[hi as usize] = lo;
+    }
+}

@@ -1,1 +1,0 @@
-//! Traversals: breadth- and depth-first order, connected components, shortest paths.
