@@ -10,6 +10,7 @@ struct CollapsePlan {
     /// The half-edges before `h` and before its twin.
     ph: u32,
     pt: u32,
+    before_tph: Option<u32>,
     /// Whether the face of `h` (resp. its twin) is a triangle (or a
     /// triangular hole) that disappears.
     left_goes: bool,
@@ -31,17 +32,16 @@ impl Mesh {
             return Err(refuse(OP, hk, Refusal::LinkCondition));
         }
         // Link condition: the common neighbours of a and b are exactly the
-        // apexes of the triangles that disappear. Walking a's ring also
-        // notes whether a is on a boundary; b's ring, whether b is.
+        // apexes of the triangles that disappear.
         let mut small = [0u32; 16];
         let mut large = Vec::new();
         let mut k = 0;
-        let mut a_boundary = false;
         // a's ring from h: the last one is twin(prev(h)).
         let mut last_a = h;
+        let mut before_last_a = h;
         for o in self.ring_from(h) {
+            before_last_a = last_a;
             last_a = o;
-            a_boundary |= self.in_hole_raw(o);
             let w = self.dest_of(o);
             if k < small.len() {
                 small[k] = w;
@@ -60,11 +60,9 @@ impl Mesh {
             &mut large
         };
         let sorted = k > 16;
-        let mut b_boundary = false;
         let mut last_b = t;
         for o in self.ring_from(t) {
             last_b = o;
-            b_boundary |= self.in_hole_raw(o);
             let w = self.dest_of(o);
             if w == a {
                 continue;
@@ -79,7 +77,15 @@ impl Mesh {
             }
         }
         // An interior edge between two boundary vertices would pinch.
-        if !self.is_hole_raw(f_left) && !self.is_hole_raw(f_right) && a_boundary && b_boundary {
+        // (Hole flags cost a random read each: looked up only when needed.)
+        let on_boundary =
+            |v_ring_start: u32| self.ring_from(v_ring_start).any(|o| self.in_hole_raw(o));
+        if self.holes > 0
+            && !self.is_hole_raw(f_left)
+            && !self.is_hole_raw(f_right)
+            && on_boundary(h)
+            && on_boundary(t)
+        {
             return Err(refuse(OP, hk, Refusal::NonManifold));
         }
         // No other face or hole may hold both a and b. Triangles around a
@@ -102,7 +108,7 @@ impl Mesh {
         // A disappearing triangle must not leave an edge with holes on both
         // sides.
         for (goes, x) in [(left_goes, h), (right_goes, t)] {
-            if goes && !self.in_hole_raw(x) {
+            if goes && self.holes > 0 && !self.in_hole_raw(x) {
                 let n = self.next_of(x);
                 let p = self.next_of(n);
                 if self.in_hole_raw(n ^ 1) && self.in_hole_raw(p ^ 1) {
@@ -113,6 +119,9 @@ impl Mesh {
         Ok(CollapsePlan {
             h,
             ph: last_a ^ 1,
+            // The half-edge before twin(ph) = last_a once h is gone: the
+            // twin of the one before it in a's ring, unless that is h.
+            before_tph: (k >= 3).then_some(before_last_a ^ 1),
             pt: last_b ^ 1,
             left_goes,
             right_goes,
@@ -235,6 +244,7 @@ impl Mesh {
             h,
             ph,
             pt,
+            before_tph,
             left_goes,
             right_goes,
         } = self.plan_collapse(hk)?;
@@ -269,11 +279,11 @@ impl Mesh {
         self.free_vertex(a);
         if left_goes {
             // Two-sided loop (ph: c -> b, nh: b -> c): keep nh.
-            self.dissolve_two_gon(ph, nh);
+            self.dissolve_two_gon(ph, nh, before_tph);
         }
         if right_goes {
             // Two-sided loop (pt: d -> b, nt: b -> d): keep pt.
-            self.dissolve_two_gon(nt, pt);
+            self.dissolve_two_gon(nt, pt, None);
         }
         self.debug_validate();
         Ok(self.vkey(b))
@@ -282,12 +292,14 @@ impl Mesh {
     /// A face (or hole) left with the two half-edges `p` and `n` (parallel
     /// edges between the same vertices) disappears: `n` takes the place of
     /// `twin(p)` in its face and `p`'s edge goes. The mesh must be consistent
-    /// apart from this two-sided loop.
-    fn dissolve_two_gon(&mut self, p: u32, n: u32) {
+    /// apart from this two-sided loop. `before_tp`, when known, is the
+    /// half-edge before `twin(p)` (else it is found by turning).
+    fn dissolve_two_gon(&mut self, p: u32, n: u32, before_tp: Option<u32>) {
         let f = self.face_of(p);
         let tp = p ^ 1;
         let g = self.face_of(tp);
-        let q = self.prev_of(tp);
+        let q = before_tp.unwrap_or_else(|| self.prev_fast(tp));
+        debug_assert_eq!(q, self.prev_of(tp));
         let r = self.next_of(tp);
         self.set_next(q, n);
         self.set_next(n, r);
@@ -307,7 +319,7 @@ impl Mesh {
             (n >> 1) as usize,
             &[((n >> 1) as usize, 0.5), ((p >> 1) as usize, 0.5)],
         );
-        if !self.is_hole_raw(f) {
+        if !self.attrs.face.cols.is_empty() && !self.is_hole_raw(f) {
             // The triangle's values go to a real face beside the kept edge.
             let k = if self.is_hole_raw(g) {
                 self.face_of(n ^ 1)

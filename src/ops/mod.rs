@@ -11,12 +11,18 @@
 //! | [`Mesh::collapse_edge`] | `collapse.rs` | the surviving vertex | 0, or +1 when a triangular hole closes |
 //! | [`Mesh::flip_edge`] | `flip.rs` | the same edge, turned | 0 |
 //! | [`Mesh::remove_edge`] | `remove.rs` | the merged face (or hole) | 0 |
+//! | [`Mesh::remove_edge_allowing_bridge`] | `remove.rs` | the merged face, or the holes | as `remove_edge` / `remove_face` |
 //! | [`Mesh::merge_faces`] | `remove.rs` | the merged face | 0 |
 //! | [`Mesh::remove_vertex`] | `remove.rs` | the merged face | 0 |
 //! | [`Mesh::remove_face`] | `holes.rs` | the holes now covering it | −1 + edges removed − vertices removed |
 //! | [`Mesh::fill_hole`] | `holes.rs` | the new face | +1 |
+//! | [`Mesh::fill_hole_triangulated`] | `triangulate.rs` | the triangles | +1 |
 //! | [`Mesh::triangulate`] | `triangulate.rs` | the triangles | 0 |
 //! | [`Mesh::triangulate_all`] | `triangulate.rs` | faces left as they were | 0 |
+//! | [`Mesh::extrude_face`] | `extrude.rs` | the side quads | 0 |
+//! | [`Mesh::split_vertex`] | `vertex_split.rs` | the new half-edge `a → b` | 0 |
+//! | [`Mesh::cut_path`] | `cut.rs` | the new holes | −1 (open path), 0 (closed) |
+//! | [`Mesh::split_components`] | `components.rs` | one mesh per piece | — |
 //! | [`Mesh::compact`] | `compact.rs` | old → new key maps | 0 |
 //!
 //! # Check, then commit
@@ -25,8 +31,7 @@
 //! returns `Ok(())` exactly when `x` would succeed and never changes the
 //! mesh. Inside, `x` runs a private planning phase (`&self`: gather every
 //! element into role-named locals named after the doc diagram, and refuse
-//! with [`Error::Refused`](crate::Error::Refused) or
-//! [`Error::StaleKey`](crate::Error::StaleKey)); then a commit phase
+//! with [`Error::Refused`] or [`Error::StaleKey`]); then a commit phase
 //! (`&mut self`) that cannot fail; then the attribute rules; then, in debug
 //! builds, [`Mesh::validate`]. On any error the mesh is exactly as it was.
 //!
@@ -59,16 +64,39 @@
 //! - **remove_face**: the face's values are dropped (it becomes a hole).
 //!   **fill_hole**: the new face gets `interpolate` of nothing.
 //!
-//! Conserved quantities (sum on merge, share on split) thus keep their totals
-//! through every operator except `remove_face`, which deletes.
+//! - **extrude_face**: new corners `interpolate` the corners below them;
+//!   side faces, new edges and corners get `interpolate` of nothing.
+//! - **split_vertex**: the new vertex is `interpolate(b: 1)`; new edges,
+//!   faces and corners get `interpolate` of nothing.
+//! - **cut_path**: a vertex copy is `interpolate` of the original; each cut
+//!   edge splits into its two copies with equal shares.
+//!
+//! With a conserved rule (sum on merge, share on split, nothing from
+//! interpolate), totals over faces (holes excluded) are kept by every
+//! operator except `remove_face` and `remove_edge` on a boundary edge, where
+//! a face is deleted; totals over vertices by every operator except
+//! `remove_vertex` and `remove_face`, which delete vertices. Edge values
+//! merge where two edges become one (a disappearing triangle) and split
+//! where one becomes two (`split_edge`, `cut_path`); an edge that is removed
+//! takes its value with it. The model tests (`tests/ops_model.rs`) check
+//! face and vertex totals after every step.
+//!
+//! # Writing your own
+//!
+//! The reflecting setters in [`link`](crate::link) edit raw links; check the
+//! result with [`RawEdit::validate`](crate::link::RawEdit::validate).
 
 mod collapse;
 mod compact;
+mod components;
+mod cut;
+mod extrude;
 mod flip;
 mod holes;
 mod remove;
 mod split;
 mod triangulate;
+mod vertex_split;
 
 pub use compact::KeyMaps;
 
@@ -231,7 +259,7 @@ impl Mesh {
         }
         if nx == y {
             // b has degree 1: ... px -> x -> y -> ny ...
-            let px = self.prev_of(x);
+            let px = self.prev_fast(x);
             self.set_next(px, ny);
             self.free_vertex(b);
             if self.v_halfedge[a as usize] == x {
@@ -245,7 +273,7 @@ impl Mesh {
             return out;
         }
         if ny == x {
-            let py = self.prev_of(y);
+            let py = self.prev_fast(y);
             self.set_next(py, nx);
             self.free_vertex(a);
             if self.v_halfedge[b as usize] == y {
@@ -258,8 +286,8 @@ impl Mesh {
             self.free_edge(e);
             return out;
         }
-        let px = self.prev_of(x);
-        let py = self.prev_of(y);
+        let px = self.prev_fast(x);
+        let py = self.prev_fast(y);
         self.set_next(px, ny);
         self.set_next(py, nx);
         if self.v_halfedge[a as usize] == x {
@@ -282,6 +310,22 @@ impl Mesh {
         }
         self.free_edge(e);
         out
+    }
+
+    /// The half-edge before `h` in its face: a few steps along the face
+    /// when it is small (triangles, quads), else by turning around
+    /// `origin(h)` (`prev_of`).
+    #[inline]
+    pub(crate) fn prev_fast(&self, h: u32) -> u32 {
+        let mut x = self.next_of(h);
+        for _ in 0..6 {
+            let n = self.next_of(x);
+            if n == h {
+                return x;
+            }
+            x = n;
+        }
+        self.prev_of(h)
     }
 
     /// Debug check after every operator.

@@ -73,7 +73,8 @@ impl Mesh {
     /// the edge's ends (the merged face would meet it twice);
     /// [`Refusal::Bridge`] on a boundary edge whose face has another
     /// boundary edge: removing it would leave a dangling edge or cut the
-    /// mesh apart (use [`remove_face`](Mesh::remove_face) for that).
+    /// mesh apart (ask for that with
+    /// [`remove_edge_allowing_bridge`](Mesh::remove_edge_allowing_bridge)).
     ///
     /// # Complexity
     /// O(degree of both faces · log degree + degree of `a` and `b`).
@@ -103,6 +104,64 @@ impl Mesh {
         self.remove_edge_raw(e, survivor);
         self.debug_validate();
         Ok(self.fkey(survivor))
+    }
+
+    /// Whether [`remove_edge_allowing_bridge`](Mesh::remove_edge_allowing_bridge)
+    /// would succeed; changes nothing.
+    ///
+    /// # Errors
+    /// As [`remove_edge_allowing_bridge`](Mesh::remove_edge_allowing_bridge).
+    pub fn check_remove_edge_allowing_bridge(&self, ek: EdgeKey) -> Result<()> {
+        let e = self.check_edge(ek)?;
+        if self.in_hole_raw(2 * e) || self.in_hole_raw(2 * e + 1) {
+            Ok(())
+        } else {
+            self.check_remove_edge(ek)
+        }
+    }
+
+    /// [`remove_edge`](Mesh::remove_edge), also where the edge is a bridge:
+    /// on a boundary edge the face beside it joins the hole together with
+    /// every other boundary edge of that face (they would dangle) and any
+    /// vertex left without edges, which may cut the mesh apart; this is
+    /// [`remove_face`](Mesh::remove_face) of that face.
+    ///
+    /// Returns the faces or holes now covering the edge's place: the merged
+    /// face for an interior edge, else the holes `remove_face` returns.
+    /// χ as for `remove_edge` or `remove_face`.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey); for an interior edge,
+    /// as `remove_edge`.
+    ///
+    /// # Complexity
+    /// As `remove_edge` or `remove_face`.
+    ///
+    /// # Examples
+    /// ```
+    /// use meshloom::Mesh;
+    /// // A strip of three quads: the middle quad's top edge is a bridge.
+    /// let mut m = Mesh::from_faces(8, &[[0u32, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6]])?;
+    /// let v: Vec<_> = m.vertices().collect();
+    /// let top = m.find_halfedge(v[1], v[2])?.unwrap();
+    /// let e = m.halfedge(top)?.edge().key();
+    /// assert!(m.remove_edge(e).is_err());
+    /// let holes = m.remove_edge_allowing_bridge(e)?;
+    /// assert_eq!((holes.len(), m.face_count()), (2, 2));
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn remove_edge_allowing_bridge(&mut self, ek: EdgeKey) -> Result<Vec<FaceKey>> {
+        let e = self.check_edge(ek)?;
+        let (h, t) = (2 * e, 2 * e + 1);
+        if self.in_hole_raw(t) {
+            let f = self.fkey(self.face_of(h));
+            self.remove_face(f)
+        } else if self.in_hole_raw(h) {
+            let f = self.fkey(self.face_of(t));
+            self.remove_face(f)
+        } else {
+            self.remove_edge(ek).map(|f| vec![f])
+        }
     }
 
     fn plan_merge_faces(&self, f: FaceKey, g: FaceKey) -> Result<u32> {

@@ -37,7 +37,7 @@ impl Mesh {
         Ok(SplitEdgePlan {
             h,
             t: h ^ 1,
-            ph: self.prev_of(h),
+            ph: self.prev_fast(h),
         })
     }
 

@@ -24,9 +24,21 @@ impl Mesh {
         sides: &mut Vec<u32>,
         ears: &mut Vec<Ear>,
     ) -> Result<()> {
+        self.plan_triangulate_loop(fk, sides, ears, false)
+    }
+
+    /// As `plan_triangulate`; with `hole_ok` a hole is planned as if it were
+    /// a face (for `fill_hole_triangulated`).
+    fn plan_triangulate_loop(
+        &self,
+        fk: FaceKey,
+        sides: &mut Vec<u32>,
+        ears: &mut Vec<Ear>,
+        hole_ok: bool,
+    ) -> Result<()> {
         const OP: &str = "triangulate";
         let f = self.check_face(fk)?;
-        if self.is_hole_raw(f) {
+        if self.is_hole_raw(f) && !hole_ok {
             return Err(refuse(OP, fk, Refusal::Hole));
         }
         sides.clear();
@@ -254,6 +266,53 @@ impl Mesh {
         }
         self.debug_validate();
         left
+    }
+}
+
+impl Mesh {
+    /// Whether [`fill_hole_triangulated`](Mesh::fill_hole_triangulated)
+    /// would succeed; changes nothing.
+    ///
+    /// # Errors
+    /// As [`fill_hole_triangulated`](Mesh::fill_hole_triangulated).
+    pub fn check_fill_hole_triangulated(&self, hole: FaceKey) -> Result<()> {
+        self.check_fill_hole(hole)?;
+        self.plan_triangulate_loop(hole, &mut Vec::new(), &mut Vec::new(), true)
+    }
+
+    /// [`fill_hole`](Mesh::fill_hole) and [`triangulate`](Mesh::triangulate)
+    /// the new face, all or nothing: both are planned before either
+    /// changes the mesh.
+    ///
+    /// Returns the triangles, the hole's key (now a face) first. χ grows by
+    /// 1.
+    ///
+    /// # Errors
+    /// As `fill_hole`, then as `triangulate`.
+    ///
+    /// # Complexity
+    /// As `triangulate` on a face of the hole's degree.
+    ///
+    /// # Examples
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// let f = mesh.faces().next().unwrap();
+    /// let hole = mesh.remove_face(f)?[0];
+    /// let tris = mesh.fill_hole_triangulated(hole)?;
+    /// assert_eq!((tris.len(), mesh.face_count()), (2, 7));
+    /// assert!(mesh.is_closed());
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn fill_hole_triangulated(&mut self, hole: FaceKey) -> Result<Vec<FaceKey>> {
+        self.check_fill_hole(hole)?;
+        let mut sides = Vec::new();
+        let mut ears = Vec::new();
+        self.plan_triangulate_loop(hole, &mut sides, &mut ears, true)?;
+        self.fill_hole(hole)?;
+        let mut pieces = Vec::new();
+        self.cut_ears(&mut sides, &ears, &mut pieces);
+        self.debug_validate();
+        Ok(pieces.into_iter().map(|g| self.fkey(g)).collect())
     }
 }
 

@@ -1,0 +1,330 @@
+//! `cut_path`: open a seam along a path of edges into new boundary.
+
+use std::collections::HashMap;
+
+use super::refuse;
+use crate::error::{Refusal, Result};
+use crate::keys::{FaceKey, VertexKey};
+use crate::mesh::{HalfedgeRecord, Mesh, NONE};
+
+/// A face link to be set when the new loops are labelled.
+const NONE_FACE: u32 = NONE;
+
+struct CutPlan {
+    /// Path half-edges `h_i = v_i -> v_i+1`.
+    hs: Vec<u32>,
+    closed: bool,
+    /// For an open path: the hole half-edge leaving `v_0` (resp. `v_k`)
+    /// when that end lies on a boundary.
+    hole_out: [Option<u32>; 2],
+    /// Per path vertex index that splits: the outgoing half-edges right of
+    /// the path, which move to its copy.
+    wedges: Vec<(usize, Vec<u32>)>,
+}
+
+impl Mesh {
+    /// The half-edges leaving `origin(from)` clockwise after `from` up to
+    /// `stop`, both excluded.
+    fn ring_between(&self, from: u32, stop: u32) -> Vec<u32> {
+        let mut wedge = Vec::new();
+        let mut o = self.next_of(from ^ 1);
+        for _ in 0..self.he.len() {
+            if o == stop {
+                break;
+            }
+            wedge.push(o);
+            o = self.next_of(o ^ 1);
+        }
+        wedge
+    }
+
+    fn plan_cut(&self, path: &[VertexKey]) -> Result<CutPlan> {
+        const OP: &str = "cut_path";
+        let mut vs = Vec::with_capacity(path.len());
+        for &v in path {
+            vs.push(self.check_vertex(v)?);
+        }
+        let Some(&first) = path.first() else {
+            // No vertex to name: generation 0 is never live, so this key
+            // names no element.
+            return Err(refuse(OP, VertexKey::new(0, 0), Refusal::Empty));
+        };
+        let closed = vs.len() > 1 && vs[0] == vs[vs.len() - 1];
+        let k = vs.len().saturating_sub(1);
+        let holes_at = |v: u32| -> Vec<u32> {
+            self.outgoing_raw(v)
+                .filter(|&o| self.in_hole_raw(o))
+                .collect()
+        };
+        let mut hole_out = [None, None];
+        if !closed && k >= 1 {
+            for (end, &v) in [vs[0], vs[k]].iter().enumerate() {
+                match holes_at(v)[..] {
+                    [] => {}
+                    [o] => hole_out[end] = Some(o),
+                    _ => return Err(refuse(OP, path[end * k], Refusal::NonManifold)),
+                }
+            }
+        }
+        let min_edges = if closed {
+            3
+        } else if hole_out == [None, None] {
+            2
+        } else {
+            1
+        };
+        if k < min_edges {
+            return Err(refuse(
+                OP,
+                first,
+                Refusal::Parameter(
+                    "the path needs two edges (one from a boundary, three if closed)",
+                ),
+            ));
+        }
+        let mut distinct = vs[..if closed { k } else { k + 1 }].to_vec();
+        distinct.sort_unstable();
+        if distinct.windows(2).any(|w| w[0] == w[1]) {
+            return Err(refuse(OP, first, Refusal::NonManifold));
+        }
+        let mut hs = Vec::with_capacity(k);
+        for i in 0..k {
+            let Some(h) = self.find_halfedge_raw(vs[i], vs[i + 1]) else {
+                return Err(refuse(OP, path[i], Refusal::NotAdjacent));
+            };
+            if self.in_hole_raw(h) || self.in_hole_raw(h ^ 1) {
+                return Err(refuse(OP, self.ekey(h >> 1), Refusal::Boundary));
+            }
+            hs.push(h);
+        }
+        let inner = if closed { 0..k } else { 1..k };
+        for i in inner.clone() {
+            if !holes_at(vs[i]).is_empty() {
+                return Err(refuse(OP, path[i], Refusal::Boundary));
+            }
+        }
+        let mut wedges = Vec::with_capacity(k + 1);
+        for i in inner {
+            let stop = hs[(i + k - 1) % k] ^ 1;
+            wedges.push((i, self.ring_between(hs[i], stop)));
+        }
+        if let Some(ho) = hole_out[0] {
+            wedges.push((0, self.ring_between(hs[0], ho)));
+        }
+        if let Some(ho) = hole_out[1] {
+            // From the hole's half-edge (included) round to twin(h_k-1).
+            let mut wedge = vec![ho];
+            wedge.extend(self.ring_between(ho, hs[k - 1] ^ 1));
+            wedges.push((k, wedge));
+        }
+        Ok(CutPlan {
+            hs,
+            closed,
+            hole_out,
+            wedges,
+        })
+    }
+
+    /// Whether [`cut_path`](Mesh::cut_path) would succeed; changes nothing.
+    ///
+    /// # Errors
+    /// As [`cut_path`](Mesh::cut_path).
+    pub fn check_cut_path(&self, path: &[VertexKey]) -> Result<()> {
+        self.plan_cut(path).map(|_| ())
+    }
+
+    /// Cut the surface open along a path of edges `v_0, v_1, …, v_k`
+    /// (consecutive vertices joined by edges not on a boundary). Every path
+    /// edge becomes two, one on each side, and every path vertex inside the
+    /// surface splits in two (the copy takes the faces on the right of the
+    /// path); an end on a boundary splits too, and the cut joins that hole.
+    ///
+    /// - An open path between interior vertices makes a slit: a new hole.
+    /// - An open path from a boundary opens that hole further; from
+    ///   boundary to boundary it joins two holes, or, when both ends are on
+    ///   the same hole, cuts the mesh apart (or through a handle): Plexus'
+    ///   `split_at_path`, then [`split_components`](Mesh::split_components).
+    /// - A closed path (`v_k == v_0`) makes two holes, one on each side.
+    ///
+    /// ```text
+    ///   . --- . --- .         . --- . --- .
+    ///   |  L  |  L  |         |  L  |  L  |
+    ///   v0 -- v1 -- v2   =>   v0 -- v1 -- v2      (hole between v1 and v1')
+    ///   |  R  |  R  |          \    v1'   /
+    ///   . --- . --- .         . --- . --- .
+    /// ```
+    ///
+    /// Returns the holes along the cut: the one on the left side first, and
+    /// a second one when the cut made two loops. Attributes: a copy `v_i'` =
+    /// `interpolate(v_i: 1)`; each path edge splits into its two copies with
+    /// equal shares; a right-side corner keeps its value. χ changes by
+    /// (vertices split) − k: −1 for a slit, 0 from one boundary or for a
+    /// closed path, +1 from boundary to boundary.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey);
+    /// [`Refusal::Parameter`] for too short a path (two edges between
+    /// interior vertices, one from a boundary, three when closed);
+    /// [`Refusal::NonManifold`] when the path meets a vertex twice or an end
+    /// is a vertex where several holes meet; [`Refusal::NotAdjacent`] when
+    /// consecutive vertices are not joined; [`Refusal::Boundary`] when a path
+    /// edge lies on a boundary or an inner path vertex touches a hole.
+    ///
+    /// # Complexity
+    /// O(Σ degree of the path vertices + degree of the holes joined).
+    ///
+    /// # Examples
+    /// ```
+    /// let mut m = meshloom::shapes::icosahedron();
+    /// let v: Vec<_> = m.vertices().collect();
+    /// // A closed loop round vertex 0: its neighbours in order.
+    /// let mut ring: Vec<_> = m.vertex(v[0])?.neighbors().collect();
+    /// ring.push(ring[0]);
+    /// let holes = m.cut_path(&ring)?;
+    /// assert_eq!(holes.len(), 2);
+    /// let parts = m.split_components(true);
+    /// assert_eq!(parts.len(), 2);
+    /// assert_eq!(parts[0].face_count() + parts[1].face_count(), 20);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn cut_path(&mut self, path: &[VertexKey]) -> Result<Vec<FaceKey>> {
+        let CutPlan {
+            hs,
+            closed,
+            hole_out,
+            wedges,
+        } = self.plan_cut(path)?;
+        let k = hs.len();
+        let ts: Vec<u32> = hs.iter().map(|&h| h ^ 1).collect();
+        let index_of_t: HashMap<u32, usize> = ts.iter().enumerate().map(|(i, &t)| (t, i)).collect();
+        let prevs: Vec<u32> = ts.iter().map(|&t| self.prev_of(t)).collect();
+        let nexts: Vec<u32> = ts.iter().map(|&t| self.next_of(t)).collect();
+        let rights: Vec<u32> = ts.iter().map(|&t| self.face_of(t)).collect();
+        // The hole half-edges entering the boundary ends, and their holes.
+        let hole_in = hole_out.map(|o| o.map(|o| self.prev_of(o)));
+        let old_holes = hole_out.map(|o| o.map(|o| self.face_of(o)));
+        // Vertices: v_i and their right-side copies.
+        let vs: Vec<u32> = (0..=k)
+            .map(|i| {
+                if i < k {
+                    self.origin_of(hs[i])
+                } else {
+                    self.dest_of(hs[k - 1])
+                }
+            })
+            .collect();
+        let mut copy: Vec<u32> = vs.clone();
+        for (i, _) in &wedges {
+            copy[*i] = self.alloc_vertex();
+        }
+        if closed {
+            copy[k] = copy[0];
+        }
+        let new_edges: Vec<u32> = (0..k).map(|_| self.alloc_edge()).collect();
+        let g = |i: usize| 2 * new_edges[i];
+        let map = |x: u32| index_of_t.get(&x).map_or(x, |&j| g(j));
+        // g_i = v'_i+1 -> v'_i takes t_i's place in its right face.
+        for i in 0..k {
+            self.he[g(i) as usize] = HalfedgeRecord {
+                origin: copy[i + 1],
+                next: map(nexts[i]),
+                face: rights[i],
+            };
+        }
+        for i in 0..k {
+            let p = map(prevs[i]);
+            self.set_next(p, g(i));
+            if self.face_halfedge_raw(rights[i]) == ts[i] {
+                self.set_face_link(rights[i], g(i));
+            }
+        }
+        // The new boundary: t_i run backwards along the left side, gt_i
+        // forwards along the right side; at a boundary end they join the
+        // hole that was there.
+        for i in 0..k {
+            let next_t = if i > 0 {
+                ts[i - 1]
+            } else if closed {
+                ts[k - 1]
+            } else {
+                hole_out[0].unwrap_or(g(0) + 1)
+            };
+            self.he[ts[i] as usize].next = next_t;
+            let next_gt = if i + 1 < k {
+                g(i + 1) + 1
+            } else if closed {
+                g(0) + 1
+            } else {
+                hole_out[1].unwrap_or(ts[k - 1])
+            };
+            self.he[g(i) as usize + 1] = HalfedgeRecord {
+                origin: copy[i],
+                next: next_gt,
+                face: NONE_FACE,
+            };
+        }
+        if let Some(hi) = hole_in[0] {
+            self.set_next(hi, g(0) + 1);
+        }
+        if let Some(hi) = hole_in[1] {
+            self.set_next(hi, ts[k - 1]);
+        }
+        for (i, wedge) in &wedges {
+            for &o in wedge {
+                self.he[o as usize].origin = copy[*i];
+            }
+            let out = if *i < k { g(*i) + 1 } else { wedge[0] };
+            self.v_halfedge[copy[*i] as usize] = out;
+        }
+        for i in 0..k {
+            self.v_halfedge[vs[i] as usize] = hs[i];
+        }
+        if !closed {
+            self.v_halfedge[vs[k] as usize] = ts[k - 1];
+        }
+        // Hole faces: the loop through t_0, then the one through gt_0 if it
+        // is another loop. Old holes are reused, one left over is freed.
+        let mut spare: Vec<u32> = old_holes.iter().flatten().copied().collect();
+        spare.dedup();
+        let mut made = Vec::new();
+        let first = spare
+            .first()
+            .copied()
+            .unwrap_or_else(|| self.alloc_face(true));
+        self.he[ts[0] as usize].face = NONE_FACE;
+        self.relabel_loop(ts[0], first);
+        made.push(first);
+        if self.face_of(g(0) + 1) != first {
+            let second = if spare.len() > 1 {
+                spare[1]
+            } else {
+                self.alloc_face(true)
+            };
+            self.relabel_loop(g(0) + 1, second);
+            made.push(second);
+        } else if spare.len() > 1 {
+            self.free_face(spare[1]);
+        }
+        // Attributes.
+        for (i, _) in &wedges {
+            self.attrs
+                .vertex
+                .interpolate(copy[*i] as usize, &[(vs[*i] as usize, 1.0)]);
+        }
+        for i in 0..k {
+            let e = (hs[i] >> 1) as usize;
+            self.attrs
+                .edge
+                .split(e, &[(e, 0.5), (new_edges[i] as usize, 0.5)]);
+            self.attrs.halfedge.copy(ts[i] as usize, g(i) as usize);
+            self.attrs.halfedge.interpolate(g(i) as usize + 1, &[]);
+        }
+        for &h in &made {
+            if !spare.contains(&h) {
+                self.attrs.face.interpolate(h as usize, &[]);
+            }
+        }
+        self.debug_validate();
+        Ok(made.into_iter().map(|h| self.fkey(h)).collect())
+    }
+}

@@ -1,0 +1,149 @@
+//! `extrude_face`: push a face out along its normal, with side quads.
+
+use super::refuse;
+use crate::error::{Refusal, Result};
+use crate::keys::FaceKey;
+use crate::mesh::{HalfedgeRecord, Mesh};
+
+impl Mesh {
+    /// The unit normal to move along (`None` without positions).
+    fn plan_extrude(&self, fk: FaceKey, distance: f64) -> Result<(u32, Option<[f64; 3]>)> {
+        const OP: &str = "extrude_face";
+        let f = self.check_face(fk)?;
+        if self.is_hole_raw(f) {
+            return Err(refuse(OP, fk, Refusal::Hole));
+        }
+        if !distance.is_finite() {
+            return Err(refuse(
+                OP,
+                fk,
+                Refusal::Parameter("distance must be finite"),
+            ));
+        }
+        let normal = match self.loop_normal(self.face_halfedge_raw(f)) {
+            None => None,
+            Some(n) => {
+                let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                if !(l > 0.0 && l.is_finite()) {
+                    return Err(refuse(OP, fk, Refusal::Degenerate));
+                }
+                Some([n[0] / l, n[1] / l, n[2] / l])
+            }
+        };
+        Ok((f, normal))
+    }
+
+    /// Whether [`extrude_face`](Mesh::extrude_face) would succeed; changes
+    /// nothing.
+    ///
+    /// # Errors
+    /// As [`extrude_face`](Mesh::extrude_face).
+    pub fn check_extrude_face(&self, f: FaceKey, distance: f64) -> Result<()> {
+        self.plan_extrude(f, distance).map(|_| ())
+    }
+
+    /// Push face `f` out along its unit normal by `distance`, joining its
+    /// old and new outline with one quad per side.
+    ///
+    /// ```text
+    ///                         w3 ----- w2
+    ///                        / |  f   / |
+    ///   v3 ----- v2         v3 ----- v2 |
+    ///   |   f    |    =>    |  w0 ---|- w1     (sides: v_i, v_i+1, w_i+1, w_i)
+    ///   v0 ----- v1         v0 ----- v1
+    /// ```
+    ///
+    /// Returns the side quads, in the order of `f`'s half-edges; `f` keeps
+    /// its key and becomes the cap on the new corners `w_i`. Without
+    /// positions only the topology is made. Attributes: `w_i =
+    /// interpolate(v_i: 1)` then moved; the cap keeps `f`'s values, the
+    /// sides get `interpolate` of nothing; a cap edge copies the edge below
+    /// it, a cap corner the corner below it. χ is unchanged.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey); [`Refusal::Hole`];
+    /// [`Refusal::Parameter`] for a non-finite distance;
+    /// [`Refusal::Degenerate`] for a face of zero area (no normal).
+    ///
+    /// # Complexity
+    /// O(degree of `f`).
+    ///
+    /// # Examples
+    /// ```
+    /// use meshloom::Mesh;
+    /// let mut m = Mesh::from_polygons(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]], &[[0u32, 1, 2, 3]])?;
+    /// let f = m.faces().next().unwrap();
+    /// let sides = m.extrude_face(f, 2.0)?;
+    /// assert_eq!((sides.len(), m.face_count(), m.vertex_count()), (4, 5, 8));
+    /// let cap: Vec<_> = m.face(f)?.vertices().map(|v| m.position(v).unwrap()[2]).collect();
+    /// assert_eq!(cap, vec![2.0; 4]);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn extrude_face(&mut self, fk: FaceKey, distance: f64) -> Result<Vec<FaceKey>> {
+        let (f, normal) = self.plan_extrude(fk, distance)?;
+        let ring: Vec<u32> = self.face_loop_raw(f).collect();
+        let n = ring.len();
+        let w: Vec<u32> = (0..n).map(|_| self.alloc_vertex()).collect();
+        let cap: Vec<u32> = (0..n).map(|_| self.alloc_edge()).collect();
+        let up: Vec<u32> = (0..n).map(|_| self.alloc_edge()).collect();
+        let sides: Vec<u32> = (0..n).map(|_| self.alloc_face(false)).collect();
+        for i in 0..n {
+            let j = (i + 1) % n;
+            let h = ring[i];
+            let (c, ct) = (2 * cap[i], 2 * cap[i] + 1); // w_i -> w_j, w_j -> w_i
+            let up_j = 2 * up[j]; // v_j -> w_j
+            let down_i = 2 * up[i] + 1; // w_i -> v_i
+            let s = sides[i];
+            self.he[c as usize] = HalfedgeRecord {
+                origin: w[i],
+                next: 2 * cap[j],
+                face: f,
+            };
+            self.he[ct as usize] = HalfedgeRecord {
+                origin: w[j],
+                next: down_i,
+                face: s,
+            };
+            self.he[up_j as usize] = HalfedgeRecord {
+                origin: self.origin_of(ring[j]),
+                next: ct,
+                face: s,
+            };
+            self.he[down_i as usize] = HalfedgeRecord {
+                origin: w[i],
+                next: h,
+                face: s,
+            };
+            self.he[h as usize].next = up_j;
+            self.he[h as usize].face = s;
+            self.set_face_link(s, h);
+            self.v_halfedge[w[i] as usize] = c;
+        }
+        self.set_face_link(f, 2 * cap[0]);
+        for i in 0..n {
+            let v = self.origin_of(ring[i]) as usize;
+            self.attrs.vertex.interpolate(w[i] as usize, &[(v, 1.0)]);
+            self.attrs
+                .edge
+                .copy((ring[i] >> 1) as usize, cap[i] as usize);
+            self.attrs.edge.interpolate(up[i] as usize, &[]);
+            self.attrs
+                .halfedge
+                .copy(ring[i] as usize, 2 * cap[i] as usize);
+            for x in [2 * cap[i] + 1, 2 * up[i], 2 * up[i] + 1] {
+                self.attrs.halfedge.interpolate(x as usize, &[]);
+            }
+            self.attrs.face.interpolate(sides[i] as usize, &[]);
+        }
+        if let (Some(nrm), Some(p)) = (normal, self.position_slots_mut()) {
+            for &x in &w {
+                let q = &mut p[x as usize];
+                for k in 0..3 {
+                    q[k] += distance * nrm[k];
+                }
+            }
+        }
+        self.debug_validate();
+        Ok(sides.into_iter().map(|s| self.fkey(s)).collect())
+    }
+}

@@ -1,0 +1,189 @@
+//! `split_vertex`: the inverse of `collapse_edge`.
+
+use super::refuse;
+use crate::error::{Refusal, Result};
+use crate::keys::HalfedgeKey;
+use crate::mesh::{HalfedgeRecord, Mesh};
+
+struct VertexSplitPlan {
+    hc: u32,
+    hd: u32,
+    /// The half-edges strictly between `hd` and `hc` turning around `b`:
+    /// they move to the new vertex.
+    moved: Vec<u32>,
+    /// The half-edge before `twin(hd)` in its face.
+    pd: u32,
+}
+
+impl Mesh {
+    fn plan_split_vertex(&self, hck: HalfedgeKey, hdk: HalfedgeKey) -> Result<VertexSplitPlan> {
+        const OP: &str = "split_vertex";
+        let hc = self.check_halfedge(hck)?;
+        let hd = self.check_halfedge(hdk)?;
+        let b = self.origin_of(hc);
+        if self.origin_of(hd) != b {
+            return Err(refuse(OP, hdk, Refusal::NotAdjacent));
+        }
+        if hc == hd || self.dest_of(hc) == self.dest_of(hd) {
+            return Err(refuse(OP, hdk, Refusal::Adjacent));
+        }
+        let mut moved = Vec::new();
+        let mut o = self.next_of(hd ^ 1);
+        for _ in 0..self.he.len() {
+            if o == hc {
+                break;
+            }
+            moved.push(o);
+            o = self.next_of(o ^ 1);
+        }
+        Ok(VertexSplitPlan {
+            hc,
+            hd,
+            moved,
+            pd: self.prev_of(hd ^ 1),
+        })
+    }
+
+    /// Whether [`split_vertex`](Mesh::split_vertex) would succeed; changes
+    /// nothing.
+    ///
+    /// # Errors
+    /// As [`split_vertex`](Mesh::split_vertex).
+    pub fn check_split_vertex(&self, hc: HalfedgeKey, hd: HalfedgeKey) -> Result<()> {
+        self.plan_split_vertex(hc, hd).map(|_| ())
+    }
+
+    /// Split vertex `b` in two, undoing [`collapse_edge`](Mesh::collapse_edge):
+    /// `hc = b → c` and `hd = b → d` leave `b`; the half-edges turning
+    /// clockwise from `hd` to `hc` (both excluded) move to a new vertex `a`,
+    /// which is joined to `b`, `c` and `d`, with triangles `(a, b, c)` and
+    /// `(b, a, d)` on both sides of the new edge.
+    ///
+    /// ```text
+    ///        c                  c
+    ///        |                / | \
+    ///        |               /  |  \
+    ///   x -- b      =>      x - a -h-> b
+    ///        |               \  |  /
+    ///        |                \ | /
+    ///        d                  d
+    /// ```
+    ///
+    /// Returns `h = a → b`. After `collapse_edge(h0)` returned `b`, the
+    /// half-edges `b → c` and `b → d` towards the apexes of the triangles
+    /// that disappeared give back the same connectivity. Attributes: `a =
+    /// interpolate(b: 1)` (it starts at `b`'s position: move it with
+    /// [`set_position`](Mesh::set_position)); new edges, faces and corners
+    /// get `interpolate` of nothing. χ is unchanged.
+    ///
+    /// # Errors
+    /// [`Error::StaleKey`](crate::Error::StaleKey); [`Refusal::NotAdjacent`]
+    /// when the two half-edges do not leave the same vertex;
+    /// [`Refusal::Adjacent`] when they are the same or end at the same
+    /// vertex.
+    ///
+    /// # Complexity
+    /// O(degree of `b`).
+    ///
+    /// # Examples
+    /// ```
+    /// let mut mesh = meshloom::shapes::icosahedron();
+    /// let h0 = mesh.halfedges().next().unwrap();
+    /// let hv = mesh.halfedge(h0)?;
+    /// let (c, d) = (hv.next().dest().key(), hv.twin().next().dest().key());
+    /// let b = mesh.collapse_edge(h0)?;
+    /// let hc = mesh.find_halfedge(b, c)?.unwrap();
+    /// let hd = mesh.find_halfedge(b, d)?.unwrap();
+    /// let h = mesh.split_vertex(hc, hd)?;
+    /// assert_eq!((mesh.vertex_count(), mesh.edge_count(), mesh.face_count()), (12, 30, 20));
+    /// assert!(mesh.vertices().all(|v| mesh.vertex(v).unwrap().degree() == 5));
+    /// assert_eq!(mesh.halfedge(h)?.dest().key(), b);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn split_vertex(&mut self, hck: HalfedgeKey, hdk: HalfedgeKey) -> Result<HalfedgeKey> {
+        let VertexSplitPlan { hc, hd, moved, pd } = self.plan_split_vertex(hck, hdk)?;
+        let b = self.origin_of(hc);
+        let c = self.dest_of(hc);
+        let d = self.dest_of(hd);
+        let tdb = hd ^ 1; // d -> b
+        let f_c = self.face_of(hc);
+        let f_d = self.face_of(tdb);
+        let after_hc = self.next_of(hc);
+        let a = self.alloc_vertex();
+        let (e_ab, e_ac, e_ad) = (self.alloc_edge(), self.alloc_edge(), self.alloc_edge());
+        let (h, t) = (2 * e_ab, 2 * e_ab + 1); // a -> b, b -> a
+        let (ac, ca) = (2 * e_ac, 2 * e_ac + 1);
+        let (ad, da) = (2 * e_ad, 2 * e_ad + 1);
+        let left = self.alloc_face(false);
+        let right = self.alloc_face(false);
+        let prev_c = moved.last().map_or(da, |&o| o ^ 1);
+        let next_d = moved.first().copied().unwrap_or(ac);
+        for &o in &moved {
+            self.he[o as usize].origin = a;
+        }
+        // The faces beside the wedge: ac takes hc's place, da takes d -> b's.
+        self.he[ac as usize] = HalfedgeRecord {
+            origin: a,
+            next: after_hc,
+            face: f_c,
+        };
+        self.he[da as usize] = HalfedgeRecord {
+            origin: d,
+            next: next_d,
+            face: f_d,
+        };
+        self.set_next(prev_c, ac);
+        self.set_next(pd, da);
+        if self.face_halfedge_raw(f_c) == hc {
+            self.set_face_link(f_c, ac);
+        }
+        if self.face_halfedge_raw(f_d) == tdb {
+            self.set_face_link(f_d, da);
+        }
+        // Triangles (a, b, c) and (b, a, d).
+        self.he[h as usize] = HalfedgeRecord {
+            origin: a,
+            next: hc,
+            face: left,
+        };
+        self.he[hc as usize].next = ca;
+        self.he[hc as usize].face = left;
+        self.he[ca as usize] = HalfedgeRecord {
+            origin: c,
+            next: h,
+            face: left,
+        };
+        self.he[t as usize] = HalfedgeRecord {
+            origin: b,
+            next: ad,
+            face: right,
+        };
+        self.he[ad as usize] = HalfedgeRecord {
+            origin: a,
+            next: tdb,
+            face: right,
+        };
+        self.he[tdb as usize].next = t;
+        self.he[tdb as usize].face = right;
+        self.set_face_link(left, h);
+        self.set_face_link(right, t);
+        self.v_halfedge[a as usize] = h;
+        self.v_halfedge[b as usize] = hc;
+        // Attributes.
+        self.attrs
+            .vertex
+            .interpolate(a as usize, &[(b as usize, 1.0)]);
+        for e in [e_ab, e_ac, e_ad] {
+            self.attrs.edge.interpolate(e as usize, &[]);
+        }
+        self.attrs.halfedge.copy(hc as usize, ac as usize);
+        self.attrs.halfedge.copy(tdb as usize, da as usize);
+        for x in [h, ca, t, ad] {
+            self.attrs.halfedge.interpolate(x as usize, &[]);
+        }
+        self.attrs.face.interpolate(left as usize, &[]);
+        self.attrs.face.interpolate(right as usize, &[]);
+        self.debug_validate();
+        Ok(self.hkey(h))
+    }
+}
