@@ -371,6 +371,7 @@ impl Mesh {
             values: col.raw(),
             present: col.present_bits(),
             generations: slots.generations(),
+            intact: slots.intact(),
             marker: PhantomData,
         })
     }

@@ -85,6 +85,9 @@ pub struct AttrView<'m, K, T> {
     pub(crate) present: Option<&'m [u64]>,
     /// The arena's generations (odd = live).
     pub(crate) generations: &'m [u32],
+    /// No slot of the arena was ever freed: every slot is live at
+    /// generation 1, and a key check needs no load.
+    pub(crate) intact: bool,
     pub(crate) marker: PhantomData<K>,
 }
 
@@ -107,7 +110,11 @@ impl<'m, K: Element, T> AttrView<'m, K, T> {
         // Both loads are issued before either is tested, so a random access
         // waits for one cache miss, not two in a row.
         let value = self.values.get(i);
-        let live = current(self.generations, i >> K::SHIFT, key.generation_of_key());
+        let live = if self.intact {
+            (key.generation_of_key() == 1) & ((i >> K::SHIFT) < self.generations.len())
+        } else {
+            current(self.generations, i >> K::SHIFT, key.generation_of_key())
+        };
         if live && bit(self.present, i) {
             value
         } else {
