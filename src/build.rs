@@ -55,16 +55,21 @@ impl Polygons {
         self.offsets.len().saturating_sub(1)
     }
 
-    /// Face `i`'s vertex indices.
-    pub fn face(&self, i: usize) -> &[u32] {
-        &self.indices[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    /// Face `i`'s vertex indices; `None` past the last face or where the
+    /// offsets do not cut the index array.
+    pub fn face(&self, i: usize) -> Option<&[u32]> {
+        let (s, e) = (*self.offsets.get(i)?, *self.offsets.get(i + 1)?);
+        self.indices.get(s as usize..e as usize)
     }
 
     /// Every face's vertex indices, in order.
+    /// (Faces whose offsets do not cut the index array come out empty.)
     pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
-        self.offsets
-            .windows(2)
-            .map(|w| &self.indices[w[0] as usize..w[1] as usize])
+        self.offsets.windows(2).map(|w| {
+            self.indices
+                .get(w[0] as usize..w[1] as usize)
+                .unwrap_or(&[])
+        })
     }
 }
 

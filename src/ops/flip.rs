@@ -23,16 +23,16 @@ impl Mesh {
         }
         let c = self.origin_of(h2);
         let d = self.origin_of(t2);
-        if c == d || self.joined_raw(c, d) {
+        if c == d || self.joined_from(h2, d) {
             return Err(refuse(OP, ek, Refusal::EdgeExists));
         }
         Ok(e)
     }
 
-    /// Whether an edge joins `a` and `b` (a plain loop over `a`'s ring).
+    /// Whether an edge joins `origin(start)` and `b` (a plain loop over
+    /// the ring, starting at a half-edge already in cache).
     #[inline]
-    fn joined_raw(&self, a: u32, b: u32) -> bool {
-        let start = self.v_halfedge[a as usize];
+    fn joined_from(&self, start: u32, b: u32) -> bool {
         let mut o = start;
         for _ in 0..self.he.len() {
             if self.dest_of(o) == b {
@@ -110,12 +110,9 @@ impl Mesh {
         self.he[h2 as usize].face = f1;
         self.set_face_link(f0, h);
         self.set_face_link(f1, t);
-        if self.v_halfedge[a as usize] == h {
-            self.v_halfedge[a as usize] = t1;
-        }
-        if self.v_halfedge[b as usize] == t {
-            self.v_halfedge[b as usize] = h1;
-        }
+        // a and b may have named h and t; t1 and h1 surely leave them.
+        self.v_halfedge[a as usize] = t1;
+        self.v_halfedge[b as usize] = h1;
         if !self.attrs.face.cols.is_empty() {
             let pair = [(f0 as usize, 0.5), (f1 as usize, 0.5)];
             self.attrs.face.merge(f0 as usize, &pair);

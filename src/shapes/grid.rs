@@ -42,7 +42,7 @@ pub fn grid(cols: usize, rows: usize, faces: GridFaces) -> Mesh {
 /// ```
 /// use meshloom::shapes::{grid_polygons, GridFaces};
 /// let p = grid_polygons(2, 2, GridFaces::Quads);
-/// assert_eq!(p.face(0), &[0, 1, 4, 3]);
+/// assert_eq!(p.face(0), Some(&[0, 1, 4, 3][..]));
 /// assert_eq!(p.positions[4], [1.0, 1.0, 0.0]);
 /// ```
 pub fn grid_polygons(cols: usize, rows: usize, faces: GridFaces) -> Polygons {
@@ -95,7 +95,7 @@ pub fn disk(segments: usize) -> Mesh {
 ///
 /// ```
 /// let p = meshloom::shapes::disk_polygons(4);
-/// assert_eq!(p.face(0), &[0, 1, 2]);
+/// assert_eq!(p.face(0), Some(&[0, 1, 2][..]));
 /// ```
 pub fn disk_polygons(segments: usize) -> Polygons {
     let s = segments.clamp(3, MAX_SEGMENTS);

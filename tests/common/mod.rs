@@ -1,5 +1,5 @@
-//! Shared helpers for the operator tests: named meshes, snapshots, a tiny
-//! OFF reader and conserved totals.
+//! Shared helpers for the operator tests: named meshes, snapshots, reading
+//! the shared meshes, conserved totals.
 #![allow(dead_code)]
 
 use meshloom::attr::{Conserved, FaceAttr, VertexAttr};
@@ -132,35 +132,14 @@ pub fn snapshot(m: &Mesh) -> Snapshot {
     }
 }
 
-/// Read an ASCII OFF file (enough for the test meshes).
+/// Read a test mesh with the crate's reader, dropping vertices no face
+/// uses (a few of the shared meshes have them).
 pub fn read_off(path: &str) -> Mesh {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut words = text
-        .lines()
-        .map(|l| l.split('#').next().unwrap())
-        .flat_map(str::split_whitespace);
-    let head = words.next().unwrap();
-    assert!(head.ends_with("OFF"), "{path}: not OFF");
-    let nv: usize = words.next().unwrap().parse().unwrap();
-    let nf: usize = words.next().unwrap().parse().unwrap();
-    let _ne = words.next();
-    let mut p = Vec::with_capacity(nv);
-    for _ in 0..nv {
-        let mut c = [0.0; 3];
-        for x in &mut c {
-            *x = words.next().unwrap().parse().unwrap();
-        }
-        p.push(c);
-    }
-    let mut faces = Vec::with_capacity(nf);
-    for _ in 0..nf {
-        let k: usize = words.next().unwrap().parse().unwrap();
-        let f: Vec<u32> = (0..k)
-            .map(|_| words.next().unwrap().parse().unwrap())
-            .collect();
-        faces.push(f);
-    }
-    Mesh::from_polygons(&p, &faces).unwrap()
+    let mut options = meshloom::io::ReadOptions::strict();
+    options.repair.drop_unreferenced_vertices = true;
+    meshloom::io::read_with(path, &options)
+        .map(|(mesh, _)| mesh)
+        .unwrap_or_else(|e| panic!("{path}: {e}"))
 }
 
 pub fn mesh_path(rel: &str) -> String {
