@@ -88,26 +88,31 @@ impl Mesh {
     // ----- counts ---------------------------------------------------------
 
     /// Number of vertices.
+    #[inline]
     pub fn vertex_count(&self) -> usize {
         self.v_slots.live()
     }
 
     /// Number of half-edges (twice the edges).
+    #[inline]
     pub fn halfedge_count(&self) -> usize {
         2 * self.e_slots.live()
     }
 
     /// Number of edges.
+    #[inline]
     pub fn edge_count(&self) -> usize {
         self.e_slots.live()
     }
 
     /// Number of faces, holes excluded.
+    #[inline]
     pub fn face_count(&self) -> usize {
         self.f_slots.live() - self.holes
     }
 
     /// Number of hole faces: one per boundary loop.
+    #[inline]
     pub fn hole_count(&self) -> usize {
         self.holes
     }
@@ -143,6 +148,7 @@ impl Mesh {
     // ----- element iterators (keys, in slot order) -------------------------
 
     /// Every vertex key, in slot order.
+    #[inline]
     pub fn vertices(&self) -> impl Iterator<Item = VertexKey> + '_ {
         self.v_slots
             .live_indices()
@@ -150,6 +156,7 @@ impl Mesh {
     }
 
     /// Every half-edge key, in slot order (twins adjacent).
+    #[inline]
     pub fn halfedges(&self) -> impl Iterator<Item = HalfedgeKey> + '_ {
         self.e_slots.live_indices().flat_map(|e| {
             let g = self.e_slots.generation_of(e);
@@ -158,6 +165,7 @@ impl Mesh {
     }
 
     /// Every edge key, in slot order.
+    #[inline]
     pub fn edges(&self) -> impl Iterator<Item = EdgeKey> + '_ {
         self.e_slots
             .live_indices()
@@ -165,6 +173,7 @@ impl Mesh {
     }
 
     /// Every face key, holes excluded, in slot order.
+    #[inline]
     pub fn faces(&self) -> impl Iterator<Item = FaceKey> + '_ {
         self.f_slots
             .live_indices()
@@ -173,6 +182,7 @@ impl Mesh {
     }
 
     /// Every hole face key, in slot order.
+    #[inline]
     pub fn holes(&self) -> impl Iterator<Item = FaceKey> + '_ {
         self.f_slots
             .live_indices()
@@ -181,6 +191,7 @@ impl Mesh {
     }
 
     /// Every face key, holes included, in slot order.
+    #[inline]
     pub fn faces_and_holes(&self) -> impl Iterator<Item = FaceKey> + '_ {
         self.f_slots
             .live_indices()
@@ -190,21 +201,25 @@ impl Mesh {
     // ----- key checks at the door -------------------------------------------
 
     /// Whether the key names a live vertex of this mesh.
+    #[inline]
     pub fn contains_vertex(&self, v: VertexKey) -> bool {
         self.v_slots.is_current(v.index, v.generation)
     }
 
     /// Whether the key names a live half-edge of this mesh.
+    #[inline]
     pub fn contains_halfedge(&self, h: HalfedgeKey) -> bool {
         self.e_slots.is_current(h.index >> 1, h.generation)
     }
 
     /// Whether the key names a live edge of this mesh.
+    #[inline]
     pub fn contains_edge(&self, e: EdgeKey) -> bool {
         self.e_slots.is_current(e.index, e.generation)
     }
 
     /// Whether the key names a live face or hole of this mesh.
+    #[inline]
     pub fn contains_face(&self, f: FaceKey) -> bool {
         self.f_slots.is_current(f.index, f.generation)
     }

@@ -7,6 +7,7 @@ pub struct Report {
     /// Timed runs per row (the median is reported).
     pub runs: usize,
     failures: usize,
+    only: Option<String>,
 }
 
 /// A peer's figure for the same workload, and the ratio we aim for.
@@ -21,7 +22,7 @@ pub struct Peer {
 
 impl Report {
     /// A report timing each row `runs` times.
-    pub fn new(runs: usize) -> Report {
+    pub fn new(runs: usize, only: Option<String>) -> Report {
         println!(
             "{:<48} {:>11} {:>11} {:>8} {:>7}  verdict",
             "workload", "meshloom", "peer", "ratio", "target"
@@ -29,6 +30,7 @@ impl Report {
         Report {
             runs: runs.max(1),
             failures: 0,
+            only,
         }
     }
 
@@ -41,6 +43,9 @@ impl Report {
         mut setup: impl FnMut() -> S,
         mut work: impl FnMut(S) -> R,
     ) -> f64 {
+        if !self.wanted(name) {
+            return f64::NAN;
+        }
         std::hint::black_box(work(setup()));
         let mut samples = Vec::with_capacity(self.runs);
         for _ in 0..self.runs {
@@ -56,8 +61,16 @@ impl Report {
         median
     }
 
+    /// Whether the row named `name` is to be run (`--only`).
+    pub fn wanted(&self, name: &str) -> bool {
+        self.only.as_deref().is_none_or(|o| name.contains(o))
+    }
+
     /// Print one timed row.
     pub fn row(&mut self, name: &str, seconds: f64, peer: Option<Peer>) {
+        if !self.wanted(name) || seconds.is_nan() {
+            return;
+        }
         match peer {
             Some(p) => {
                 let ratio = seconds / p.seconds;
@@ -82,6 +95,9 @@ impl Report {
 
     /// Print a non-time figure with an optional bound it should stay under.
     pub fn figure(&mut self, name: &str, value: f64, unit: &str, at_most: Option<(f64, &str)>) {
+        if !self.wanted(name) {
+            return;
+        }
         match at_most {
             Some((bound, who)) => {
                 let ok = value <= bound;
