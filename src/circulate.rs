@@ -114,6 +114,12 @@ impl Mesh {
 
 /// Neighbours of a vertex, clockwise: the twin record read for the step
 /// also gives the neighbour, so each step costs one record load.
+///
+/// This repeats [`VertexOutgoing`]'s loop on purpose. Measured on the
+/// 250k-vertex grid (one-ring neighbour sums, median of 15): 1.9 ms this
+/// way, 2.1 ms as `VertexOutgoing` plus `dest_of`, and 2.2 to 2.5 ms with
+/// both built on one shared stepping core that yields the half-edge and
+/// the twin's record.
 #[derive(Clone)]
 pub(crate) struct VertexNeighbors<'m> {
     mesh: &'m Mesh,
