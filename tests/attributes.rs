@@ -716,3 +716,33 @@ fn compact_moves_values_with_their_elements() {
     }
     mesh.validate().unwrap();
 }
+
+#[test]
+fn reads_by_key_agree_on_fresh_and_edited_meshes() {
+    // A fresh mesh reads through the fast path (no slot ever freed, every
+    // value present); a collapse frees slots and a cleared value adds
+    // presence bits, which switch to the checked path. Both must agree.
+    let mut mesh = meshloom::shapes::icosphere(2);
+    let pos = mesh.position_attr().expect("positions");
+    let keys: Vec<VertexKey> = mesh.vertices().collect();
+    {
+        let view = mesh.attr_view(&pos).unwrap();
+        for &v in &keys {
+            assert_eq!(view.get(v).copied(), Some(mesh.position(v).unwrap()));
+        }
+        // A key of a larger mesh names no slot here.
+        let far = meshloom::shapes::icosphere(3).vertices().last().unwrap();
+        assert_eq!(view.get(far), None);
+    }
+    let h = mesh.vertex(keys[0]).unwrap().halfedge().key();
+    let gone = mesh.halfedge(h).unwrap().origin().key();
+    mesh.collapse_edge(h).unwrap();
+    let weight = mesh.add_vertex_attr::<f64>("weight").unwrap();
+    let view = mesh.attr_view(&pos).unwrap();
+    assert_eq!(view.get(gone), None, "the collapsed vertex's key is stale");
+    for &v in keys.iter().filter(|&&v| v != gone) {
+        assert_eq!(view.get(v).copied(), Some(mesh.position(v).unwrap()));
+    }
+    let wview = mesh.attr_view(&weight).unwrap();
+    assert!(keys.iter().all(|&v| wview.get(v).is_none()));
+}

@@ -371,6 +371,7 @@ impl Mesh {
             values: col.raw(),
             present: col.present_bits(),
             generations: slots.generations(),
+            dense_intact: slots.intact() && col.present_bits().is_none(),
             intact: slots.intact(),
             marker: PhantomData,
         })
