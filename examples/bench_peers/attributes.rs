@@ -163,56 +163,13 @@ pub fn run(r: &mut Report) {
         },
     );
 
-    // Reading every vertex's position 20 times, in slot order, into four
-    // independent sums so that the loads, not one addition chain, set the
-    // pace.
-    const ROUNDS: usize = 20;
+    // Reading every vertex's position 20 times into four independent sums
+    // (so that the loads, not one addition chain, set the pace), with the
+    // keys in slot order, then shuffled by a fixed pseudo-random
+    // permutation (latency rather than bandwidth).
     let plain: Vec<[f64; 3]> = mesh.position_slots().expect("positions").to_vec();
     let pos = mesh.position_attr().expect("positions");
     let view = mesh.attr_view(&pos).expect("a live handle");
-    let vec_time = r.time(
-        "attr: read 250k positions x20, plain Vec[index]",
-        None,
-        || (),
-        |()| {
-            let mut s = [0.0; 4];
-            for _ in 0..ROUNDS {
-                for quad in black_box(&vertices).chunks_exact(4) {
-                    for (acc, v) in s.iter_mut().zip(quad) {
-                        *acc += plain[v.index()][0];
-                    }
-                }
-            }
-            s
-        },
-    );
-    let attr_time = r.time(
-        "attr: read 250k positions x20, view.get(key)",
-        None,
-        || (),
-        |()| {
-            let mut s = [0.0; 4];
-            for _ in 0..ROUNDS {
-                for quad in black_box(&vertices).chunks_exact(4) {
-                    for (acc, &v) in s.iter_mut().zip(quad) {
-                        if let Some(p) = view.get(v) {
-                            *acc += p[0];
-                        }
-                    }
-                }
-            }
-            s
-        },
-    );
-    r.figure(
-        "attr: read by key / plain Vec, slot order",
-        100.0 * attr_time / vec_time,
-        "%",
-        Some((110.0, "target")),
-    );
-
-    // The same reads with the keys in a shuffled order (a fixed
-    // pseudo-random permutation): latency rather than bandwidth.
     let mut shuffled = vertices.clone();
     let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
     for i in (1..shuffled.len()).rev() {
@@ -221,44 +178,55 @@ pub fn run(r: &mut Report) {
         x ^= x << 17;
         shuffled.swap(i, (x % (i as u64 + 1)) as usize);
     }
-    let vec_time = r.time(
-        "attr: read 250k positions x20 shuffled, Vec",
-        None,
-        || (),
-        |()| {
-            let mut s = [0.0; 4];
-            for _ in 0..ROUNDS {
-                for quad in black_box(&shuffled).chunks_exact(4) {
-                    for (acc, v) in s.iter_mut().zip(quad) {
-                        *acc += plain[v.index()][0];
+    let orders = [
+        (
+            &vertices,
+            ", plain Vec[index]",
+            ", view.get(key)",
+            "slot order",
+        ),
+        (&shuffled, " shuffled, Vec", " shuffled, view", "shuffled"),
+    ];
+    for (keys, vec_row, view_row, order) in orders {
+        let vec_time = r.time(
+            &format!("attr: read 250k positions x20{vec_row}"),
+            None,
+            || (),
+            |()| sum_reads(keys, |acc, v| *acc += plain[v.index()][0]),
+        );
+        let attr_time = r.time(
+            &format!("attr: read 250k positions x20{view_row}"),
+            None,
+            || (),
+            |()| {
+                sum_reads(keys, |acc, v| {
+                    if let Some(p) = view.get(v) {
+                        *acc += p[0];
                     }
-                }
+                })
+            },
+        );
+        r.figure(
+            &format!("attr: read by key / plain Vec, {order}"),
+            100.0 * attr_time / vec_time,
+            "%",
+            Some((110.0, "target")),
+        );
+    }
+}
+
+/// `ROUNDS` passes over `keys`, four keys at a time into four independent
+/// sums; `read` adds one key's value to its sum.
+#[inline(always)]
+fn sum_reads(keys: &[VertexKey], read: impl Fn(&mut f64, VertexKey)) -> [f64; 4] {
+    const ROUNDS: usize = 20;
+    let mut s = [0.0; 4];
+    for _ in 0..ROUNDS {
+        for quad in black_box(keys).chunks_exact(4) {
+            for (acc, &v) in s.iter_mut().zip(quad) {
+                read(acc, v);
             }
-            s
-        },
-    );
-    let attr_time = r.time(
-        "attr: read 250k positions x20 shuffled, view",
-        None,
-        || (),
-        |()| {
-            let mut s = [0.0; 4];
-            for _ in 0..ROUNDS {
-                for quad in black_box(&shuffled).chunks_exact(4) {
-                    for (acc, &v) in s.iter_mut().zip(quad) {
-                        if let Some(p) = view.get(v) {
-                            *acc += p[0];
-                        }
-                    }
-                }
-            }
-            s
-        },
-    );
-    r.figure(
-        "attr: read by key / plain Vec, shuffled",
-        100.0 * attr_time / vec_time,
-        "%",
-        Some((110.0, "target")),
-    );
+        }
+    }
+    s
 }
