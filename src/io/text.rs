@@ -149,6 +149,22 @@ const POW10: [f64; 23] = [
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
 
+/// Skip an optional sign at `s[*i]`; whether it was a minus.
+#[inline(always)]
+fn take_sign(s: &[u8], i: &mut usize) -> bool {
+    match s.get(*i) {
+        Some(b'-') => {
+            *i += 1;
+            true
+        }
+        Some(b'+') => {
+            *i += 1;
+            false
+        }
+        _ => false,
+    }
+}
+
 /// Parse the number that starts at `s[*i]` and ends at whitespace, a line
 /// end or the end of `s`; on success `*i` moves past it. One pass over its
 /// bytes in the common case (the exact fast path); otherwise the token is
@@ -157,17 +173,7 @@ const POW10: [f64; 23] = [
 pub(crate) fn parse_f64_at(s: &[u8], i: &mut usize) -> Option<f64> {
     let start = *i;
     let mut j = start;
-    let neg = match s.get(j) {
-        Some(b'-') => {
-            j += 1;
-            true
-        }
-        Some(b'+') => {
-            j += 1;
-            false
-        }
-        _ => false,
-    };
+    let neg = take_sign(s, &mut j);
     let mut mant: u64 = 0;
     let mut digits = 0u32;
     let mut any = false;
@@ -292,17 +298,7 @@ fn fast_f64(tok: &[u8]) -> Option<f64> {
     }
     if i < tok.len() && (tok[i] == b'e' || tok[i] == b'E') {
         i += 1;
-        let eneg = match tok.get(i) {
-            Some(b'-') => {
-                i += 1;
-                true
-            }
-            Some(b'+') => {
-                i += 1;
-                false
-            }
-            _ => false,
-        };
+        let eneg = take_sign(tok, &mut i);
         let start = i;
         let mut e: i64 = 0;
         while i < tok.len() && tok[i].is_ascii_digit() && i - start < 6 {
