@@ -5,8 +5,24 @@ use crate::error::{Refusal, Result};
 use crate::keys::EdgeKey;
 use crate::mesh::Mesh;
 
+/// The elements of a flip, named after the diagram on
+/// [`Mesh::flip_edge`]: `h = a → b`, `t = b → a`, `h1 = b → c`,
+/// `h2 = c → a`, `t1 = a → d`, `t2 = d → b`.
+struct FlipPlan {
+    e: u32,
+    h1: u32,
+    h2: u32,
+    t1: u32,
+    t2: u32,
+    c: u32,
+    d: u32,
+}
+
 impl Mesh {
-    fn plan_flip(&self, ek: EdgeKey) -> Result<u32> {
+    // Inlined into both callers so that `flip_edge` reuses what the plan
+    // read instead of reading it again.
+    #[inline(always)]
+    fn plan_flip(&self, ek: EdgeKey) -> Result<FlipPlan> {
         const OP: &str = "flip_edge";
         let e = self.check_edge(ek)?;
         let (h, t) = (2 * e, 2 * e + 1);
@@ -18,30 +34,41 @@ impl Mesh {
         if self.holes > 0 && (self.in_hole_raw(h) || self.in_hole_raw(t)) {
             return Err(refuse(OP, ek, Refusal::Boundary));
         }
-        if self.next_of(h2) != h || self.next_of(t2) != t {
+        let (r2, s2) = (self.he[h2 as usize], self.he[t2 as usize]);
+        if r2.next != h || s2.next != t {
             return Err(refuse(OP, ek, Refusal::NotTriangles));
         }
-        let c = self.origin_of(h2);
-        let d = self.origin_of(t2);
-        if c == d || self.joined_from(h2, d) {
+        let (c, d) = (r2.origin, s2.origin);
+        if c == d || self.joined_between(h2, h1 ^ 1, d) {
             return Err(refuse(OP, ek, Refusal::EdgeExists));
         }
-        Ok(e)
+        Ok(FlipPlan {
+            e,
+            h1,
+            h2,
+            t1,
+            t2,
+            c,
+            d,
+        })
     }
 
-    /// Whether an edge joins `origin(start)` and `b` (a plain loop over
-    /// the ring, starting at a half-edge already in cache).
+    /// Whether an edge joins `c = origin(first)` and `d`, looking only at
+    /// the half-edges strictly between `first` and `last` in `c`'s ring
+    /// (the two ends lead to `a` and `b`, which are not `d`).
     #[inline]
-    fn joined_from(&self, start: u32, b: u32) -> bool {
-        let mut o = start;
+    fn joined_between(&self, first: u32, last: u32, d: u32) -> bool {
+        let mut o = self.next_of(first ^ 1);
+        // Bounded: a ring has fewer than 2E half-edges.
         for _ in 0..self.he.len() {
-            if self.dest_of(o) == b {
-                return true;
-            }
-            o = self.next_of(o ^ 1);
-            if o == start {
+            if o == last {
                 return false;
             }
+            let twin = self.he[(o ^ 1) as usize];
+            if twin.origin == d {
+                return true;
+            }
+            o = twin.next;
         }
         false
     }
@@ -51,7 +78,7 @@ impl Mesh {
     /// # Errors
     /// As [`flip_edge`](Mesh::flip_edge).
     pub fn check_flip_edge(&self, e: EdgeKey) -> Result<()> {
-        self.plan_flip(e).map(|_| ())
+        self.plan_flip(e).map(drop)
     }
 
     /// Replace the edge `a–b` shared by triangles `(a, b, c)` and
@@ -89,12 +116,17 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn flip_edge(&mut self, ek: EdgeKey) -> Result<EdgeKey> {
-        let e = self.plan_flip(ek)?;
+        let FlipPlan {
+            e,
+            h1,
+            h2,
+            t1,
+            t2,
+            c,
+            d,
+        } = self.plan_flip(ek)?;
         let (h, t) = (2 * e, 2 * e + 1);
-        let (h1, t1) = (self.next_of(h), self.next_of(t));
-        let (h2, t2) = (self.next_of(h1), self.next_of(t1));
         let (a, b) = (self.origin_of(h), self.origin_of(t));
-        let (c, d) = (self.origin_of(h2), self.origin_of(t2));
         let (f0, f1) = (self.face_of(h), self.face_of(t));
         // f0 = (h: c -> d, t2: d -> b, h1: b -> c);
         // f1 = (t: d -> c, h2: c -> a, t1: a -> d).
