@@ -191,3 +191,66 @@ fn stale_key_is_reported() {
     m.collapse_edge(h).unwrap();
     assert!(matches!(m.collapse_edge(h), Err(Error::StaleKey(_))));
 }
+
+#[test]
+fn link_condition_agrees_with_neighbour_sets() {
+    // On closed triangle meshes a collapse of a -> b is allowed exactly
+    // when the two apexes differ and every common neighbour of a and b is
+    // one of them. Neighbour sets come from the edge list, not from the
+    // ring walks under test; random flips and pokes in between make
+    // low-valence vertices and short cycles.
+    use std::collections::{HashMap, HashSet};
+    let mut poked = shapes::icosahedron();
+    for f in poked.faces().collect::<Vec<_>>().into_iter().step_by(3) {
+        poked.poke_face(f).unwrap();
+    }
+    for mut m in [shapes::icosphere(1), shapes::icosphere(2), poked] {
+        let (mut seed, mut refused, mut done) = (0x2545_f491_u64, 0, 0);
+        for step in 0..300 {
+            if m.vertex_count() <= 8 {
+                break;
+            }
+            let mut around: HashMap<_, HashSet<_>> = HashMap::new();
+            for e in m.edges() {
+                let [p, q] = m.edge(e).unwrap().vertices();
+                around.entry(p).or_default().insert(q);
+                around.entry(q).or_default().insert(p);
+            }
+            let hs: Vec<_> = m.halfedges().collect();
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let h = hs[(seed >> 33) as usize % hs.len()];
+            if step % 4 == 3 {
+                let _ = m.flip_edge(m.halfedge(h).unwrap().edge().key());
+                continue;
+            }
+            let hv = m.halfedge(h).unwrap();
+            let (a, b) = (hv.origin().key(), hv.dest().key());
+            let (c, d) = (hv.next().dest().key(), hv.twin().next().dest().key());
+            let allowed = c != d
+                && around[&a]
+                    .intersection(&around[&b])
+                    .all(|&w| w == c || w == d);
+            match checked(&mut m, |m| m.collapse_edge(h)) {
+                Ok(kept) => {
+                    assert!(
+                        allowed,
+                        "collapse of {a:?} into {b:?} broke the link condition"
+                    );
+                    assert_eq!(kept, b);
+                    done += 1;
+                }
+                Err(e) => {
+                    assert!(!allowed, "collapse of {a:?} into {b:?} refused: {e}");
+                    refused += 1;
+                }
+            }
+        }
+        eprintln!("{done} collapses, {refused} refusals");
+        assert!(
+            done > 0 && refused > 0,
+            "{done} collapses, {refused} refusals"
+        );
+    }
+}

@@ -7,6 +7,13 @@ use crate::mesh::Mesh;
 
 struct CollapsePlan {
     h: u32,
+    a: u32,
+    b: u32,
+    f_left: u32,
+    f_right: u32,
+    /// The half-edges after `h` and after its twin.
+    nh: u32,
+    nt: u32,
     /// The half-edges before `h` and before its twin.
     ph: u32,
     pt: u32,
@@ -18,78 +25,98 @@ struct CollapsePlan {
 }
 
 impl Mesh {
+    // Inlined into both callers so that the commit reuses what the plan
+    // read.
+    #[inline(always)]
     fn plan_collapse(&self, hk: HalfedgeKey) -> Result<CollapsePlan> {
         const OP: &str = "collapse_edge";
         let h = self.check_halfedge(hk)?;
         let t = h ^ 1;
-        let (a, b) = (self.origin_of(h), self.origin_of(t));
-        let (f_left, f_right) = (self.face_of(h), self.face_of(t));
-        let left_goes = self.is_triangle_at(h);
-        let right_goes = self.is_triangle_at(t);
-        let c = self.dest_of(self.next_of(h));
-        let d = self.dest_of(self.next_of(t));
+        let (rh, rt) = (self.he[h as usize], self.he[t as usize]);
+        let (a, b) = (rh.origin, rt.origin);
+        let (f_left, f_right) = (rh.face, rt.face);
+        let (nh, nt) = (rh.next, rt.next);
+        // In a triangle the half-edge after `next` is the one before, and
+        // leaves the apex.
+        let (left_prev, right_prev) = (self.he[nh as usize].next, self.he[nt as usize].next);
+        let (left, right) = (self.he[left_prev as usize], self.he[right_prev as usize]);
+        let left_goes = nh != h && left.next == h;
+        let right_goes = nt != t && right.next == t;
+        let (c, d) = (left.origin, right.origin);
         if left_goes && right_goes && c == d {
             return Err(refuse(OP, hk, Refusal::LinkCondition));
         }
         // Link condition: the common neighbours of a and b are exactly the
-        // apexes of the triangles that disappear.
+        // apexes of the triangles that disappear. Gather a's neighbours
+        // other than b and those apexes; when there are none (a poked
+        // centre, a valence-3 vertex) b's ring need not be walked at all.
+        let is_apex = |w: u32| (left_goes && w == c) || (right_goes && w == d);
         let mut small = [0u32; 16];
         let mut large = Vec::new();
-        let mut k = 0;
-        // a's ring from h: the last one is twin(prev(h)).
-        let mut last_a = h;
-        let mut before_last_a = h;
-        for o in self.ring_from(h) {
-            before_last_a = last_a;
-            last_a = o;
-            let w = self.dest_of(o);
-            if k < small.len() {
-                small[k] = w;
-            } else {
-                if large.is_empty() {
-                    large.extend_from_slice(&small);
+        let mut others = 0;
+        let (mut degree, mut last_a, mut before_last_a) = (0usize, h, h);
+        let mut o = h;
+        // Bounded: a ring has fewer than 2E half-edges.
+        for _ in 0..self.he.len() {
+            let twin = self.he[(o ^ 1) as usize];
+            let w = twin.origin;
+            if w != b && !is_apex(w) {
+                if others < small.len() {
+                    small[others] = w;
+                } else {
+                    if large.is_empty() {
+                        large.extend_from_slice(&small);
+                    }
+                    large.push(w);
                 }
-                large.push(w);
+                others += 1;
             }
-            k += 1;
+            degree += 1;
+            (before_last_a, last_a) = (last_a, o);
+            o = twin.next;
+            if o == h {
+                break;
+            }
         }
-        let around_a: &mut [u32] = if k <= small.len() {
-            &mut small[..k]
-        } else {
-            large.sort_unstable();
-            &mut large
-        };
-        let sorted = k > 16;
-        let mut last_b = t;
-        for o in self.ring_from(t) {
-            last_b = o;
-            let w = self.dest_of(o);
-            if w == a {
-                continue;
-            }
-            let common = if sorted {
-                around_a.binary_search(&w).is_ok()
+        let pt = if others == 0 {
+            if right_goes {
+                right_prev
             } else {
-                around_a.contains(&w)
-            };
-            if common && !((left_goes && w == c) || (right_goes && w == d)) {
-                return Err(refuse(OP, hk, Refusal::LinkCondition));
+                self.prev_fast(t)
             }
+        } else {
+            let around_a: &[u32] = if others <= small.len() {
+                &small[..others]
+            } else {
+                large.sort_unstable();
+                &large
+            };
+            let mut last_b = t;
+            let mut o = t;
+            for _ in 0..self.he.len() {
+                let twin = self.he[(o ^ 1) as usize];
+                let w = twin.origin;
+                let common = if others > small.len() {
+                    around_a.binary_search(&w).is_ok()
+                } else {
+                    around_a.contains(&w)
+                };
+                if common {
+                    return Err(refuse(OP, hk, Refusal::LinkCondition));
+                }
+                last_b = o;
+                o = twin.next;
+                if o == t {
+                    break;
+                }
+            }
+            last_b ^ 1
+        };
+        if self.holes > 0 {
+            self.check_collapse_boundary(hk, h, f_left, f_right, left_goes, right_goes)?;
         }
-        // An interior edge between two boundary vertices would pinch.
-        // (Hole flags cost a random read each: looked up only when needed.)
-        let on_boundary =
-            |v_ring_start: u32| self.ring_from(v_ring_start).any(|o| self.in_hole_raw(o));
-        if self.holes > 0
-            && !self.is_hole_raw(f_left)
-            && !self.is_hole_raw(f_right)
-            && on_boundary(h)
-            && on_boundary(t)
-        {
-            return Err(refuse(OP, hk, Refusal::NonManifold));
-        }
-        // No other face or hole may hold both a and b. Triangles around a
-        // cannot (their third corner would be a common neighbour).
+        // No other face may hold both a and b. Triangles around a cannot
+        // (their third corner would be a common neighbour).
         for o in self.outgoing_raw(a) {
             let f = self.face_of(o);
             if f == f_left || f == f_right {
@@ -105,10 +132,50 @@ impl Mesh {
                 return Err(refuse(OP, hk, Refusal::NonManifold));
             }
         }
+        Ok(CollapsePlan {
+            h,
+            a,
+            b,
+            f_left,
+            f_right,
+            nh,
+            nt,
+            ph: last_a ^ 1,
+            // The half-edge before twin(ph) = last_a once h is gone: the
+            // twin of the one before it in a's ring, unless that is h.
+            before_tph: (degree >= 3).then_some(before_last_a ^ 1),
+            pt,
+            left_goes,
+            right_goes,
+        })
+    }
+
+    /// The checks that only a mesh with holes needs.
+    fn check_collapse_boundary(
+        &self,
+        hk: HalfedgeKey,
+        h: u32,
+        f_left: u32,
+        f_right: u32,
+        left_goes: bool,
+        right_goes: bool,
+    ) -> Result<()> {
+        const OP: &str = "collapse_edge";
+        let t = h ^ 1;
+        // An interior edge between two boundary vertices would pinch.
+        let on_boundary =
+            |v_ring_start: u32| self.ring_from(v_ring_start).any(|o| self.in_hole_raw(o));
+        if !self.is_hole_raw(f_left)
+            && !self.is_hole_raw(f_right)
+            && on_boundary(h)
+            && on_boundary(t)
+        {
+            return Err(refuse(OP, hk, Refusal::NonManifold));
+        }
         // A disappearing triangle must not leave an edge with holes on both
         // sides.
         for (goes, x) in [(left_goes, h), (right_goes, t)] {
-            if goes && self.holes > 0 && !self.in_hole_raw(x) {
+            if goes && !self.in_hole_raw(x) {
                 let n = self.next_of(x);
                 let p = self.next_of(n);
                 if self.in_hole_raw(n ^ 1) && self.in_hole_raw(p ^ 1) {
@@ -116,16 +183,7 @@ impl Mesh {
                 }
             }
         }
-        Ok(CollapsePlan {
-            h,
-            ph: last_a ^ 1,
-            // The half-edge before twin(ph) = last_a once h is gone: the
-            // twin of the one before it in a's ring, unless that is h.
-            before_tph: (k >= 3).then_some(before_last_a ^ 1),
-            pt: last_b ^ 1,
-            left_goes,
-            right_goes,
-        })
+        Ok(())
     }
 
     /// The half-edges leaving `origin(h)`, starting at `h`, clockwise.
@@ -142,20 +200,13 @@ impl Mesh {
         })
     }
 
-    /// Whether the loop through `h` has exactly three half-edges.
-    #[inline]
-    fn is_triangle_at(&self, h: u32) -> bool {
-        let n = self.next_of(h);
-        n != h && self.next_of(self.next_of(n)) == h
-    }
-
     /// Whether [`collapse_edge`](Mesh::collapse_edge) would succeed;
     /// changes nothing.
     ///
     /// # Errors
     /// As [`collapse_edge`](Mesh::collapse_edge).
     pub fn check_collapse_edge(&self, h: HalfedgeKey) -> Result<()> {
-        self.plan_collapse(h).map(|_| ())
+        self.plan_collapse(h).map(drop)
     }
 
     /// Merge `a = origin(h)` into `b = dest(h)`: the edge disappears, every
@@ -191,7 +242,10 @@ impl Mesh {
     /// triangle would leave an edge with holes on both sides.
     ///
     /// # Complexity
-    /// O(Σ degree of the faces around `a` + degree of `b` · log degree of `a`).
+    /// O(Σ degree of the faces around `a` + degree of `b` · log degree of
+    /// `a`). `b`'s ring is walked only when `a` has a neighbour other than
+    /// `b` and the apexes of the disappearing triangles: collapsing a
+    /// valence-3 vertex (a poked centre) costs O(1).
     ///
     /// # Examples
     /// ```
@@ -242,6 +296,12 @@ impl Mesh {
         }
         let CollapsePlan {
             h,
+            a,
+            b,
+            f_left,
+            f_right,
+            nh,
+            nt,
             ph,
             pt,
             before_tph,
@@ -249,10 +309,6 @@ impl Mesh {
             right_goes,
         } = self.plan_collapse(hk)?;
         let tw = h ^ 1;
-        let (a, b) = (self.origin_of(h), self.origin_of(tw));
-        let (f_left, f_right) = (self.face_of(h), self.face_of(tw));
-        let nh = self.next_of(h);
-        let nt = self.next_of(tw);
         self.attrs
             .vertex
             .merge(b as usize, &[(a as usize, 1.0 - t), (b as usize, t)]);
