@@ -198,6 +198,58 @@ impl Mesh {
             .map(|i| FaceKey::new(i, self.f_slots.generation_of(i)))
     }
 
+    // ----- keys by slot (for walking while editing) --------------------------
+
+    /// The vertex living in slot `i`, if any (`i` from 0 to
+    /// [`slot_counts`](Mesh::slot_counts)`()[0]`).
+    ///
+    /// The element iterators borrow the mesh; walking slots instead lets a
+    /// loop edit the mesh as it goes without first collecting every key
+    /// (which costs 2 ms and 4 MB for the edges of a 164k-vertex sphere). A
+    /// new element takes a vacant slot or the next one after the last.
+    #[inline]
+    pub fn vertex_at(&self, i: usize) -> Option<VertexKey> {
+        let i = u32::try_from(i).ok()?;
+        self.v_slots
+            .is_live(i as usize)
+            .then(|| VertexKey::new(i, self.v_slots.generation_of(i)))
+    }
+
+    /// The edge living in slot `i`, if any (`i` from 0 to
+    /// [`slot_counts`](Mesh::slot_counts)`()[2]`); see
+    /// [`vertex_at`](Mesh::vertex_at).
+    ///
+    /// ```
+    /// // Flip every edge once, editing while walking the slots.
+    /// let mut mesh = meshloom::shapes::icosphere(2);
+    /// let mut flipped = 0;
+    /// for i in 0..mesh.slot_counts()[2] {
+    ///     if let Some(e) = mesh.edge_at(i) {
+    ///         flipped += usize::from(mesh.flip_edge(e).is_ok());
+    ///     }
+    /// }
+    /// assert!(flipped > 0);
+    /// mesh.validate()?;
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    #[inline]
+    pub fn edge_at(&self, i: usize) -> Option<EdgeKey> {
+        let i = u32::try_from(i).ok()?;
+        self.e_slots
+            .is_live(i as usize)
+            .then(|| EdgeKey::new(i, self.e_slots.generation_of(i)))
+    }
+
+    /// The face (not a hole) living in slot `i`, if any (`i` from 0 to
+    /// [`slot_counts`](Mesh::slot_counts)`()[3]`); see
+    /// [`vertex_at`](Mesh::vertex_at).
+    #[inline]
+    pub fn face_at(&self, i: usize) -> Option<FaceKey> {
+        let i = u32::try_from(i).ok()?;
+        (self.f_slots.is_live(i as usize) && !self.is_hole_raw(i))
+            .then(|| FaceKey::new(i, self.f_slots.generation_of(i)))
+    }
+
     // ----- key checks at the door -------------------------------------------
 
     /// Whether the key names a live vertex of this mesh.

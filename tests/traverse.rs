@@ -310,3 +310,26 @@ fn dfs_visits_everything_once_each_step_next_to_the_walk() {
         assert_eq!(mesh.bfs_faces(f).unwrap().count(), mesh.face_count());
     }
 }
+
+#[test]
+fn keys_by_slot_match_the_iterators() {
+    let mut m = shapes::grid(3, 3, GridFaces::Triangles);
+    // Free some slots: a removed vertex takes its edges with it.
+    let inner = m
+        .vertices()
+        .find(|&v| !m.vertex(v).unwrap().is_boundary())
+        .unwrap();
+    m.remove_vertex(inner).unwrap();
+    let [nv, _, ne, nf] = m.slot_counts();
+    // A few indices past the end answer None too.
+    let vs: Vec<_> = (0..nv + 3).filter_map(|i| m.vertex_at(i)).collect();
+    let es: Vec<_> = (0..ne + 3).filter_map(|i| m.edge_at(i)).collect();
+    let fs: Vec<_> = (0..nf + 3).filter_map(|i| m.face_at(i)).collect();
+    assert_eq!(vs, m.vertices().collect::<Vec<_>>());
+    assert_eq!(es, m.edges().collect::<Vec<_>>());
+    assert_eq!(fs, m.faces().collect::<Vec<_>>());
+    assert!(vs.len() < nv && es.len() < ne, "removal left vacant slots");
+    assert!(m.holes().all(|h| m.face_at(h.index()).is_none()));
+    assert_eq!(m.edge_at(usize::MAX), None);
+    assert_eq!(m.vertex_at(1 << 40), None);
+}

@@ -8,18 +8,24 @@
 
 use crate::harness::{Peer, Report};
 use meshloom::shapes::{self, GridFaces};
-use meshloom::{FaceKey, Mesh, VertexKey};
+use meshloom::Mesh;
 
-/// Poke every face, then collapse every new centre into a corner.
+/// Poke every face, then collapse every new centre into a corner. Slots
+/// are walked by index (as pmp's loop does), so no key list is collected:
+/// on a freshly built mesh the centres fill the vertex slots after the
+/// original ones.
 fn split_collapse(mut m: Mesh) -> Mesh {
-    let faces: Vec<FaceKey> = m.faces().collect();
-    let mut centres: Vec<VertexKey> = Vec::with_capacity(faces.len());
-    for f in faces {
-        centres.push(m.poke_face(f).expect("poke"));
+    let [first_new, _, _, faces] = m.slot_counts();
+    for i in 0..faces {
+        if let Some(f) = m.face_at(i) {
+            m.poke_face(f).expect("poke");
+        }
     }
-    for c in centres {
-        let h = m.vertex(c).expect("live").halfedge().key();
-        m.collapse_edge(h).expect("collapse back");
+    for i in first_new..m.slot_counts()[0] {
+        if let Some(c) = m.vertex_at(i) {
+            let h = m.vertex(c).expect("live").halfedge().key();
+            m.collapse_edge(h).expect("collapse back");
+        }
     }
     m
 }
@@ -29,12 +35,13 @@ fn split_collapse(mut m: Mesh) -> Mesh {
 /// key order piles the flipped edges into fans: on the grid, degrees pass
 /// 20,000 and the run measures the fans, not the flips.)
 fn flip_all(mut m: Mesh) -> (Mesh, usize) {
-    let edges: Vec<_> = m.edges().collect();
     let mut flipped = 0;
-    for e in edges {
-        if m.flip_edge(e).is_ok() {
-            m.flip_edge(e).expect("flips back");
-            flipped += 1;
+    for i in 0..m.slot_counts()[2] {
+        if let Some(e) = m.edge_at(i) {
+            if m.flip_edge(e).is_ok() {
+                m.flip_edge(e).expect("flips back");
+                flipped += 1;
+            }
         }
     }
     (m, flipped)

@@ -140,8 +140,9 @@ impl Mesh {
         self.set_next(t1, t);
         self.he[t2 as usize].face = f0;
         self.he[h2 as usize].face = f1;
-        self.set_face_link(f0, h);
-        self.set_face_link(f1, t);
+        // Neither face is a hole (refused above): no flag to keep.
+        self.f_halfedge[f0 as usize] = h;
+        self.f_halfedge[f1 as usize] = t;
         // a and b may have named h and t; t1 and h1 surely leave them.
         self.v_halfedge[a as usize] = t1;
         self.v_halfedge[b as usize] = h1;
