@@ -362,15 +362,19 @@ impl Mesh {
     pub(crate) fn prev_of(&self, h: u32) -> u32 {
         let mut o = h;
         // Bounded: the ring around a vertex has at most 2E half-edges.
-        for _ in 0..self.he.len() {
+        let mut budget = self.he.len();
+        loop {
             let t = o ^ 1;
             let n = self.he[t as usize].next;
             if n == h {
                 return t;
             }
             o = n;
+            budget -= 1;
+            if budget == 0 {
+                return NONE;
+            }
         }
-        NONE
     }
 
     #[inline]

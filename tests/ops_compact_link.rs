@@ -101,3 +101,38 @@ fn raw_edit_builds_a_triangle_by_hand() {
     edit.finish().unwrap();
     assert_eq!(counts(&m), (3, 3, 1, 1));
 }
+
+#[test]
+fn operators_terminate_on_a_mesh_left_broken_by_raw_edits() {
+    // Rings that never return to their start must not hang an operator:
+    // every walk is bounded. (What a broken mesh yields is unspecified, and
+    // debug builds may panic when an operator's result fails `validate`;
+    // only termination is tested.)
+    let (done, finished) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut m = shapes::icosahedron();
+        let hs: Vec<_> = m.halfedges().collect();
+        {
+            let mut edit = m.raw_edit();
+            // Two half-edges of one ring now skip into another ring.
+            edit.link(hs[1], hs[7]).unwrap();
+            edit.link(hs[9], hs[20]).unwrap();
+        }
+        for &h in &hs {
+            let mut copy = m.clone();
+            let e = m.halfedge(h).unwrap().edge().key();
+            let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(move || {
+                let _ = copy.check_flip_edge(e);
+                let _ = copy.check_collapse_edge(h);
+                let _ = copy.flip_edge(e);
+                let _ = copy.collapse_edge(h);
+            }));
+        }
+        done.send(()).unwrap();
+    });
+    let waited = finished.recv_timeout(std::time::Duration::from_secs(60));
+    assert!(
+        waited.is_ok(),
+        "an operator did not return on a broken mesh"
+    );
+}

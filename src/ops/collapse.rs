@@ -54,10 +54,13 @@ impl Mesh {
         let mut small = [0u32; 16];
         let mut large = Vec::new();
         let mut others = 0;
-        let (mut degree, mut last_a, mut before_last_a) = (0usize, h, h);
+        let (mut degree, mut last_a) = (0usize, h);
+        let mut before_last_a;
         let mut o = h;
-        // Bounded: a ring has fewer than 2E half-edges.
-        for _ in 0..self.he.len() {
+        // Bounded: a ring has fewer than 2E half-edges. (A countdown at the
+        // end of the body: `for _ in 0..len` here measured 10% slower.)
+        let mut budget = self.he.len();
+        loop {
             let twin = self.he[(o ^ 1) as usize];
             let w = twin.origin;
             if w != b && !is_apex(w) {
@@ -74,7 +77,8 @@ impl Mesh {
             degree += 1;
             (before_last_a, last_a) = (last_a, o);
             o = twin.next;
-            if o == h {
+            budget -= 1;
+            if o == h || budget == 0 {
                 break;
             }
         }
@@ -91,9 +95,10 @@ impl Mesh {
                 large.sort_unstable();
                 &large
             };
-            let mut last_b = t;
+            let mut last_b;
             let mut o = t;
-            for _ in 0..self.he.len() {
+            let mut budget = self.he.len();
+            loop {
                 let twin = self.he[(o ^ 1) as usize];
                 let w = twin.origin;
                 let common = if others > small.len() {
@@ -106,7 +111,8 @@ impl Mesh {
                 }
                 last_b = o;
                 o = twin.next;
-                if o == t {
+                budget -= 1;
+                if o == t || budget == 0 {
                     break;
                 }
             }
@@ -315,10 +321,12 @@ impl Mesh {
         // Every half-edge leaving a now leaves b (the ring of a is walked by
         // next/twin, which the origins do not affect).
         let mut o = h;
-        for _ in 0..self.he.len() {
+        let mut budget = self.he.len();
+        loop {
             self.he[o as usize].origin = b;
             o = self.next_of(o ^ 1);
-            if o == h {
+            budget -= 1;
+            if o == h || budget == 0 {
                 break;
             }
         }

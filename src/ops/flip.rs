@@ -60,7 +60,8 @@ impl Mesh {
     fn joined_between(&self, first: u32, last: u32, d: u32) -> bool {
         let mut o = self.next_of(first ^ 1);
         // Bounded: a ring has fewer than 2E half-edges.
-        for _ in 0..self.he.len() {
+        let mut budget = self.he.len();
+        loop {
             if o == last {
                 return false;
             }
@@ -69,8 +70,11 @@ impl Mesh {
                 return true;
             }
             o = twin.next;
+            budget -= 1;
+            if budget == 0 {
+                return false;
+            }
         }
-        false
     }
 
     /// Whether [`flip_edge`](Mesh::flip_edge) would succeed; changes nothing.
