@@ -209,10 +209,8 @@ impl Mesh {
     /// new element takes a vacant slot or the next one after the last.
     #[inline]
     pub fn vertex_at(&self, i: usize) -> Option<VertexKey> {
-        let i = u32::try_from(i).ok()?;
-        self.v_slots
-            .is_live(i as usize)
-            .then(|| VertexKey::new(i, self.v_slots.generation_of(i)))
+        let (i, g) = self.v_slots.live_at(i)?;
+        Some(VertexKey::new(i, g))
     }
 
     /// The edge living in slot `i`, if any (`i` from 0 to
@@ -234,10 +232,8 @@ impl Mesh {
     /// ```
     #[inline]
     pub fn edge_at(&self, i: usize) -> Option<EdgeKey> {
-        let i = u32::try_from(i).ok()?;
-        self.e_slots
-            .is_live(i as usize)
-            .then(|| EdgeKey::new(i, self.e_slots.generation_of(i)))
+        let (i, g) = self.e_slots.live_at(i)?;
+        Some(EdgeKey::new(i, g))
     }
 
     /// The face (not a hole) living in slot `i`, if any (`i` from 0 to
@@ -245,9 +241,8 @@ impl Mesh {
     /// [`vertex_at`](Mesh::vertex_at).
     #[inline]
     pub fn face_at(&self, i: usize) -> Option<FaceKey> {
-        let i = u32::try_from(i).ok()?;
-        (self.f_slots.is_live(i as usize) && !self.is_hole_raw(i))
-            .then(|| FaceKey::new(i, self.f_slots.generation_of(i)))
+        let (i, g) = self.f_slots.live_at(i)?;
+        (!self.is_hole_raw(i)).then(|| FaceKey::new(i, g))
     }
 
     // ----- key checks at the door -------------------------------------------

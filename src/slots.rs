@@ -117,6 +117,13 @@ impl Slots {
         self.generations.get(i).is_some_and(|g| g & 1 == 1)
     }
 
+    /// Slot `i`'s index and generation, if it is live.
+    #[inline]
+    pub(crate) fn live_at(&self, i: usize) -> Option<(u32, u32)> {
+        let i = u32::try_from(i).ok()?;
+        self.is_live(i as usize).then(|| (i, self.generation_of(i)))
+    }
+
     /// Take a slot: a vacant one if any, else a new one at the end.
     /// Returns `(index, generation, is_new)`.
     pub(crate) fn alloc(&mut self) -> (u32, u32, bool) {
