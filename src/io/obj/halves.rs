@@ -59,6 +59,40 @@ fn join<T: Copy>(mut first: Vec<T>, second: &[T]) -> Vec<T> {
     first
 }
 
+/// The start of the next corner of an `f` statement from `i`, past spaces;
+/// `None` at the end of the statement (line end, comment or input end).
+#[inline]
+pub(super) fn next_corner(bytes: &[u8], mut i: usize) -> Option<usize> {
+    while i < bytes.len() && is_space(bytes[i]) {
+        i += 1;
+    }
+    (i < bytes.len() && bytes[i] != b'\n' && bytes[i] != b'#').then_some(i)
+}
+
+/// A plain 1-based index at `start` (at most 9 digits): its value and end,
+/// if it is digits alone up to a space or line end. `None` for anything
+/// else (no digits, zero, `/`-separated references, signs, ...).
+#[inline]
+pub(super) fn plain_index(bytes: &[u8], start: usize) -> Option<(u32, usize)> {
+    let (n, mut i, mut v) = (bytes.len(), start, 0u32);
+    while i < n && i - start < 9 && bytes[i].is_ascii_digit() {
+        v = v * 10 + u32::from(bytes[i] - b'0');
+        i += 1;
+    }
+    let ends = i == n || is_space(bytes[i]) || bytes[i] == b'\n';
+    (i > start && v > 0 && ends).then_some((v, i))
+}
+
+/// The start of the line after the one holding `i`.
+#[inline]
+pub(super) fn next_line(bytes: &[u8], i: usize) -> usize {
+    let n = bytes.len();
+    match bytes[i.min(n)..].iter().position(|&b| b == b'\n') {
+        Some(k) => i + k + 1,
+        None => n,
+    }
+}
+
 /// Parse a chunk of plain OBJ; `None` at anything else.
 fn plain(bytes: &[u8]) -> Option<Plain> {
     let n = bytes.len();
@@ -97,22 +131,9 @@ fn plain(bytes: &[u8]) -> Option<Plain> {
             b"f" => {
                 i = key_end;
                 let start = out.indices.len();
-                loop {
-                    while i < n && is_space(bytes[i]) {
-                        i += 1;
-                    }
-                    if i >= n || bytes[i] == b'\n' || bytes[i] == b'#' {
-                        break;
-                    }
-                    let st = i;
-                    let mut v: u32 = 0;
-                    while i < n && i - st < 9 && bytes[i].is_ascii_digit() {
-                        v = v * 10 + u32::from(bytes[i] - b'0');
-                        i += 1;
-                    }
-                    if i == st || v == 0 || !(i == n || is_space(bytes[i]) || bytes[i] == b'\n') {
-                        return None;
-                    }
+                while let Some(st) = next_corner(bytes, i) {
+                    let (v, end) = plain_index(bytes, st)?;
+                    i = end;
                     out.needs = out
                         .needs
                         .max((v as usize).saturating_sub(out.positions.len()));
@@ -127,10 +148,7 @@ fn plain(bytes: &[u8]) -> Option<Plain> {
             k if k.first() == Some(&b'#') => {}
             _ => return None,
         }
-        pos = match bytes[i.min(n)..].iter().position(|&b| b == b'\n') {
-            Some(k) => i + k + 1,
-            None => n,
-        };
+        pos = next_line(bytes, i);
     }
     Some(out)
 }

@@ -1,7 +1,7 @@
 //! The OBJ statements, one after the other, with every feature and error;
 //! large plain files go to [`halves`](super::halves) first.
 
-use super::halves::{parse_halves, PARALLEL_MIN};
+use super::halves::{next_corner, next_line, parse_halves, plain_index, PARALLEL_MIN};
 use crate::io::attrs::{Data, SoupColumn};
 use crate::io::error::{Error, Location};
 use crate::io::soup::Soup;
@@ -77,27 +77,15 @@ pub(super) fn parse_serial(bytes: &[u8], record: bool) -> Result<Soup, Error> {
                 soup.vertex_read_at(line_no);
             } else {
                 let start = soup.polygons.indices.len();
-                loop {
-                    while i < n && is_space(bytes[i]) {
-                        i += 1;
-                    }
-                    if i >= n || bytes[i] == b'\n' || bytes[i] == b'#' {
-                        break;
-                    }
+                while let Some(st) = next_corner(bytes, i) {
                     // A plain index, parsed in place.
-                    let st = i;
-                    let mut v: u32 = 0;
-                    while i < n && i - st < 9 && bytes[i].is_ascii_digit() {
-                        v = v * 10 + u32::from(bytes[i] - b'0');
-                        i += 1;
-                    }
-                    let plain = i > st
-                        && v > 0
-                        && v as usize <= soup.polygons.positions.len()
-                        && refs.texcoord_of.is_empty()
-                        && refs.normal_of.is_empty()
-                        && (i == n || is_space(bytes[i]) || bytes[i] == b'\n');
-                    if plain {
+                    let plain = plain_index(bytes, st).filter(|&(v, _)| {
+                        v as usize <= soup.polygons.positions.len()
+                            && refs.texcoord_of.is_empty()
+                            && refs.normal_of.is_empty()
+                    });
+                    if let Some((v, end)) = plain {
+                        i = end;
                         soup.polygons.indices.push(v - 1);
                         continue;
                     }
@@ -111,10 +99,7 @@ pub(super) fn parse_serial(bytes: &[u8], record: bool) -> Result<Soup, Error> {
                 soup.end_face(line_no);
             }
             // The rest of the line (a `w`, vertex colours, a comment).
-            pos = match bytes[i.min(n)..].iter().position(|&b| b == b'\n') {
-                Some(k) => i + k + 1,
-                None => n,
-            };
+            pos = next_line(bytes, i);
             continue;
         }
         let end = bytes[pos..]
