@@ -308,38 +308,24 @@ fn face_corner(
     }
     let mut parts = corner.splitn(3, |&b| b == b'/');
     let v_tok = parts.next().unwrap_or_default();
-    let index = parse_i64(v_tok).ok_or_else(|| Error::syntax(at(), "a vertex index", corner))?;
-    let count = soup.polygons.positions.len();
-    let v = resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
-        at: at(),
-        index,
-        count,
-    })?;
+    let reference = |tok: &[u8], what: &str, count: usize| -> Result<u32, Error> {
+        let index = parse_i64(tok).ok_or_else(|| Error::syntax(at(), what, corner))?;
+        resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
+            at: at(),
+            index,
+            count,
+        })
+    };
+    let v = reference(v_tok, "a vertex index", soup.polygons.positions.len())?;
     soup.polygons.indices.push(v);
     let vt = match parts.next() {
         Some(tok) if !tok.is_empty() => {
-            let index = parse_i64(tok)
-                .ok_or_else(|| Error::syntax(at(), "a texture coordinate index", corner))?;
-            let count = refs.texcoords.len();
-            resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
-                at: at(),
-                index,
-                count,
-            })?
+            reference(tok, "a texture coordinate index", refs.texcoords.len())?
         }
         _ => u32::MAX,
     };
     let vn = match parts.next() {
-        Some(tok) if !tok.is_empty() => {
-            let index =
-                parse_i64(tok).ok_or_else(|| Error::syntax(at(), "a normal index", corner))?;
-            let count = refs.normals.len();
-            resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
-                at: at(),
-                index,
-                count,
-            })?
-        }
+        Some(tok) if !tok.is_empty() => reference(tok, "a normal index", refs.normals.len())?,
         _ => u32::MAX,
     };
     if vt != u32::MAX || !refs.texcoord_of.is_empty() {
