@@ -46,8 +46,6 @@ pub mod keys;
 pub mod link;
 mod mesh;
 pub mod ops;
-#[cfg(feature = "render")]
-pub mod render;
 pub mod repair;
 #[cfg(feature = "serde")]
 mod serde_impl;

@@ -63,7 +63,7 @@ impl Report {
 
     /// Whether the row named `name` is to be run (`--only`).
     pub fn wanted(&self, name: &str) -> bool {
-        self.only.as_deref().map_or(true, |o| name.contains(o))
+        self.only.as_deref().is_none_or(|o| name.contains(o))
     }
 
     /// Print one timed row.

@@ -86,7 +86,7 @@ impl SoupColumn {
     }
 
     fn has(&self, i: usize) -> bool {
-        i < self.data.len() && self.present.as_ref().map_or(true, |p| p[i])
+        i < self.data.len() && self.present.as_ref().is_none_or(|p| p[i])
     }
 }
 

@@ -86,8 +86,8 @@ pub(crate) fn load(path: &Path, gz: bool, limit: u64) -> Result<Vec<u8>, Error> 
     let file = std::fs::File::open(path).map_err(|e| Error::io(e).with_path(path))?;
     let size = file.metadata().map(|m| m.len() as usize).unwrap_or(0);
     let bytes = if gz {
-        let decoder = flate2::read::MultiGzDecoder::new(std::io::BufReader::new(file));
-        read_all(decoder, limit, size.saturating_mul(4))
+        gzip::decoder(std::io::BufReader::new(file))
+            .and_then(|decoder| read_all(decoder, limit, size.saturating_mul(4)))
     } else {
         read_all(file, limit, size).and_then(|b| gunzip_if_gzip(b, limit))
     };
@@ -98,7 +98,7 @@ pub(crate) fn load(path: &Path, gz: bool, limit: u64) -> Result<Vec<u8>, Error> 
 pub(crate) fn gunzip_if_gzip(bytes: Vec<u8>, limit: u64) -> Result<Vec<u8>, Error> {
     if bytes.starts_with(&[0x1f, 0x8b, 8]) {
         let size = bytes.len().saturating_mul(4);
-        read_all(flate2::read::MultiGzDecoder::new(&bytes[..]), limit, size)
+        read_all(gzip::decoder(&bytes[..])?, limit, size)
     } else {
         Ok(bytes)
     }
@@ -110,12 +110,7 @@ pub(crate) fn store(path: &Path, gz: bool, bytes: &[u8]) -> Result<(), Error> {
     let run = || -> std::io::Result<()> {
         let file = std::fs::File::create(path)?;
         if gz {
-            let mut enc = flate2::write::GzEncoder::new(
-                std::io::BufWriter::new(file),
-                flate2::Compression::default(),
-            );
-            enc.write_all(bytes)?;
-            enc.finish()?.flush()
+            gzip::write(std::io::BufWriter::new(file), bytes)
         } else {
             let mut w = std::io::BufWriter::new(file);
             w.write_all(bytes)?;
@@ -123,4 +118,43 @@ pub(crate) fn store(path: &Path, gz: bool, bytes: &[u8]) -> Result<(), Error> {
         }
     };
     run().map_err(|e| Error::io(e).with_path(path))
+}
+
+/// gzip through flate2 (pure Rust), or a clear error when the `gzip`
+/// feature is off.
+#[cfg(feature = "gzip")]
+mod gzip {
+    use std::io::{Read, Write};
+
+    use super::Error;
+
+    pub(super) fn decoder(inner: impl Read) -> Result<impl Read, Error> {
+        Ok(flate2::read::MultiGzDecoder::new(inner))
+    }
+
+    pub(super) fn write(inner: impl Write, bytes: &[u8]) -> std::io::Result<()> {
+        let mut enc = flate2::write::GzEncoder::new(inner, flate2::Compression::default());
+        enc.write_all(bytes)?;
+        enc.finish()?.flush()
+    }
+}
+
+#[cfg(not(feature = "gzip"))]
+mod gzip {
+    use std::io::{Read, Write};
+
+    use super::Error;
+
+    const OFF: &str = "gzip data needs meshloom's `gzip` feature (on by default)";
+
+    pub(super) fn decoder(_inner: impl Read) -> Result<std::io::Empty, Error> {
+        Err(Error::io(std::io::Error::new(
+            std::io::ErrorKind::Unsupported,
+            OFF,
+        )))
+    }
+
+    pub(super) fn write(_inner: impl Write, _bytes: &[u8]) -> std::io::Result<()> {
+        Err(std::io::Error::new(std::io::ErrorKind::Unsupported, OFF))
+    }
 }

@@ -202,7 +202,7 @@ pub(crate) fn parse_f64_at(s: &[u8], i: &mut usize) -> Option<f64> {
             j += 1;
         }
     }
-    let ends = |j: usize| s.get(j).map_or(true, |&b| is_space(b) || b == b'\n');
+    let ends = |j: usize| s.get(j).is_none_or(|&b| is_space(b) || b == b'\n');
     if any && digits <= 19 && (-22..=0).contains(&exp) && ends(j) {
         let v = if mant <= (1u64 << 53) {
             let m = mant as f64;

@@ -1,7 +1,7 @@
 //! Vector helpers, normals and the orthographic camera.
 
 use super::{RenderError, View};
-use crate::mesh::Mesh;
+use meshloom::Mesh;
 
 pub(super) type V3 = [f64; 3];
 
@@ -42,16 +42,13 @@ pub(super) fn newell_normal(corners: impl Iterator<Item = V3> + Clone) -> V3 {
 /// Area-weighted vertex normals, indexed by vertex slot.
 pub(super) fn vertex_normals(mesh: &Mesh, positions: &[V3]) -> Vec<V3> {
     let mut normals = vec![[0.0; 3]; positions.len()];
-    for f in mesh.f_slots.live_indices() {
-        if mesh.is_hole_raw(f) {
-            continue;
-        }
-        let corners = mesh
-            .face_loop_raw(f)
-            .map(|h| positions[mesh.origin_of(h) as usize]);
-        let n = newell_normal(corners);
-        for h in mesh.face_loop_raw(f) {
-            let v = mesh.origin_of(h) as usize;
+    let mut corners: Vec<usize> = Vec::new();
+    for f in mesh.faces() {
+        let Ok(face) = mesh.face(f) else { continue };
+        corners.clear();
+        corners.extend(face.vertices().map(|v| v.index()));
+        let n = newell_normal(corners.iter().map(|&v| positions[v]));
+        for &v in &corners {
             normals[v] = add(normals[v], n);
         }
     }
@@ -105,8 +102,8 @@ impl Camera {
         };
         let mut lo = [f64::INFINITY; 2];
         let mut hi = [f64::NEG_INFINITY; 2];
-        for v in mesh.v_slots.live_indices() {
-            let q = project(positions[v as usize]);
+        for v in mesh.vertices() {
+            let q = project(positions[v.index()]);
             for k in 0..2 {
                 lo[k] = lo[k].min(q[k]);
                 hi[k] = hi[k].max(q[k]);

@@ -1,7 +1,7 @@
 //! Renderer tests: coverage, colours, errors.
 
 use super::*;
-use crate::shapes;
+use meshloom::shapes;
 
 fn small(view: View) -> RenderOptions {
     RenderOptions {

@@ -1,6 +1,6 @@
 //! `meshloom render IN OUT.png [--view ..] [--flat] [--wireframe] [--boundary]`.
 
-use meshloom::render::{self, RenderOptions, Shading};
+use meshloom_cli::render::{self, RenderOptions, Shading};
 
 use crate::cli::RenderArgs;
 use crate::progress::Progress;

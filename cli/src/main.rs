@@ -9,19 +9,17 @@
 #![forbid(unsafe_code)]
 
 mod cli;
-mod convert;
+mod commands;
 mod input;
 mod output;
 mod progress;
-mod render;
-mod stats;
-mod validate;
 
 use std::process::ExitCode;
 
 use clap::Parser;
 
 use cli::{Cli, Command};
+use commands::{convert, render, stats, validate};
 
 /// Why a command failed, and the exit code that says so.
 #[derive(Debug)]

@@ -73,7 +73,7 @@ impl FromStr for View {
     /// A name from [`VIEW_NAMES`] or a direction `x,y,z` toward the eye.
     ///
     /// ```
-    /// use meshloom::render::View;
+    /// use meshloom_cli::render::View;
     /// assert_eq!("top".parse::<View>(), Ok(View::Top));
     /// assert_eq!("1,0,0.5".parse::<View>(), Ok(View::Direction([1.0, 0.0, 0.5])));
     /// assert!("sideways".parse::<View>().is_err());
@@ -184,7 +184,7 @@ impl RenderOptions {
     /// [`RenderError::View`] for a view that defines no camera.
     ///
     /// ```
-    /// use meshloom::render::RenderOptions;
+    /// use meshloom_cli::render::RenderOptions;
     /// assert!(RenderOptions::default().check().is_ok());
     /// assert!(RenderOptions { width: 0, ..RenderOptions::default() }.check().is_err());
     /// ```

@@ -13,14 +13,14 @@
 //! - Each pixel averages `supersample²` samples, which smooths edges.
 //!
 //! ```
-//! use meshloom::render::{render, RenderOptions, View};
+//! use meshloom_cli::render::{render, RenderOptions, View};
 //! let mesh = meshloom::shapes::cube();
 //! let options = RenderOptions { width: 64, height: 48, view: View::Iso, ..RenderOptions::default() };
 //! let image = render(&mesh, &options)?;
 //! assert_eq!((image.width(), image.height()), (64, 48));
 //! assert_ne!(image.pixel(32, 24), Some(options.colors.background)); // the cube is in the middle
 //! assert_eq!(image.pixel(0, 0), Some(options.colors.background));
-//! # Ok::<(), meshloom::render::RenderError>(())
+//! # Ok::<(), meshloom_cli::render::RenderError>(())
 //! ```
 
 mod camera;
@@ -35,8 +35,8 @@ use std::path::PathBuf;
 pub use image::Image;
 pub use options::{Colors, RenderOptions, Shading, View, MAX_SAMPLES, MAX_SIDE, VIEW_NAMES};
 
-use crate::mesh::Mesh;
 use camera::{add, dot, newell_normal, normalize, scale, vertex_normals, Camera};
+use meshloom::Mesh;
 use raster::Canvas;
 
 /// Why a picture could not be made or saved.
@@ -102,12 +102,12 @@ pub fn render(mesh: &Mesh, options: &RenderOptions) -> Result<Image, RenderError
 /// As [`render`].
 ///
 /// ```
-/// use meshloom::render::{render_with_progress, RenderOptions};
+/// use meshloom_cli::render::{render_with_progress, RenderOptions};
 /// let mesh = meshloom::shapes::cube();
 /// let mut last = (0, 0);
 /// render_with_progress(&mesh, &RenderOptions::default(), &mut |done, total| last = (done, total))?;
 /// assert_eq!(last, (6, 6));
-/// # Ok::<(), meshloom::render::RenderError>(())
+/// # Ok::<(), meshloom_cli::render::RenderError>(())
 /// ```
 pub fn render_with_progress(
     mesh: &Mesh,
@@ -132,12 +132,10 @@ pub fn render_with_progress(
     let total = mesh.face_count();
     let mut done = 0;
     let mut corners: Vec<u32> = Vec::new();
-    for f in mesh.f_slots.live_indices() {
-        if mesh.is_hole_raw(f) {
-            continue;
-        }
+    for f in mesh.faces() {
+        let Ok(face) = mesh.face(f) else { continue };
         corners.clear();
-        corners.extend(mesh.face_loop_raw(f).map(|h| mesh.origin_of(h)));
+        corners.extend(face.vertices().map(|v| v.index() as u32));
         let n = newell_normal(corners.iter().map(|&v| positions[v as usize]));
         let facing = dot(n, camera.toward_eye);
         let (base, side) = if facing >= 0.0 {
@@ -168,29 +166,21 @@ pub fn render_with_progress(
     }
     progress(total, total);
     let bias = canvas.depth_bias();
+    let edges = || mesh.edges().filter_map(|e| mesh.edge(e).ok());
+    let ends = |e: meshloom::EdgeView<'_>| e.vertices().map(|v| screen[v.index()]);
     if o.wireframe {
-        for e in mesh.e_slots.live_indices() {
-            let on_boundary = mesh.in_hole_raw(2 * e) || mesh.in_hole_raw(2 * e + 1);
-            if o.boundary && on_boundary {
+        for e in edges() {
+            if o.boundary && e.is_boundary() {
                 continue;
             }
-            let (a, b) = (mesh.origin_of(2 * e), mesh.origin_of(2 * e + 1));
-            canvas.line(
-                screen[a as usize],
-                screen[b as usize],
-                s,
-                bias,
-                o.colors.wire,
-            );
+            let [a, b] = ends(e);
+            canvas.line(a, b, s, bias, o.colors.wire);
         }
     }
     if o.boundary {
-        for e in mesh.e_slots.live_indices() {
-            if mesh.in_hole_raw(2 * e) || mesh.in_hole_raw(2 * e + 1) {
-                let (a, b) = (mesh.origin_of(2 * e), mesh.origin_of(2 * e + 1));
-                let (pa, pb) = (screen[a as usize], screen[b as usize]);
-                canvas.line(pa, pb, 3 * s, 4.0 * bias, o.colors.boundary);
-            }
+        for e in edges().filter(|e| e.is_boundary()) {
+            let [a, b] = ends(e);
+            canvas.line(a, b, 3 * s, 4.0 * bias, o.colors.boundary);
         }
     }
     Ok(canvas.downsample(s))

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use meshloom::io::Format;
-use meshloom::render::View;
+use meshloom_cli::render::View;
 
 const EXAMPLES: &str = "\
 Examples:
@@ -262,7 +262,7 @@ fn view(s: &str) -> Result<View, String> {
 
 /// `WIDTHxHEIGHT` or `SIDE`, each 1 to the renderer's largest side.
 fn size(s: &str) -> Result<(u32, u32), String> {
-    let max = meshloom::render::MAX_SIDE;
+    let max = meshloom_cli::render::MAX_SIDE;
     let side = |t: &str| {
         t.trim()
             .parse::<u32>()

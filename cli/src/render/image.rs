@@ -58,7 +58,7 @@ impl Image {
     /// written; [`RenderError::Png`] when encoding fails.
     ///
     /// ```
-    /// use meshloom::render::{render, RenderOptions};
+    /// use meshloom_cli::render::{render, RenderOptions};
     /// let image = render(&meshloom::shapes::icosahedron(), &RenderOptions::default())?;
     /// let path = std::env::temp_dir().join(format!("meshloom-doc-{}.png", std::process::id()));
     /// image.write_png(&path)?;

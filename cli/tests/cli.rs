@@ -1,14 +1,13 @@
 //! The `meshloom` binary, run as a user would: figures checked against the
 //! shared data's independent manifest, exit codes, messages, help texts,
 //! round trips and pictures.
-#![cfg(feature = "cli")]
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 const BIN: &str = env!("CARGO_BIN_EXE_meshloom");
-const BUNDLED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/data/elephant.off");
-const SHARED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/meshes");
+const BUNDLED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../data/elephant.off");
+const SHARED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/meshes");
 
 fn shared(rel: &str) -> String {
     format!("{SHARED}/{rel}")
@@ -479,7 +478,7 @@ fn triangulate_cuts_polygons_into_triangles() {
 
 #[test]
 fn readme_quickstart_output_is_what_the_tool_prints() {
-    let root = env!("CARGO_MANIFEST_DIR");
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
     let readme = std::fs::read_to_string(format!("{root}/README.md")).expect("README.md");
     let shown = readme
         .split_once("The first prints:\n\n```text\n")
@@ -495,7 +494,7 @@ fn readme_quickstart_output_is_what_the_tool_prints() {
     assert_eq!(stdout(&o), shown);
     // The quickstart's commands are the two the README promises.
     assert!(readme.contains(
-        "```sh\ncargo run --release -- stats data/elephant.off\ncargo test --all-features\n```"
+        "```sh\ncargo run --release -p meshloom-cli -- stats data/elephant.off\ncargo test --workspace --all-features\n```"
     ));
 }
 
