@@ -34,6 +34,7 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod algo;
 #[cfg(feature = "quickcheck")]
 pub mod arbitrary;
 pub mod attr;

@@ -1,4 +1,5 @@
-//! Vector helpers, normals and the orthographic camera.
+//! Vector helpers and the orthographic camera (vertex normals come from
+//! `meshloom::algo`).
 
 use super::{RenderError, View};
 use meshloom::Mesh;
@@ -37,25 +38,6 @@ pub(super) fn newell_normal(corners: impl Iterator<Item = V3> + Clone) -> V3 {
             n[2] + (p[0] - q[0]) * (p[1] + q[1]),
         ]
     })
-}
-
-/// Area-weighted vertex normals, indexed by vertex slot.
-pub(super) fn vertex_normals(mesh: &Mesh, positions: &[V3]) -> Vec<V3> {
-    let mut normals = vec![[0.0; 3]; positions.len()];
-    let mut corners: Vec<usize> = Vec::new();
-    for f in mesh.faces() {
-        let Ok(face) = mesh.face(f) else { continue };
-        corners.clear();
-        corners.extend(face.vertices().map(|v| v.index()));
-        let n = newell_normal(corners.iter().map(|&v| positions[v]));
-        for &v in &corners {
-            normals[v] = add(normals[v], n);
-        }
-    }
-    for n in &mut normals {
-        *n = normalize(*n).unwrap_or([0.0; 3]);
-    }
-    normals
 }
 
 /// An orthographic camera: screen axes `right`, `up`, and the direction

@@ -35,7 +35,8 @@ use std::path::PathBuf;
 pub use image::Image;
 pub use options::{Colors, RenderOptions, Shading, View, MAX_SAMPLES, MAX_SIDE, VIEW_NAMES};
 
-use camera::{add, dot, newell_normal, normalize, scale, vertex_normals, Camera};
+use camera::{add, dot, newell_normal, normalize, scale, Camera};
+use meshloom::algo::{vertex_normals, NormalWeight, VertexNormalOptions};
 use meshloom::Mesh;
 use raster::Canvas;
 
@@ -126,7 +127,17 @@ pub fn render_with_progress(
     let screen = camera.fit(mesh, positions, canvas.width, canvas.height);
     let normals = match o.shading {
         Shading::Flat => None,
-        Shading::Smooth => Some(vertex_normals(mesh, positions)),
+        // Area-weighted, as the renderer always shaded (the Newell normals
+        // of the faces summed).
+        Shading::Smooth => Some(
+            vertex_normals(
+                mesh,
+                &VertexNormalOptions {
+                    weight: NormalWeight::Area,
+                },
+            )
+            .map_err(|_| RenderError::NoPositions)?,
+        ),
     };
     let light = camera.light();
     let total = mesh.face_count();

@@ -1,0 +1,700 @@
+//! Normals: per face, per vertex and per corner (half-edge), the normals a
+//! renderer needs.
+//!
+//! - **Face normals** ([`face_normals`]): Newell's normal, so a non-planar
+//!   or non-convex polygon gets its best-fit normal; unit length, or zero
+//!   for a degenerate face (no area).
+//! - **Vertex normals** ([`vertex_normals`]): the sum of the normals of the
+//!   faces around the vertex, each weighted by [`NormalWeight`] (the angle
+//!   of the face's corner at the vertex by default, as pmp-library and
+//!   Thürmer & Wüthrich 1998), then normalised.
+//! - **Corner normals** ([`corner_normals`]): one per half-edge, for the
+//!   corner at its origin in its face. The faces around a vertex are cut
+//!   into fans at *sharp* edges (a boundary, an edge whose two faces meet at
+//!   more than [`CornerNormalOptions::crease_angle`], or one flagged in the
+//!   boolean edge column [`CornerNormalOptions::hard_edges`]); the corners
+//!   of one fan share the weighted sum of its faces' normals. Without sharp
+//!   edges a corner normal is its vertex normal; across a crease, each side
+//!   keeps its own.
+//!
+//! **Degenerate input.** Every output is finite. A face without area has a
+//! zero normal and adds nothing; a vertex (or fan) whose faces all lack area
+//! gets the zero vector, which callers can test for. Such a face does not
+//! count as a crease, so its corners take the normal of the fan around them.
+//!
+//! **Results** come as plain `Vec`s indexed by slot
+//! ([`VertexKey::index`], [`HalfedgeKey::index`](crate::HalfedgeKey::index),
+//! [`FaceKey::index`]; vacant slots and hole corners hold zeros), the fast
+//! form for engines and other passes, or as attribute columns named
+//! [`NORMAL`] with the [`Interpolate`] rule ([`add_vertex_normals`],
+//! [`add_corner_normals`], [`add_face_normals`]), which follow later edits
+//! by interpolation (recompute after large edits). The OBJ writer writes a
+//! half-edge column `normal` as `vn` lines.
+//!
+//! **Cost.** One pass over the faces (vertex and face normals; 3 `atan2`
+//! per triangle for angle weights), plus one walk around every vertex for
+//! corner normals. With the `parallel` feature, meshes of more than
+//! 20,000 faces are cut into one block of faces per thread, each summing
+//! into its own array, and the arrays are added at the end: results equal
+//! the serial ones up to the rounding of that last sum.
+//!
+//! ```
+//! use meshloom::algo::normals::{self, CornerNormalOptions, VertexNormalOptions};
+//! let cube = meshloom::shapes::cube();
+//! // Smooth: every corner of the cube points along its diagonal.
+//! let vn = normals::vertex_normals(&cube, &VertexNormalOptions::default())?;
+//! let k = 1.0 / 3f64.sqrt();
+//! for v in cube.vertices() {
+//!     let p = cube.position(v)?;
+//!     let expected = p.map(|c| if c > 0.5 { k } else { -k });
+//!     assert!((0..3).all(|i| (vn[v.index()][i] - expected[i]).abs() < 1e-12));
+//! }
+//! // Split at the 90° edges (sharper than the default 30° crease): every
+//! // corner takes its face's normal.
+//! let cn = normals::corner_normals(&cube, &CornerNormalOptions::default())?;
+//! for f in cube.faces() {
+//!     let n = cube.face_normal(f)?;
+//!     for h in cube.face(f)?.halfedges() {
+//!         assert_eq!(cn[h.index()], n);
+//!     }
+//! }
+//! # Ok::<(), meshloom::Error>(())
+//! ```
+
+use std::ops::Range;
+
+use crate::attr::{Attr, EdgeAttr, Element, FaceAttr, HalfedgeAttr, Interpolate, VertexAttr};
+use crate::error::{Error, Result};
+use crate::keys::{FaceKey, HalfedgeKey, VertexKey};
+use crate::mesh::Mesh;
+
+/// The name of the columns the `add_*` functions write.
+pub const NORMAL: &str = "normal";
+
+/// Meshes with fewer faces than this run serially even with the `parallel`
+/// feature: below it, starting threads costs more than it saves.
+#[cfg(feature = "parallel")]
+const PARALLEL_MIN_FACES: usize = 20_000;
+
+/// How each face around a vertex counts in the vertex's normal.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub enum NormalWeight {
+    /// By the angle of the face's corner at the vertex: independent of how
+    /// the surface is cut into faces (the default; pmp-library's choice).
+    #[default]
+    Angle,
+    /// By the face's area: large faces dominate (the classic
+    /// area-weighted average).
+    Area,
+    /// Every face counts once (OpenMesh's `update_vertex_normals`).
+    Uniform,
+}
+
+/// Options of [`vertex_normals`] and [`add_vertex_normals`].
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub struct VertexNormalOptions {
+    /// How faces are weighted (default: by corner angle).
+    pub weight: NormalWeight,
+}
+
+/// Options of [`corner_normals`] and [`add_corner_normals`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct CornerNormalOptions {
+    /// How faces are weighted within a fan (default: by corner angle).
+    pub weight: NormalWeight,
+    /// Two faces whose normals differ by more than this angle (radians) do
+    /// not share their corner normals across their common edge. `None`:
+    /// no crease by angle. Default: 30° (`30f64.to_radians()`).
+    pub crease_angle: Option<f64>,
+    /// A boolean edge column: edges whose value is `true` are hard (the
+    /// normals split there whatever the angle). Default: none.
+    pub hard_edges: Option<EdgeAttr<bool>>,
+}
+
+impl Default for CornerNormalOptions {
+    fn default() -> Self {
+        CornerNormalOptions {
+            weight: NormalWeight::Angle,
+            crease_angle: Some(30f64.to_radians()),
+            hard_edges: None,
+        }
+    }
+}
+
+impl CornerNormalOptions {
+    /// No splits but at boundaries: every corner gets the normal of its
+    /// vertex's fan (its vertex normal, away from a boundary vertex that
+    /// several holes touch).
+    pub fn smooth() -> CornerNormalOptions {
+        CornerNormalOptions {
+            crease_angle: None,
+            ..CornerNormalOptions::default()
+        }
+    }
+
+    /// Every edge is a crease: flat shading, each corner gets its face's
+    /// normal.
+    pub fn flat() -> CornerNormalOptions {
+        CornerNormalOptions {
+            crease_angle: Some(0.0),
+            ..CornerNormalOptions::default()
+        }
+    }
+}
+
+// ----- small vector helpers ---------------------------------------------------
+
+type V3 = [f64; 3];
+
+#[inline(always)]
+fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+#[inline(always)]
+fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline(always)]
+fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+#[inline(always)]
+fn add_scaled(acc: &mut V3, v: V3, w: f64) {
+    acc[0] += v[0] * w;
+    acc[1] += v[1] * w;
+    acc[2] += v[2] * w;
+}
+
+#[inline(always)]
+fn norm(a: V3) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// `a / |a|`, or zero when `a` has no finite, non-zero length.
+#[inline(always)]
+fn unit(a: V3) -> V3 {
+    let l = norm(a);
+    if l > 0.0 && l.is_finite() {
+        [a[0] / l, a[1] / l, a[2] / l]
+    } else {
+        [0.0; 3]
+    }
+}
+
+/// The angle between `a` and `b`, in `[0, π]` (0 when either is zero).
+#[inline(always)]
+fn angle(a: V3, b: V3) -> f64 {
+    norm(cross(a, b)).atan2(dot(a, b))
+}
+
+/// Newell's vector of a polygon: along its normal, twice its area long.
+#[inline]
+fn newell(p: &[V3], corners: &[usize]) -> V3 {
+    let mut n = [0.0; 3];
+    let k = corners.len();
+    for i in 0..k {
+        let (a, b) = (p[corners[i]], p[corners[(i + 1) % k]]);
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    n
+}
+
+fn positions(mesh: &Mesh) -> Result<&[V3]> {
+    mesh.position_slots().ok_or(Error::NoPositions)
+}
+
+// ----- face normals -------------------------------------------------------------
+
+/// The unit normal of every face, indexed by face slot ([`FaceKey::index`];
+/// holes and vacant slots hold zeros; a face without area has a zero
+/// normal).
+///
+/// # Errors
+/// [`Error::NoPositions`].
+///
+/// # Complexity
+/// O(corners).
+///
+/// ```
+/// let cube = meshloom::shapes::cube();
+/// let n = meshloom::algo::face_normals(&cube)?;
+/// let f = cube.faces().next().unwrap(); // the face at z = 0
+/// assert_eq!(n[f.index()], [0.0, 0.0, -1.0]);
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+pub fn face_normals(mesh: &Mesh) -> Result<Vec<V3>> {
+    let p = positions(mesh)?;
+    let mut out = newell_vectors(mesh, p);
+    for n in &mut out {
+        *n = unit(*n);
+    }
+    Ok(out)
+}
+
+/// Newell vectors by face slot.
+fn newell_vectors(mesh: &Mesh, p: &[V3]) -> Vec<V3> {
+    let nf = mesh.slot_counts()[3];
+    let mut out = vec![[0.0; 3]; nf];
+    let fill = |range: Range<usize>, out: &mut [V3]| {
+        let mut corners = Vec::with_capacity(8);
+        let start = range.start;
+        for i in range {
+            if let Some(view) = mesh.face_at(i).and_then(|f| mesh.face(f).ok()) {
+                corners.clear();
+                corners.extend(view.vertices().map(VertexKey::index));
+                out[i - start] = newell(p, &corners);
+            }
+        }
+    };
+    #[cfg(feature = "parallel")]
+    if nf >= PARALLEL_MIN_FACES {
+        use rayon::prelude::*;
+        let block = nf.div_ceil(rayon::current_num_threads().max(1));
+        out.par_chunks_mut(block)
+            .enumerate()
+            .for_each(|(b, chunk)| fill(b * block..b * block + chunk.len(), chunk));
+        return out;
+    }
+    fill(0..nf, &mut out);
+    out
+}
+
+/// Face normals as the face column [`NORMAL`] (`[f64; 3]`), added or
+/// overwritten; holes get no value.
+///
+/// # Errors
+/// [`Error::NoPositions`]; [`Error::AttributeType`] if a face column of that
+/// name holds another type.
+///
+/// ```
+/// let mut cube = meshloom::shapes::cube();
+/// let col = meshloom::algo::add_face_normals(&mut cube)?;
+/// let f = cube.faces().next().unwrap();
+/// assert_eq!(cube.attr(&col, f)?, Some(&[0.0, 0.0, -1.0]));
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+pub fn add_face_normals(mesh: &mut Mesh) -> Result<FaceAttr<V3>> {
+    let n = face_normals(mesh)?;
+    let keys: Vec<FaceKey> = mesh.faces_and_holes().collect();
+    let col = normal_column::<FaceKey>(mesh)?;
+    let hole: Vec<bool> = keys
+        .iter()
+        .map(|&f| mesh.face(f).is_ok_and(|v| v.is_hole()))
+        .collect();
+    let mut view = mesh.attr_view_mut(&col)?;
+    for (&f, hole) in keys.iter().zip(hole) {
+        view.set(f, (!hole).then(|| n[f.index()]))?;
+    }
+    Ok(col)
+}
+
+// ----- vertex normals -------------------------------------------------------------
+
+/// Add the weighted normals of the faces in slots `range` to their corners'
+/// vertices in `acc` (indexed by vertex slot).
+fn accumulate(mesh: &Mesh, p: &[V3], weight: NormalWeight, range: Range<usize>, acc: &mut [V3]) {
+    let mut c: Vec<usize> = Vec::with_capacity(8);
+    for i in range {
+        let Some(view) = mesh.face_at(i).and_then(|f| mesh.face(f).ok()) else {
+            continue;
+        };
+        c.clear();
+        c.extend(view.vertices().map(VertexKey::index));
+        if let [a, b, d] = c[..] {
+            // A triangle: every corner's |cross| is twice the area.
+            let (e0, e1, e2) = (sub(p[b], p[a]), sub(p[d], p[b]), sub(p[a], p[d]));
+            let n = cross(e0, e1);
+            let twice_area = norm(n);
+            if !(twice_area > 0.0 && twice_area.is_finite()) {
+                continue;
+            }
+            let u = [n[0] / twice_area, n[1] / twice_area, n[2] / twice_area];
+            match weight {
+                NormalWeight::Angle => {
+                    add_scaled(&mut acc[a], u, twice_area.atan2(-dot(e0, e2)));
+                    add_scaled(&mut acc[b], u, twice_area.atan2(-dot(e1, e0)));
+                    add_scaled(&mut acc[d], u, twice_area.atan2(-dot(e2, e1)));
+                }
+                NormalWeight::Area => {
+                    for v in [a, b, d] {
+                        add_scaled(&mut acc[v], n, 0.5);
+                    }
+                }
+                NormalWeight::Uniform => {
+                    for v in [a, b, d] {
+                        add_scaled(&mut acc[v], u, 1.0);
+                    }
+                }
+            }
+            continue;
+        }
+        let n = newell(p, &c);
+        let u = unit(n);
+        if u == [0.0; 3] {
+            continue;
+        }
+        let k = c.len();
+        for j in 0..k {
+            let v = c[j];
+            let w = match weight {
+                NormalWeight::Angle => {
+                    let q = p[v];
+                    angle(sub(p[c[(j + 1) % k]], q), sub(p[c[(j + k - 1) % k]], q))
+                }
+                NormalWeight::Area => 0.5 * norm(n),
+                NormalWeight::Uniform => 1.0,
+            };
+            add_scaled(&mut acc[v], u, w);
+        }
+    }
+}
+
+/// The unit normal of every vertex, indexed by vertex slot
+/// ([`VertexKey::index`]; vacant slots hold zeros; a vertex whose faces
+/// all lack area gets zero).
+///
+/// # Errors
+/// [`Error::NoPositions`].
+///
+/// # Complexity
+/// O(corners): one pass over the faces.
+///
+/// ```
+/// use meshloom::algo::{vertex_normals, NormalWeight, VertexNormalOptions};
+/// let mesh = meshloom::shapes::grid(4, 3, meshloom::shapes::GridFaces::Triangles);
+/// let n = vertex_normals(&mesh, &VertexNormalOptions { weight: NormalWeight::Area })?;
+/// assert!(mesh.vertices().all(|v| n[v.index()] == [0.0, 0.0, 1.0]));
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+pub fn vertex_normals(mesh: &Mesh, options: &VertexNormalOptions) -> Result<Vec<V3>> {
+    let p = positions(mesh)?;
+    let [nv, _, _, nf] = mesh.slot_counts();
+    let weight = options.weight;
+    #[cfg(feature = "parallel")]
+    if nf >= PARALLEL_MIN_FACES && rayon::current_num_threads() > 1 {
+        use rayon::prelude::*;
+        let blocks = rayon::current_num_threads();
+        let size = nf.div_ceil(blocks);
+        let mut parts: Vec<Vec<V3>> = (0..blocks)
+            .into_par_iter()
+            .map(|b| {
+                let mut acc = vec![[0.0; 3]; nv];
+                accumulate(
+                    mesh,
+                    p,
+                    weight,
+                    b * size..((b + 1) * size).min(nf),
+                    &mut acc,
+                );
+                acc
+            })
+            .collect();
+        let mut out = parts.swap_remove(0);
+        let parts = &parts;
+        out.par_chunks_mut(4096).enumerate().for_each(|(c, chunk)| {
+            for (i, n) in chunk.iter_mut().enumerate() {
+                for part in parts {
+                    add_scaled(n, part[c * 4096 + i], 1.0);
+                }
+                *n = unit(*n);
+            }
+        });
+        return Ok(out);
+    }
+    let mut out = vec![[0.0; 3]; nv];
+    accumulate(mesh, p, weight, 0..nf, &mut out);
+    for n in &mut out {
+        *n = unit(*n);
+    }
+    Ok(out)
+}
+
+/// Vertex normals ([`vertex_normals`]) as the vertex column [`NORMAL`]
+/// (`[f64; 3]`), added or overwritten.
+///
+/// # Errors
+/// [`Error::NoPositions`]; [`Error::AttributeType`] if a vertex column of
+/// that name holds another type.
+///
+/// ```
+/// use meshloom::algo::{add_vertex_normals, VertexNormalOptions};
+/// let mut mesh = meshloom::shapes::grid(3, 3, meshloom::shapes::GridFaces::Quads);
+/// let normal = add_vertex_normals(&mut mesh, &VertexNormalOptions::default())?;
+/// let v = mesh.vertices().next().unwrap();
+/// assert_eq!(mesh.attr(&normal, v)?, Some(&[0.0, 0.0, 1.0]));
+/// // The column follows edits by interpolation.
+/// let e = mesh.edges().next().unwrap();
+/// let mid = mesh.split_edge(e, 0.5)?;
+/// assert_eq!(mesh.attr(&normal, mid)?, Some(&[0.0, 0.0, 1.0]));
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+pub fn add_vertex_normals(
+    mesh: &mut Mesh,
+    options: &VertexNormalOptions,
+) -> Result<VertexAttr<V3>> {
+    let n = vertex_normals(mesh, options)?;
+    let keys: Vec<VertexKey> = mesh.vertices().collect();
+    let col = normal_column::<VertexKey>(mesh)?;
+    let mut view = mesh.attr_view_mut(&col)?;
+    for v in keys {
+        view.set(v, Some(n[v.index()]))?;
+    }
+    Ok(col)
+}
+
+// ----- corner normals ---------------------------------------------------------------
+
+/// One outgoing half-edge of the vertex being walked.
+#[derive(Clone, Copy)]
+struct Spoke {
+    h: usize,
+    dest: usize,
+    face: usize,
+    hole: bool,
+    hard: bool,
+}
+
+/// What the corner pass reads for every vertex.
+struct CornerInput<'a> {
+    mesh: &'a Mesh,
+    p: &'a [V3],
+    /// Newell vectors by face slot.
+    newell: &'a [V3],
+    weight: NormalWeight,
+    /// Cosine of the crease angle (`None`: no crease by angle).
+    cos_crease: Option<f64>,
+    hard: Option<crate::attr::AttrView<'a, crate::EdgeKey, bool>>,
+}
+
+impl CornerInput<'_> {
+    /// Corner normals of the vertices in slots `range`, as (half-edge slot,
+    /// normal) pairs written by `put`.
+    fn run(&self, range: Range<usize>, mut put: impl FnMut(usize, V3)) {
+        let mut ring: Vec<Spoke> = Vec::with_capacity(16);
+        let mut weighted: Vec<V3> = Vec::with_capacity(16);
+        for i in range {
+            let Some(view) = self
+                .mesh
+                .vertex_at(i)
+                .and_then(|v| self.mesh.vertex(v).ok())
+            else {
+                continue;
+            };
+            ring.clear();
+            for h in view.outgoing() {
+                let Ok(hv) = self.mesh.halfedge(h) else {
+                    continue;
+                };
+                let f = hv.face();
+                ring.push(Spoke {
+                    h: h.index(),
+                    dest: hv.dest().key().index(),
+                    face: f.key().index(),
+                    hole: f.is_hole(),
+                    hard: self
+                        .hard
+                        .as_ref()
+                        .is_some_and(|a| a.get(h.edge_key()) == Some(&true)),
+                });
+            }
+            self.vertex(i, &ring, &mut weighted, &mut put);
+        }
+    }
+
+    /// The corners around vertex slot `v`, whose outgoing half-edges are
+    /// `ring` (clockwise: corner `k + 1` lies across the edge of spoke `k`
+    /// from corner `k`).
+    fn vertex(
+        &self,
+        v: usize,
+        ring: &[Spoke],
+        weighted: &mut Vec<V3>,
+        put: &mut impl FnMut(usize, V3),
+    ) {
+        let k = ring.len();
+        let q = self.p[v];
+        weighted.clear();
+        for (j, s) in ring.iter().enumerate() {
+            if s.hole {
+                weighted.push([0.0; 3]);
+                continue;
+            }
+            let n = self.newell[s.face];
+            let u = unit(n);
+            // Corner j's other side runs to the previous spoke's end.
+            let w = match self.weight {
+                NormalWeight::Angle => angle(
+                    sub(self.p[s.dest], q),
+                    sub(self.p[ring[(j + k - 1) % k].dest], q),
+                ),
+                NormalWeight::Area => 0.5 * norm(n),
+                NormalWeight::Uniform => 1.0,
+            };
+            weighted.push([u[0] * w, u[1] * w, u[2] * w]);
+        }
+        // Separator j lies between corner j and corner j + 1.
+        let sharp = |j: usize| {
+            let (a, b) = (&ring[j], &ring[(j + 1) % k]);
+            if a.hole || b.hole || a.hard {
+                return true;
+            }
+            match self.cos_crease {
+                None => false,
+                Some(c) => {
+                    let (na, nb) = (unit(self.newell[a.face]), unit(self.newell[b.face]));
+                    na != [0.0; 3] && nb != [0.0; 3] && dot(na, nb) < c
+                }
+            }
+        };
+        let Some(first) = (0..k).find(|&j| sharp(j)) else {
+            let mut sum = [0.0; 3];
+            for w in weighted.iter() {
+                add_scaled(&mut sum, *w, 1.0);
+            }
+            let n = unit(sum);
+            for s in ring.iter().filter(|s| !s.hole) {
+                put(s.h, n);
+            }
+            return;
+        };
+        // Walk once round from just after a separator, one fan at a time.
+        let mut start = first + 1;
+        while start <= first + k {
+            let mut end = start;
+            let mut sum = [0.0; 3];
+            loop {
+                add_scaled(&mut sum, weighted[end % k], 1.0);
+                if sharp(end % k) {
+                    break;
+                }
+                end += 1;
+            }
+            let n = unit(sum);
+            for j in start..=end {
+                let s = &ring[j % k];
+                if !s.hole {
+                    put(s.h, n);
+                }
+            }
+            start = end + 1;
+        }
+    }
+}
+
+/// The unit normal of every corner, indexed by half-edge slot
+/// ([`HalfedgeKey::index`]; half-edges in holes and vacant slots hold
+/// zeros): the normal of the corner at the half-edge's origin in its face,
+/// shared by the fan of faces between two sharp edges (see the module
+/// docs).
+///
+/// # Errors
+/// [`Error::NoPositions`]; [`Error::AttributeHandle`] if the hard-edge
+/// column was removed.
+///
+/// # Complexity
+/// O(corners): a pass over the faces, then one walk around every vertex.
+///
+/// ```
+/// use meshloom::algo::{corner_normals, CornerNormalOptions};
+/// let cube = meshloom::shapes::cube();
+/// // No crease: every corner takes its vertex normal.
+/// let smooth = corner_normals(&cube, &CornerNormalOptions::smooth())?;
+/// let h = cube.halfedges().find(|&h| !cube.halfedge(h).unwrap().is_boundary()).unwrap();
+/// let k = 1.0 / 3f64.sqrt();
+/// assert!(smooth[h.index()].iter().all(|c| (c.abs() - k).abs() < 1e-12));
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+pub fn corner_normals(mesh: &Mesh, options: &CornerNormalOptions) -> Result<Vec<V3>> {
+    let p = positions(mesh)?;
+    let newell = newell_vectors(mesh, p);
+    let hard = match &options.hard_edges {
+        Some(h) => Some(mesh.attr_view(h)?),
+        None => None,
+    };
+    let input = CornerInput {
+        mesh,
+        p,
+        newell: &newell,
+        weight: options.weight,
+        cos_crease: options.crease_angle.map(f64::cos),
+        hard,
+    };
+    let [nv, nh, _, nf] = mesh.slot_counts();
+    let mut out = vec![[0.0; 3]; nh];
+    #[cfg(feature = "parallel")]
+    if nf >= PARALLEL_MIN_FACES && rayon::current_num_threads() > 1 {
+        use rayon::prelude::*;
+        let blocks = 4 * rayon::current_num_threads();
+        let size = nv.div_ceil(blocks);
+        let parts: Vec<Vec<(usize, V3)>> = (0..blocks)
+            .into_par_iter()
+            .map(|b| {
+                let mut part = Vec::with_capacity(7 * size);
+                input.run(b * size..((b + 1) * size).min(nv), |h, n| part.push((h, n)));
+                part
+            })
+            .collect();
+        for (h, n) in parts.into_iter().flatten() {
+            out[h] = n;
+        }
+        return Ok(out);
+    }
+    let _ = nf;
+    input.run(0..nv, |h, n| out[h] = n);
+    Ok(out)
+}
+
+/// Corner normals ([`corner_normals`]) as the half-edge column [`NORMAL`]
+/// (`[f64; 3]`), added or overwritten; half-edges in holes get no value.
+/// The OBJ writer writes this column as `vn` lines.
+///
+/// # Errors
+/// As [`corner_normals`]; [`Error::AttributeType`] if a half-edge column of
+/// that name holds another type.
+///
+/// ```
+/// use meshloom::algo::{add_corner_normals, CornerNormalOptions};
+/// let mut cube = meshloom::shapes::cube();
+/// let normal = add_corner_normals(&mut cube, &CornerNormalOptions::default())?;
+/// let f = cube.faces().next().unwrap();
+/// let h = cube.face(f)?.halfedges().next().unwrap();
+/// assert_eq!(cube.attr(&normal, h)?, Some(&[0.0, 0.0, -1.0]));
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+pub fn add_corner_normals(
+    mesh: &mut Mesh,
+    options: &CornerNormalOptions,
+) -> Result<HalfedgeAttr<V3>> {
+    let n = corner_normals(mesh, options)?;
+    let keys: Vec<(HalfedgeKey, bool)> = mesh
+        .halfedges()
+        .map(|h| (h, mesh.halfedge(h).is_ok_and(|v| v.is_boundary())))
+        .collect();
+    let col = normal_column::<HalfedgeKey>(mesh)?;
+    let mut view = mesh.attr_view_mut(&col)?;
+    for (h, in_hole) in keys {
+        view.set(h, (!in_hole).then(|| n[h.index()]))?;
+    }
+    Ok(col)
+}
+
+/// The `[f64; 3]` column [`NORMAL`] of arena `K`, found or added.
+fn normal_column<K: Element>(mesh: &mut Mesh) -> Result<Attr<K, V3>> {
+    match mesh.attr_handle::<K, V3, Interpolate>(NORMAL) {
+        Ok(h) => Ok(h),
+        Err(Error::AttributeMissing { .. }) => mesh.add_attr::<K, V3>(NORMAL),
+        Err(e) => Err(e),
+    }
+}
+
+#[cfg(test)]
+mod tests;
