@@ -320,9 +320,13 @@ fn accumulate(mesh: &Mesh, p: &[V3], weight: NormalWeight, range: Range<usize>, 
             let u = [n[0] / twice_area, n[1] / twice_area, n[2] / twice_area];
             match weight {
                 NormalWeight::Angle => {
-                    add_scaled(&mut acc[a], u, twice_area.atan2(-dot(e0, e2)));
-                    add_scaled(&mut acc[b], u, twice_area.atan2(-dot(e1, e0)));
-                    add_scaled(&mut acc[d], u, twice_area.atan2(-dot(e2, e1)));
+                    // The angles sum to π: two atan2 give the third.
+                    let wa = twice_area.atan2(-dot(e0, e2));
+                    let wb = twice_area.atan2(-dot(e1, e0));
+                    let wd = (std::f64::consts::PI - wa - wb).max(0.0);
+                    add_scaled(&mut acc[a], u, wa);
+                    add_scaled(&mut acc[b], u, wb);
+                    add_scaled(&mut acc[d], u, wd);
                 }
                 NormalWeight::Area => {
                     for v in [a, b, d] {
