@@ -38,6 +38,7 @@ pub mod algo;
 #[cfg(feature = "quickcheck")]
 pub mod arbitrary;
 pub mod attr;
+pub mod buffers;
 pub mod build;
 mod circulate;
 pub mod error;
