@@ -61,7 +61,8 @@ Example:
     #[command(after_help = "\
 Example:
   meshloom convert data/elephant.off elephant.ply
-  meshloom convert scan.stl scan.obj.gz --repair")]
+  meshloom convert scan.stl scan.obj.gz --repair
+  meshloom convert model.glb model.obj")]
     Convert(ConvertArgs),
     /// Repair a dirty file and report what was done.
     ///
@@ -237,9 +238,13 @@ pub struct RenderArgs {
 /// A path whose extension names a mesh format.
 fn mesh_path(s: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(s);
-    match Format::from_path(&path) {
-        Some(_) => Ok(path),
-        None => Err("expected a file ending in .obj, .off, .ply or .stl (optionally + .gz)".into()),
+    if Format::from_path(&path).is_some() || meshloom::io::gltf::encoding_of(&path).is_some() {
+        Ok(path)
+    } else {
+        Err(
+            "expected a file ending in .obj, .off, .ply or .stl (optionally + .gz), .gltf or .glb"
+                .into(),
+        )
     }
 }
 

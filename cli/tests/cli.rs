@@ -302,6 +302,42 @@ fn convert_round_trips_through_every_format() {
 }
 
 #[test]
+fn convert_reads_and_writes_gltf() {
+    let dir = scratch("convert-gltf");
+    let obj = dir.join("box.obj");
+    let o = run(&["convert", &shared("gltf/BoxTextured.glb"), path_str(&obj)]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("8 vertices, 12 faces"),
+        "{}",
+        stdout(&o)
+    );
+    // The UVs and normals went to the OBJ as vt and vn lines.
+    let text = std::fs::read_to_string(&obj).unwrap();
+    assert!(text.lines().any(|l| l.starts_with("vt ")));
+    assert!(text.lines().any(|l| l.starts_with("vn ")));
+    for ext in ["gltf", "glb"] {
+        let out = dir.join(format!("box.{ext}"));
+        let o = run(&["convert", path_str(&obj), path_str(&out)]);
+        assert_eq!(code(&o), 0, "{ext}: {}", stderr(&o));
+        let s = json(&run(&["stats", "--json", path_str(&out)]));
+        assert_eq!(
+            (&s["vertices"], &s["faces"]),
+            (&8.into(), &12.into()),
+            "{ext}"
+        );
+    }
+    let bad = run(&[
+        "convert",
+        &shared("gltf/invalid/BoxWithInfinites.glb"),
+        path_str(&obj),
+    ]);
+    assert_ne!(code(&bad), 0);
+    assert!(stderr(&bad).contains("non-finite"), "{}", stderr(&bad));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn repair_writes_a_valid_mesh_and_reports() {
     let dir = scratch("repair");
     let out = dir.join("bunny.off");

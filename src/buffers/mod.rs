@@ -77,6 +77,8 @@ mod export;
 mod import;
 mod read;
 
+#[cfg(feature = "gltf")]
+pub(crate) use import::weld;
 pub use import::{FromBuffers, FromBuffersOptions, Weld};
 
 use crate::algo::normals::CornerNormalOptions;

@@ -8,6 +8,7 @@
 //! | OFF | n-gons, comments, `[ST][C][N][4][n]OFF` headers, colours | yes | [`off`] |
 //! | PLY | ascii, binary little and big endian | ascii, binary LE and BE | [`ply`] |
 //! | STL | ascii (also a bare `solid` first line) and binary; vertices welded by exact position | ascii, binary | [`stl`] |
+//! | glTF 2.0 (feature `gltf`) | `.gltf` and `.glb`: triangles, strips, fans; welded by position; normals, UVs, colours, custom attributes | `.gltf` (buffer inside) and `.glb` | `gltf` |
 //!
 //! # Strict and repairing reads
 //!
@@ -44,6 +45,8 @@
 
 mod attrs;
 mod error;
+#[cfg(feature = "gltf")]
+pub mod gltf;
 pub mod obj;
 pub mod off;
 pub mod ply;
@@ -119,6 +122,10 @@ pub fn read_with(
     options: &ReadOptions,
 ) -> Result<(Mesh, RepairReport), Error> {
     let path = path.as_ref();
+    #[cfg(feature = "gltf")]
+    if gltf::encoding_of(path).is_some() {
+        return gltf::read_gltf_with(path, options, &gltf::GltfOptions::default());
+    }
     let (format, gz) = format_of(path)?;
     let bytes = source::load(path, gz, options.max_bytes)?;
     parse_bytes(format, &bytes, options).map_err(|e| e.with_path(path))
@@ -255,6 +262,12 @@ pub fn write_with(
     options: &WriteOptions,
 ) -> Result<(), Error> {
     let path = path.as_ref();
+    #[cfg(feature = "gltf")]
+    if let Some(encoding) = gltf::encoding_of(path) {
+        let mut bytes = Vec::new();
+        gltf::write_gltf(mesh, &mut bytes, encoding).map_err(|e| e.with_path(path))?;
+        return std::fs::write(path, &bytes).map_err(|e| Error::io(e).with_path(path));
+    }
     let (format, gz) = format_of(path)?;
     let mut bytes = Vec::new();
     let written = match format {
