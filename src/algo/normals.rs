@@ -31,9 +31,11 @@
 //! by interpolation (recompute after large edits). The OBJ writer writes a
 //! half-edge column `normal` as `vn` lines.
 //!
-//! **Cost.** One pass over the faces (vertex and face normals; 3 `atan2`
-//! per triangle for angle weights), plus one walk around every vertex for
-//! corner normals. With the `parallel` feature, meshes of more than
+//! **Cost.** One pass over the faces (vertex and face normals; 2 `atan2`
+//! per triangle for angle weights, the third angle is π minus the other
+//! two). Corner normals add a pass over the edges to find the vertices at
+//! sharp edges, a pass over the corners (elsewhere a corner takes its
+//! vertex's normal), and a walk around each vertex at a sharp edge. With the `parallel` feature, meshes of more than
 //! 20,000 faces are cut into one block of faces per thread, each summing
 //! into its own array, and the arrays are added at the end: results equal
 //! the serial ones up to the rounding of that last sum.
@@ -299,10 +301,22 @@ pub fn add_face_normals(mesh: &mut Mesh) -> Result<FaceAttr<V3>> {
 
 // ----- vertex normals -------------------------------------------------------------
 
+/// Face record: unit normal and twice the area (the Newell length).
+type FaceRecord = (V3, f64);
+
 /// Add the weighted normals of the faces in slots `range` to their corners'
-/// vertices in `acc` (indexed by vertex slot).
-fn accumulate(mesh: &Mesh, p: &[V3], weight: NormalWeight, range: Range<usize>, acc: &mut [V3]) {
+/// vertices in `acc` (indexed by vertex slot); with `faces` (indexed from
+/// `range.start`), also note each face's unit normal and twice its area.
+fn accumulate(
+    mesh: &Mesh,
+    p: &[V3],
+    weight: NormalWeight,
+    range: Range<usize>,
+    acc: &mut [V3],
+    mut faces: Option<&mut [FaceRecord]>,
+) {
     let mut c: Vec<usize> = Vec::with_capacity(8);
+    let start = range.start;
     for i in range {
         let Some(view) = mesh.face_at(i).and_then(|f| mesh.face(f).ok()) else {
             continue;
@@ -318,6 +332,9 @@ fn accumulate(mesh: &Mesh, p: &[V3], weight: NormalWeight, range: Range<usize>, 
                 continue;
             }
             let u = [n[0] / twice_area, n[1] / twice_area, n[2] / twice_area];
+            if let Some(f) = faces.as_deref_mut() {
+                f[i - start] = (u, twice_area);
+            }
             match weight {
                 NormalWeight::Angle => {
                     // The angles sum to π: two atan2 give the third.
@@ -345,6 +362,9 @@ fn accumulate(mesh: &Mesh, p: &[V3], weight: NormalWeight, range: Range<usize>, 
         let u = unit(n);
         if u == [0.0; 3] {
             continue;
+        }
+        if let Some(f) = faces.as_deref_mut() {
+            f[i - start] = (u, norm(n));
         }
         let k = c.len();
         for j in 0..k {
@@ -380,25 +400,39 @@ fn accumulate(mesh: &Mesh, p: &[V3], weight: NormalWeight, range: Range<usize>, 
 /// # Ok::<(), meshloom::Error>(())
 /// ```
 pub fn vertex_normals(mesh: &Mesh, options: &VertexNormalOptions) -> Result<Vec<V3>> {
+    Ok(vertex_and_face_normals(mesh, options.weight, false)?.0)
+}
+
+/// Vertex normals, and (with `want_faces`) every face's record by slot.
+fn vertex_and_face_normals(
+    mesh: &Mesh,
+    weight: NormalWeight,
+    want_faces: bool,
+) -> Result<(Vec<V3>, Vec<FaceRecord>)> {
     let p = positions(mesh)?;
     let [nv, _, _, nf] = mesh.slot_counts();
-    let weight = options.weight;
+    let mut faces = if want_faces {
+        vec![([0.0; 3], 0.0); nf]
+    } else {
+        Vec::new()
+    };
     #[cfg(feature = "parallel")]
     if nf >= PARALLEL_MIN_FACES && rayon::current_num_threads() > 1 {
         use rayon::prelude::*;
         let blocks = rayon::current_num_threads();
         let size = nf.div_ceil(blocks);
-        let mut parts: Vec<Vec<V3>> = (0..blocks)
+        let chunks: Vec<Option<&mut [FaceRecord]>> = if want_faces {
+            faces.chunks_mut(size).map(Some).collect()
+        } else {
+            (0..blocks).map(|_| None).collect()
+        };
+        let mut parts: Vec<Vec<V3>> = chunks
             .into_par_iter()
-            .map(|b| {
+            .enumerate()
+            .map(|(b, chunk)| {
                 let mut acc = vec![[0.0; 3]; nv];
-                accumulate(
-                    mesh,
-                    p,
-                    weight,
-                    b * size..((b + 1) * size).min(nf),
-                    &mut acc,
-                );
+                let range = b * size..((b + 1) * size).min(nf);
+                accumulate(mesh, p, weight, range, &mut acc, chunk);
                 acc
             })
             .collect();
@@ -412,14 +446,15 @@ pub fn vertex_normals(mesh: &Mesh, options: &VertexNormalOptions) -> Result<Vec<
                 *n = unit(*n);
             }
         });
-        return Ok(out);
+        return Ok((out, faces));
     }
     let mut out = vec![[0.0; 3]; nv];
-    accumulate(mesh, p, weight, 0..nf, &mut out);
+    let records = want_faces.then_some(&mut faces[..]);
+    accumulate(mesh, p, weight, 0..nf, &mut out, records);
     for n in &mut out {
         *n = unit(*n);
     }
-    Ok(out)
+    Ok((out, faces))
 }
 
 /// Vertex normals ([`vertex_normals`]) as the vertex column [`NORMAL`]
@@ -471,8 +506,8 @@ struct Spoke {
 struct CornerInput<'a> {
     mesh: &'a Mesh,
     p: &'a [V3],
-    /// Newell vectors by face slot.
-    newell: &'a [V3],
+    /// Unit normal and twice the area, by face slot.
+    faces: &'a [FaceRecord],
     weight: NormalWeight,
     /// Cosine of the crease angle (`None`: no crease by angle).
     cos_crease: Option<f64>,
@@ -480,12 +515,12 @@ struct CornerInput<'a> {
 }
 
 impl CornerInput<'_> {
-    /// Corner normals of the vertices in slots `range`, as (half-edge slot,
+    /// Corner normals of the vertices in `slots`, as (half-edge slot,
     /// normal) pairs written by `put`.
-    fn run(&self, range: Range<usize>, mut put: impl FnMut(usize, V3)) {
+    fn run(&self, slots: &[usize], mut put: impl FnMut(usize, V3)) {
         let mut ring: Vec<Spoke> = Vec::with_capacity(16);
-        let mut weighted: Vec<V3> = Vec::with_capacity(16);
-        for i in range {
+        let mut scratch: Vec<(V3, bool)> = Vec::with_capacity(16);
+        for &i in slots {
             let Some(view) = self
                 .mesh
                 .vertex_at(i)
@@ -510,7 +545,7 @@ impl CornerInput<'_> {
                         .is_some_and(|a| a.get(h.edge_key()) == Some(&true)),
                 });
             }
-            self.vertex(i, &ring, &mut weighted, &mut put);
+            self.vertex(i, &ring, &mut scratch, &mut put);
         }
     }
 
@@ -521,63 +556,62 @@ impl CornerInput<'_> {
         &self,
         v: usize,
         ring: &[Spoke],
-        weighted: &mut Vec<V3>,
+        scratch: &mut Vec<(V3, bool)>,
         put: &mut impl FnMut(usize, V3),
     ) {
         let k = ring.len();
         let q = self.p[v];
-        weighted.clear();
+        // Per corner: its weighted normal, and whether the edge after it
+        // (between it and the next corner) is sharp.
+        scratch.clear();
+        let mut any_sharp = false;
         for (j, s) in ring.iter().enumerate() {
+            let next = &ring[(j + 1) % k];
+            let sharp = s.hole
+                || next.hole
+                || s.hard
+                || self.cos_crease.is_some_and(|c| {
+                    let (na, nb) = (self.faces[s.face].0, self.faces[next.face].0);
+                    na != [0.0; 3] && nb != [0.0; 3] && dot(na, nb) < c
+                });
+            any_sharp |= sharp;
             if s.hole {
-                weighted.push([0.0; 3]);
+                scratch.push(([0.0; 3], sharp));
                 continue;
             }
-            let n = self.newell[s.face];
-            let u = unit(n);
+            let (u, twice_area) = self.faces[s.face];
             // Corner j's other side runs to the previous spoke's end.
             let w = match self.weight {
                 NormalWeight::Angle => angle(
                     sub(self.p[s.dest], q),
                     sub(self.p[ring[(j + k - 1) % k].dest], q),
                 ),
-                NormalWeight::Area => 0.5 * norm(n),
+                NormalWeight::Area => 0.5 * twice_area,
                 NormalWeight::Uniform => 1.0,
             };
-            weighted.push([u[0] * w, u[1] * w, u[2] * w]);
+            scratch.push(([u[0] * w, u[1] * w, u[2] * w], sharp));
         }
-        // Separator j lies between corner j and corner j + 1.
-        let sharp = |j: usize| {
-            let (a, b) = (&ring[j], &ring[(j + 1) % k]);
-            if a.hole || b.hole || a.hard {
-                return true;
-            }
-            match self.cos_crease {
-                None => false,
-                Some(c) => {
-                    let (na, nb) = (unit(self.newell[a.face]), unit(self.newell[b.face]));
-                    na != [0.0; 3] && nb != [0.0; 3] && dot(na, nb) < c
-                }
-            }
-        };
-        let Some(first) = (0..k).find(|&j| sharp(j)) else {
+        if !any_sharp {
             let mut sum = [0.0; 3];
-            for w in weighted.iter() {
+            for (w, _) in scratch.iter() {
                 add_scaled(&mut sum, *w, 1.0);
             }
             let n = unit(sum);
-            for s in ring.iter().filter(|s| !s.hole) {
+            for s in ring {
                 put(s.h, n);
             }
             return;
-        };
-        // Walk once round from just after a separator, one fan at a time.
+        }
+        // Walk once round from just after a sharp edge, one fan at a time.
+        let first = scratch.iter().position(|&(_, sharp)| sharp).unwrap_or(0);
         let mut start = first + 1;
         while start <= first + k {
             let mut end = start;
             let mut sum = [0.0; 3];
             loop {
-                add_scaled(&mut sum, weighted[end % k], 1.0);
-                if sharp(end % k) {
+                let (w, sharp) = scratch[end % k];
+                add_scaled(&mut sum, w, 1.0);
+                if sharp {
                     break;
                 }
                 end += 1;
@@ -605,7 +639,8 @@ impl CornerInput<'_> {
 /// column was removed.
 ///
 /// # Complexity
-/// O(corners): a pass over the faces, then one walk around every vertex.
+/// O(corners): passes over the faces, edges and corners, then a walk
+/// around each vertex at a sharp edge.
 ///
 /// ```
 /// use meshloom::algo::{corner_normals, CornerNormalOptions};
@@ -619,31 +654,66 @@ impl CornerInput<'_> {
 /// ```
 pub fn corner_normals(mesh: &Mesh, options: &CornerNormalOptions) -> Result<Vec<V3>> {
     let p = positions(mesh)?;
-    let newell = newell_vectors(mesh, p);
     let hard = match &options.hard_edges {
         Some(h) => Some(mesh.attr_view(h)?),
         None => None,
     };
+    let weight = options.weight;
+    let (vn, faces) = vertex_and_face_normals(mesh, weight, true)?;
+    let cos_crease = options.crease_angle.map(f64::cos);
+    let [nv, nh, ne, nf] = mesh.slot_counts();
+    // The vertices at a sharp edge (a boundary, a hard edge, a crease).
+    let mut split = vec![false; nv];
+    for i in 0..ne {
+        let Some(ev) = mesh.edge_at(i).and_then(|e| mesh.edge(e).ok()) else {
+            continue;
+        };
+        let sharp = match ev.faces() {
+            [Some(a), Some(b)] => {
+                hard.as_ref()
+                    .is_some_and(|h| h.get(ev.key()) == Some(&true))
+                    || cos_crease.is_some_and(|c| {
+                        let (na, nb) = (faces[a.index()].0, faces[b.index()].0);
+                        na != [0.0; 3] && nb != [0.0; 3] && dot(na, nb) < c
+                    })
+            }
+            _ => true,
+        };
+        if sharp {
+            for v in ev.vertices() {
+                split[v.index()] = true;
+            }
+        }
+    }
+    // Elsewhere a corner's normal is its vertex's.
+    let mut out = vec![[0.0; 3]; nh];
+    for i in 0..nf {
+        if let Some(fv) = mesh.face_at(i).and_then(|f| mesh.face(f).ok()) {
+            for (h, v) in fv.halfedges().zip(fv.vertices()) {
+                if !split[v.index()] {
+                    out[h.index()] = vn[v.index()];
+                }
+            }
+        }
+    }
+    // At sharp edges, fan by fan around the vertex.
+    let walk: Vec<usize> = (0..nv).filter(|&v| split[v]).collect();
     let input = CornerInput {
         mesh,
         p,
-        newell: &newell,
-        weight: options.weight,
-        cos_crease: options.crease_angle.map(f64::cos),
+        faces: &faces,
+        weight,
+        cos_crease,
         hard,
     };
-    let [nv, nh, _, nf] = mesh.slot_counts();
-    let mut out = vec![[0.0; 3]; nh];
     #[cfg(feature = "parallel")]
-    if nf >= PARALLEL_MIN_FACES && rayon::current_num_threads() > 1 {
+    if walk.len() >= PARALLEL_MIN_FACES && rayon::current_num_threads() > 1 {
         use rayon::prelude::*;
-        let blocks = 4 * rayon::current_num_threads();
-        let size = nv.div_ceil(blocks);
-        let parts: Vec<Vec<(usize, V3)>> = (0..blocks)
-            .into_par_iter()
-            .map(|b| {
-                let mut part = Vec::with_capacity(7 * size);
-                input.run(b * size..((b + 1) * size).min(nv), |h, n| part.push((h, n)));
+        let parts: Vec<Vec<(usize, V3)>> = walk
+            .par_chunks(4096)
+            .map(|chunk| {
+                let mut part = Vec::with_capacity(8 * chunk.len());
+                input.run(chunk, |h, n| part.push((h, n)));
                 part
             })
             .collect();
@@ -652,8 +722,7 @@ pub fn corner_normals(mesh: &Mesh, options: &CornerNormalOptions) -> Result<Vec<
         }
         return Ok(out);
     }
-    let _ = nf;
-    input.run(0..nv, |h, n| out[h] = n);
+    input.run(&walk, |h, n| out[h] = n);
     Ok(out)
 }
 
