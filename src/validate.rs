@@ -28,53 +28,9 @@
 //!    one side.
 //! 10. **No multi-edges.** No two edges join the same two vertices.
 
-use std::fmt;
-
+pub use crate::error::ValidationError;
 use crate::keys::AnyKey;
 use crate::mesh::{Mesh, NONE};
-
-/// A broken structural rule: its number (see the [module docs](self)), the
-/// element where it broke and what was found.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ValidationError {
-    /// The rule's number, 1 to 10.
-    pub rule: u8,
-    /// The element where the rule broke, when one can be named.
-    pub key: Option<AnyKey>,
-    /// What was found.
-    pub detail: String,
-}
-
-impl ValidationError {
-    /// The rule's short name.
-    pub fn rule_name(&self) -> &'static str {
-        match self.rule {
-            1 => "storage",
-            2 => "links in range",
-            3 => "no loops",
-            4 => "next is a permutation",
-            5 => "faces are cycles",
-            6 => "face links",
-            7 => "face size",
-            8 => "vertex links",
-            9 => "no dangling edges",
-            10 => "no multi-edges",
-            _ => "unknown rule",
-        }
-    }
-}
-
-impl fmt::Display for ValidationError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "rule {} ({}) broken", self.rule, self.rule_name())?;
-        if let Some(k) = &self.key {
-            write!(f, " at {k}")?;
-        }
-        write!(f, ": {}", self.detail)
-    }
-}
-
-impl std::error::Error for ValidationError {}
 
 fn broken(rule: u8, key: Option<AnyKey>, detail: impl Into<String>) -> ValidationError {
     ValidationError {
