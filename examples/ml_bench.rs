@@ -59,7 +59,10 @@ const CLOCK_PROCESS_CPUTIME_ID: i32 = 2;
 const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
 
 fn cpu(clk: i32) -> f64 {
-    let mut ts = Timespec { tv_sec: 0, tv_nsec: 0 };
+    let mut ts = Timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
     unsafe { clock_gettime(clk, &mut ts) };
     ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64
 }
@@ -71,7 +74,14 @@ fn status_kb(key: &str) -> usize {
     let s = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
     s.lines()
         .find(|l| l.starts_with(key))
-        .and_then(|l| l[key.len()..].trim().trim_end_matches("kB").trim().parse().ok())
+        .and_then(|l| {
+            l[key.len()..]
+                .trim()
+                .trim_end_matches("kB")
+                .trim()
+                .parse()
+                .ok()
+        })
         .unwrap_or(0)
 }
 
@@ -349,7 +359,10 @@ fn flip_back(input: &Input) -> (Elapsed, String) {
         }
     }
     let e = since(t0);
-    (e, format!("{flipped} edges flipped and back, {refused_back} back-flips refused"))
+    (
+        e,
+        format!("{flipped} edges flipped and back, {refused_back} back-flips refused"),
+    )
 }
 
 // ---------------------------------------------------------------------------
@@ -360,7 +373,11 @@ fn only_list() -> Option<Vec<String>> {
     let v = std::env::var("BENCH_ONLY").unwrap_or_default();
     let names: Vec<String> = v
         .split(',')
-        .map(|n| n.chars().filter(|&c| c != ' ' && c != '\t').collect::<String>())
+        .map(|n| {
+            n.chars()
+                .filter(|&c| c != ' ' && c != '\t')
+                .collect::<String>()
+        })
         .filter(|n| !n.is_empty())
         .collect();
     if names.is_empty() {
@@ -372,13 +389,20 @@ fn only_list() -> Option<Vec<String>> {
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let path = args.get(1).expect("usage: ml_bench mesh.obj [reps]").clone();
+    let path = args
+        .get(1)
+        .expect("usage: ml_bench mesh.obj [reps]")
+        .clone();
     let reps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(5);
 
     // --- load (own soup parser; not compared) ---
     let t0 = stamp();
     let (xyz, tri) = read_obj(&path);
-    report("load", since(t0), &format!("{} V, {} F", xyz.len(), tri.len()));
+    report(
+        "load",
+        since(t0),
+        &format!("{} V, {} F", xyz.len(), tri.len()),
+    );
 
     // input buffers (untimed conversion: the C++ build also starts from arrays)
     let poly = Polygons {
@@ -398,10 +422,20 @@ fn main() {
     report(
         "build",
         t_build,
-        &format!("E={} heap {} B/vertex", mesh.edge_count(), (heap1 - heap0) / nv),
+        &format!(
+            "E={} heap {} B/vertex",
+            mesh.edge_count(),
+            (heap1 - heap0) / nv
+        ),
     );
 
-    let input = Input { path, reps, xyz, tri, mesh };
+    let input = Input {
+        path,
+        reps,
+        xyz,
+        tri,
+        mesh,
+    };
     let only = only_list();
     for (name, f) in WORKLOADS {
         if let Some(only) = &only {
@@ -412,5 +446,10 @@ fn main() {
         let (e, note) = f(&input);
         report(name, e, &note);
     }
-    println!("{:<6} {:<18} {:>9} kB", LIB, "peak_rss", status_kb("VmHWM:"));
+    println!(
+        "{:<6} {:<18} {:>9} kB",
+        LIB,
+        "peak_rss",
+        status_kb("VmHWM:")
+    );
 }
