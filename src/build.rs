@@ -13,7 +13,11 @@ use crate::error::{BuildError, Error, Result};
 use crate::keys::{FaceKey, VertexKey};
 use std::borrow::Cow;
 
-use crate::mesh::{HalfedgeRecord, Mesh, HOLE_BIT, NONE};
+use crate::layout::{Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};
+use crate::mesh::Mesh;
+
+/// An index of [`IndexMaps`] for a slot that was not exported.
+const UNMAPPED: u32 = u32::MAX;
 use crate::slots::Slots;
 
 /// An integer type usable as a vertex index in face lists.
@@ -88,13 +92,13 @@ impl IndexMaps {
     /// The dense index of a vertex key, if it was exported.
     pub fn vertex_index(&self, v: VertexKey) -> Option<usize> {
         let i = *self.vertex_slot.get(v.index())?;
-        (i != NONE && self.vertices[i as usize] == v).then_some(i as usize)
+        (i != UNMAPPED && self.vertices[i as usize] == v).then_some(i as usize)
     }
 
     /// The dense index of a face key, if it was exported (holes are not).
     pub fn face_index(&self, f: FaceKey) -> Option<usize> {
         let i = *self.face_slot.get(f.index())?;
-        (i != NONE && self.faces[i as usize] == f).then_some(i as usize)
+        (i != UNMAPPED && self.faces[i as usize] == f).then_some(i as usize)
     }
 }
 
@@ -200,7 +204,7 @@ impl Mesh {
     /// assert_eq!(maps.vertex_index(maps.vertices[3]), Some(3));
     /// ```
     pub fn to_polygons(&self) -> (Polygons, IndexMaps) {
-        let mut vertex_slot = vec![NONE; self.v_slots.slot_count()];
+        let mut vertex_slot = vec![UNMAPPED; self.v_slots.slot_count()];
         let mut vertices = Vec::with_capacity(self.vertex_count());
         for v in self.vertices() {
             vertex_slot[v.index()] = vertices.len() as u32;
@@ -213,7 +217,7 @@ impl Mesh {
                 .collect(),
             None => Vec::new(),
         };
-        let mut face_slot = vec![NONE; self.f_slots.slot_count()];
+        let mut face_slot = vec![UNMAPPED; self.f_slots.slot_count()];
         let mut faces = Vec::with_capacity(self.face_count());
         let mut offsets = Vec::with_capacity(self.face_count() + 1);
         let mut indices = Vec::with_capacity(self.halfedge_count());
@@ -221,8 +225,8 @@ impl Mesh {
         for f in self.faces() {
             face_slot[f.index()] = faces.len() as u32;
             faces.push(f);
-            for h in self.face_loop_raw(f.index) {
-                indices.push(vertex_slot[self.origin_of(h) as usize]);
+            for h in self.face_loop(f.id()) {
+                indices.push(vertex_slot[self.origin(h).index()]);
             }
             offsets.push(indices.len() as u32);
         }
@@ -415,7 +419,7 @@ fn build_flat(
     let indices: Cow<'_, [u32]> = match &input_of_slot {
         None => Cow::Borrowed(indices),
         Some(map) => {
-            let mut slot_of = vec![NONE; span];
+            let mut slot_of = vec![UNMAPPED; span];
             for (slot, &i) in map.iter().enumerate() {
                 slot_of[i as usize] = slot as u32;
             }
@@ -460,8 +464,8 @@ fn build_flat(
     //    Corner c's half-edge is he_of[c]; an unpaired side's twin lies in a
     //    hole and is recorded, with its origin, in `boundary`.
     let corner = |x: u64| (x & 0xffff_ffff) as usize;
-    let mut he_of = vec![NONE; nc];
-    let mut boundary: Vec<(u32, u32)> = Vec::new();
+    let mut he_of = vec![Hid::NONE; nc];
+    let mut boundary: Vec<(Hid, Vid)> = Vec::new();
     let mut ne = 0u32;
     for v in 0..nv {
         let begin = if v == 0 { 0 } else { start[v - 1] as usize };
@@ -478,9 +482,10 @@ fn build_flat(
                 1 => {
                     let dir = (group[i] >> 32) & 1;
                     // The hole half-edge runs against the corner's side.
-                    let origin = if dir == 1 { v as u32 } else { hi as u32 };
-                    he_of[corner(group[i])] = 2 * ne;
-                    boundary.push((2 * ne + 1, origin));
+                    let origin = Vid::new(if dir == 1 { v as u32 } else { hi as u32 });
+                    let [inner, outer] = Eid::new(ne).halfedges();
+                    he_of[corner(group[i])] = inner;
+                    boundary.push((outer, origin));
                 }
                 2 => {
                     let (c0, c1) = (group[i], group[i + 1]);
@@ -500,8 +505,7 @@ fn build_flat(
                         }
                         .into());
                     }
-                    he_of[corner(c0)] = 2 * ne;
-                    he_of[corner(c1)] = 2 * ne + 1;
+                    [he_of[corner(c0)], he_of[corner(c1)]] = Eid::new(ne).halfedges();
                 }
                 _ => {
                     let mut fs: Vec<usize> = group[i..j]
@@ -524,56 +528,59 @@ fn build_flat(
     }
     drop(bucket);
     drop(start);
-    let nh = 2 * ne as usize;
+    let nh = Eid::halfedge_slots(ne as usize);
 
     // 5. Interior half-edges.
-    let mut he = vec![HalfedgeRecord::VACANT; nh];
-    let mut v_halfedge = vec![NONE; nv];
-    let mut out_degree = vec![0u32; nv];
+    let mut he = IdVec::filled(HalfedgeRecord::VACANT, nh);
+    let mut v_halfedge: IdVec<Vid, Hid> = IdVec::filled(Hid::NONE, nv);
+    let mut out_degree: IdVec<Vid, u32> = IdVec::filled(0, nv);
     for f in 0..nf {
         let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
         for c in s..e {
             let n = if c + 1 < e { c + 1 } else { s };
-            let h = he_of[c] as usize;
+            let h = he_of[c];
+            let origin = Vid::new(indices[c]);
             he[h] = HalfedgeRecord {
-                origin: indices[c],
+                origin,
                 next: he_of[n],
-                face: f as u32,
+                face: Fid::new(f as u32),
             };
-            v_halfedge[indices[c] as usize] = h as u32;
-            out_degree[indices[c] as usize] += 1;
+            v_halfedge[origin] = h;
+            out_degree[origin] += 1;
         }
     }
 
     // 6. Boundary half-edges: origins, and the hole half-edge leaving each
     //    boundary vertex (MANY at a bowtie, where several leave).
-    const MANY: u32 = NONE - 1;
-    let mut hole_out = vec![NONE; nv];
+    // (A vertex slot's "several hole half-edges leave it" marker: no
+    // half-edge has this id, as a mesh has fewer than 2^31 of them.)
+    const MANY: Hid = Hid::new(u32::MAX - 1);
+    let mut hole_out: IdVec<Vid, Hid> = IdVec::filled(Hid::NONE, nv);
     for &(g, o) in &boundary {
-        he[g as usize].origin = o;
-        let slot = &mut hole_out[o as usize];
-        *slot = if *slot == NONE { g } else { MANY };
-        out_degree[o as usize] += 1;
+        he[g].origin = o;
+        let slot = &mut hole_out[o];
+        *slot = if slot.is_none() { g } else { MANY };
+        out_degree[o] += 1;
     }
-    let boundary: Vec<u32> = boundary.into_iter().map(|(g, _)| g).collect();
+    let boundary: Vec<Hid> = boundary.into_iter().map(|(g, _)| g).collect();
     // Link each hole half-edge to the one leaving the vertex it enters.
     let mut bowtie = false;
     for &g in &boundary {
-        let a = he[(g ^ 1) as usize].origin; // g enters a
-        match hole_out[a as usize] {
+        let a = he[g.twin()].origin; // g enters a
+        match hole_out[a] {
             MANY => bowtie = true,
-            k => he[g as usize].next = k,
+            k => he[g].next = k,
         }
     }
     drop(hole_out);
     if bowtie {
         link_bowties(&mut he, &boundary, &input)?;
     }
-    if let Some(&g) = boundary.iter().find(|&&g| he[g as usize].next == NONE) {
-        let a = he[(g ^ 1) as usize].origin;
+    if let Some(&g) = boundary.iter().find(|&&g| he[g].next.is_none()) {
+        let a = he[g.twin()].origin;
         return Err(BuildError::NonManifoldVertex {
-            vertex: input(a),
-            face: he[(g ^ 1) as usize].face as usize,
+            vertex: input(a.raw()),
+            face: he[g.twin()].face.index(),
         }
         .into());
     }
@@ -581,41 +588,45 @@ fn build_flat(
     // 7. Hole faces: walk every unassigned boundary loop.
     let mut hole_starts = Vec::new();
     for &g in &boundary {
-        if he[g as usize].face != NONE {
+        if !he[g].face.is_none() {
             continue;
         }
-        let f = (nf + hole_starts.len()) as u32;
+        let f = Fid::new((nf + hole_starts.len()) as u32);
         hole_starts.push(g);
         let mut h = g;
         for _ in 0..=boundary.len() {
-            he[h as usize].face = f;
-            h = he[h as usize].next;
-            if h == g || h == NONE {
+            he[h].face = f;
+            h = he[h].next;
+            if h == g || h.is_none() {
                 break;
             }
         }
     }
-    let mut f_halfedge = Vec::with_capacity(nf + hole_starts.len());
-    f_halfedge.extend(offsets[..nf].iter().map(|&c| he_of[c as usize]));
-    f_halfedge.extend(hole_starts.iter().map(|&g| g | HOLE_BIT));
+    let mut f_halfedge = IdVec::from_vec(Vec::with_capacity(nf + hole_starts.len()));
+    for &c in &offsets[..nf] {
+        f_halfedge.push(FaceLink::new(he_of[c as usize], false));
+    }
+    for &g in &hole_starts {
+        f_halfedge.push(FaceLink::new(g, true));
+    }
     drop(he_of);
 
     // 8. Every vertex's ring must reach all its half-edges: faces that meet
     //    at a vertex in separate closed fans cannot share one ring.
-    for v in 0..nv {
+    for v in v_halfedge.ids() {
         let start = v_halfedge[v];
         let (mut h, mut ring) = (start, 0u32);
         loop {
             ring += 1;
-            h = he[(h ^ 1) as usize].next;
+            h = he[h.twin()].next;
             if h == start || ring > out_degree[v] {
                 break;
             }
         }
         if ring != out_degree[v] {
             return Err(BuildError::NonManifoldVertex {
-                vertex: input(v as u32),
-                face: he[start as usize].face.min(he[(start ^ 1) as usize].face) as usize,
+                vertex: input(v.raw()),
+                face: he[start].face.min(he[start.twin()].face).index(),
             }
             .into());
         }
@@ -649,11 +660,11 @@ fn build_flat(
         // One entry per input vertex: the caller asked for this map.
         let mut vertices = vec![None; n_in];
         for slot in 0..nv as u32 {
-            vertices[input(slot)] = Some(VertexKey::new(slot, 1));
+            vertices[input(slot)] = Some(Vid::new(slot).key(1));
         }
         (
             vertices,
-            (0..nf as u32).map(|f| FaceKey::new(f, 1)).collect(),
+            (0..nf as u32).map(|f| Fid::new(f).key(1)).collect(),
         )
     } else {
         (Vec::new(), Vec::new())
@@ -670,15 +681,12 @@ fn build_flat(
 /// starts, and chain the fans: the hole half-edge ending fan `i` continues
 /// with the one starting fan `i + 1`.
 fn link_bowties(
-    he: &mut [HalfedgeRecord],
-    boundary: &[u32],
+    he: &mut IdVec<Hid, HalfedgeRecord>,
+    boundary: &[Hid],
     input: &dyn Fn(u32) -> usize,
 ) -> Result<()> {
     // Hole half-edges leaving each bowtie vertex, grouped by vertex.
-    let mut leaving: Vec<(u32, u32)> = boundary
-        .iter()
-        .map(|&k| (he[k as usize].origin, k))
-        .collect();
+    let mut leaving: Vec<(Vid, Hid)> = boundary.iter().map(|&k| (he[k].origin, k)).collect();
     leaving.sort_unstable();
     let mut kept = Vec::with_capacity(leaving.len());
     for (i, &(a, k)) in leaving.iter().enumerate() {
@@ -700,20 +708,20 @@ fn link_bowties(
         // The hole half-edge that ends the fan started by each k.
         let mut ends = Vec::with_capacity(j - i);
         for &(_, k) in &leaving[i..j] {
-            let mut o = he[(k ^ 1) as usize].next; // first interior outgoing
-            let mut end = NONE;
+            let mut o = he[k.twin()].next; // first interior outgoing
+            let mut end = Hid::NONE;
             for _ in 0..budget {
-                let x = o ^ 1; // enters a
-                if he[x as usize].face == NONE {
+                let x = o.twin(); // enters a
+                if he[x].face.is_none() {
                     end = x;
                     break;
                 }
-                o = he[x as usize].next;
+                o = he[x].next;
             }
-            if end == NONE {
+            if end.is_none() {
                 return Err(BuildError::NonManifoldVertex {
-                    vertex: input(a),
-                    face: he[(k ^ 1) as usize].face as usize,
+                    vertex: input(a.raw()),
+                    face: he[k.twin()].face.index(),
                 }
                 .into());
             }
@@ -721,7 +729,7 @@ fn link_bowties(
         }
         let m = j - i;
         for (fan, &end) in ends.iter().enumerate() {
-            he[end as usize].next = leaving[i + (fan + 1) % m].1;
+            he[end].next = leaving[i + (fan + 1) % m].1;
         }
         i = j;
     }

@@ -43,11 +43,14 @@ pub mod error;
 pub mod geometry;
 pub mod io;
 pub mod keys;
+mod layout;
 pub mod link;
 mod mesh;
 pub mod ops;
 #[cfg(feature = "render")]
 pub mod render;
+#[cfg(feature = "render")]
+mod render_compat;
 pub mod repair;
 #[cfg(feature = "serde")]
 mod serde_impl;

@@ -38,7 +38,8 @@
 
 use crate::error::{Error, Result};
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
-use crate::mesh::{Mesh, NONE};
+use crate::layout::Vid;
+use crate::mesh::Mesh;
 
 /// A guard for raw link edits; see the [module docs](self).
 pub struct RawEdit<'m> {
@@ -59,7 +60,7 @@ impl RawEdit<'_> {
     /// [`Error::StaleKey`].
     pub fn origin(&self, h: HalfedgeKey) -> Result<Option<VertexKey>> {
         let h = self.mesh.check_halfedge(h)?;
-        let o = self.mesh.he[h as usize].origin;
+        let o = self.mesh.he[h].origin;
         Ok(self.live_vertex(o))
     }
 
@@ -69,8 +70,11 @@ impl RawEdit<'_> {
     /// [`Error::StaleKey`].
     pub fn next(&self, h: HalfedgeKey) -> Result<Option<HalfedgeKey>> {
         let h = self.mesh.check_halfedge(h)?;
-        let n = self.mesh.he[h as usize].next;
-        Ok((n != NONE && self.mesh.e_slots.is_live((n >> 1) as usize)).then(|| self.mesh.hkey(n)))
+        let n = self.mesh.he[h].next;
+        Ok(
+            (!n.is_none() && self.mesh.e_slots.is_live(n.edge().index()))
+                .then(|| self.mesh.hkey(n)),
+        )
     }
 
     /// The face link of `h`, if set.
@@ -79,12 +83,12 @@ impl RawEdit<'_> {
     /// [`Error::StaleKey`].
     pub fn face(&self, h: HalfedgeKey) -> Result<Option<FaceKey>> {
         let h = self.mesh.check_halfedge(h)?;
-        let f = self.mesh.he[h as usize].face;
-        Ok((f != NONE && self.mesh.f_slots.is_live(f as usize)).then(|| self.mesh.fkey(f)))
+        let f = self.mesh.he[h].face;
+        Ok((!f.is_none() && self.mesh.f_slots.is_live(f.index())).then(|| self.mesh.fkey(f)))
     }
 
-    fn live_vertex(&self, v: u32) -> Option<VertexKey> {
-        (v != NONE && self.mesh.v_slots.is_live(v as usize)).then(|| self.mesh.vkey(v))
+    fn live_vertex(&self, v: Vid) -> Option<VertexKey> {
+        (!v.is_none() && self.mesh.v_slots.is_live(v.index())).then(|| self.mesh.vkey(v))
     }
 
     /// Set `origin(h) = v` and reflect it: `v`'s half-edge becomes `h`.
@@ -94,8 +98,8 @@ impl RawEdit<'_> {
     pub fn set_origin(&mut self, h: HalfedgeKey, v: VertexKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let v = self.mesh.check_vertex(v)?;
-        self.mesh.he[h as usize].origin = v;
-        self.mesh.v_halfedge[v as usize] = h;
+        self.mesh.he[h].origin = v;
+        self.mesh.v_halfedge[v] = h;
         Ok(())
     }
 
@@ -107,7 +111,7 @@ impl RawEdit<'_> {
     pub fn set_face(&mut self, h: HalfedgeKey, f: FaceKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let f = self.mesh.check_face(f)?;
-        self.mesh.he[h as usize].face = f;
+        self.mesh.he[h].face = f;
         self.mesh.set_face_link(f, h);
         Ok(())
     }
@@ -131,7 +135,7 @@ impl RawEdit<'_> {
     pub fn set_vertex_halfedge(&mut self, v: VertexKey, h: HalfedgeKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let v = self.mesh.check_vertex(v)?;
-        self.mesh.v_halfedge[v as usize] = h;
+        self.mesh.v_halfedge[v] = h;
         Ok(())
     }
 
@@ -153,7 +157,7 @@ impl RawEdit<'_> {
     /// [`Error::StaleKey`].
     pub fn set_hole(&mut self, f: FaceKey, hole: bool) -> Result<()> {
         let f = self.mesh.check_face(f)?;
-        self.mesh.set_hole_raw(f, hole);
+        self.mesh.set_hole(f, hole);
         Ok(())
     }
 

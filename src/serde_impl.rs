@@ -29,7 +29,8 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::attr::registry::make_column;
 use crate::attr::{Column, Columns, Dynamic, ErasedColumn, Value, ValueType, POSITION};
 use crate::keys::ElementKind;
-use crate::mesh::{HalfedgeRecord, Mesh, HOLE_BIT};
+use crate::layout::{Eid, FaceLink, HalfedgeRecord, Hid, IdVec, MAX_HALFEDGE_SLOTS};
+use crate::mesh::Mesh;
 use crate::slots::Slots;
 
 /// One attribute column as serialized.
@@ -49,12 +50,12 @@ struct ColumnData {
 /// The serialized form of a mesh.
 #[derive(Serialize, Deserialize)]
 struct MeshData {
-    vertex_halfedge: Vec<u32>,
+    vertex_halfedge: Vec<Hid>,
     vertex_generations: Vec<u32>,
     halfedges: Vec<HalfedgeRecord>,
     edge_generations: Vec<u32>,
     /// A face's half-edge, top bit set for holes.
-    face_halfedge: Vec<u32>,
+    face_halfedge: Vec<FaceLink>,
     face_generations: Vec<u32>,
     /// Index of the position column among the vertex columns.
     position: Option<usize>,
@@ -96,15 +97,15 @@ fn columns_out(
 impl Serialize for Mesh {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let v_live = |i: usize| self.v_slots.is_live(i);
-        let h_live = |i: usize| self.e_slots.is_live(i / 2);
+        let h_live = |i: usize| self.e_slots.is_live(Hid::new(i as u32).edge().index());
         let e_live = |i: usize| self.e_slots.is_live(i);
         let f_live = |i: usize| self.f_slots.is_live(i);
         let data = MeshData {
-            vertex_halfedge: self.v_halfedge.clone(),
+            vertex_halfedge: self.v_halfedge.as_slice().to_vec(),
             vertex_generations: self.v_slots.generations().to_vec(),
-            halfedges: self.he.clone(),
+            halfedges: self.he.as_slice().to_vec(),
             edge_generations: self.e_slots.generations().to_vec(),
-            face_halfedge: self.f_halfedge.clone(),
+            face_halfedge: self.f_halfedge.as_slice().to_vec(),
             face_generations: self.f_slots.generations().to_vec(),
             position: self.attrs.position,
             vertex_attrs: columns_out(self, ElementKind::Vertex, v_live)
@@ -180,31 +181,37 @@ fn mesh_from(data: MeshData) -> Result<Mesh, String> {
         data.face_generations.len(),
     );
     if data.vertex_halfedge.len() != nv
-        || data.halfedges.len() != 2 * ne
+        || data.halfedges.len() != Eid::halfedge_slots(ne)
         || data.face_halfedge.len() != nf
     {
         return Err("link arrays and generations disagree in length".into());
     }
-    if nv > u32::MAX as usize / 2 || 2 * ne > u32::MAX as usize / 2 || nf > (HOLE_BIT - 1) as usize
+    if nv > MAX_HALFEDGE_SLOTS
+        || Eid::halfedge_slots(ne) > MAX_HALFEDGE_SLOTS
+        || nf > MAX_HALFEDGE_SLOTS
     {
         return Err("too many slots for 32-bit links".into());
     }
     let f_slots = Slots::from_generations(data.face_generations);
     let holes = (0..nf)
-        .filter(|&f| f_slots.is_live(f) && data.face_halfedge[f] & HOLE_BIT != 0)
+        .filter(|&f| f_slots.is_live(f) && data.face_halfedge[f].is_hole())
         .count();
     let mut mesh = Mesh {
-        v_halfedge: data.vertex_halfedge,
+        v_halfedge: IdVec::from_vec(data.vertex_halfedge),
         v_slots: Slots::from_generations(data.vertex_generations),
-        he: data.halfedges,
+        he: IdVec::from_vec(data.halfedges),
         e_slots: Slots::from_generations(data.edge_generations),
-        f_halfedge: data.face_halfedge,
+        f_halfedge: IdVec::from_vec(data.face_halfedge),
         f_slots,
         holes,
         attrs: Default::default(),
     };
     mesh.attrs.vertex = columns_in(ElementKind::Vertex, data.vertex_attrs, nv)?;
-    mesh.attrs.halfedge = columns_in(ElementKind::Halfedge, data.halfedge_attrs, 2 * ne)?;
+    mesh.attrs.halfedge = columns_in(
+        ElementKind::Halfedge,
+        data.halfedge_attrs,
+        Eid::halfedge_slots(ne),
+    )?;
     mesh.attrs.edge = columns_in(ElementKind::Edge, data.edge_attrs, ne)?;
     mesh.attrs.face = columns_in(ElementKind::Face, data.face_attrs, nf)?;
     if let Some(p) = data.position {
@@ -216,9 +223,10 @@ fn mesh_from(data: MeshData) -> Result<Mesh, String> {
         if mesh.attrs.vertex.cols[p].0 != POSITION {
             return Err(format!("the position column must be named {POSITION:?}"));
         }
-        for v in mesh.v_slots.live_indices() {
-            if let Some(x) = col.get(v as usize) {
+        for v in mesh.vids() {
+            if let Some(x) = col.get(v.index()) {
                 if !x.iter().all(|c| c.is_finite()) {
+                    let v = v.raw();
                     return Err(format!("vertex slot {v} has the non-finite position {x:?}"));
                 }
             }

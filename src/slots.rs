@@ -3,7 +3,7 @@
 //! Why not `slotmap` (or the archived `generational-arena`)? Those crates
 //! store the generation *inside* each value's slot and give every arena its
 //! own key space. meshloom needs three things they do not offer together:
-//! twin half-edges that share one generation (so `twin` is `h ^ 1` and costs
+//! twin half-edges that share one generation (so `twin` is arithmetic and costs
 //! no storage), attribute columns that sit beside the arena and are indexed by
 //! the same slot number, and a free list that costs nothing while no element
 //! has been removed (a freshly built mesh has none). Measured in

@@ -277,8 +277,6 @@ impl AttrStore {
 
 #[cfg(test)]
 mod tests {
-    use crate::keys::VertexKey;
-
     #[test]
     fn columns_follow_alloc_and_free() {
         let mut mesh = crate::shapes::tetrahedron();
@@ -288,11 +286,11 @@ mod tests {
         mesh.set_attr(&name, v, "apex".into()).unwrap();
         mesh.set_attr(&w, v, 2.0).unwrap();
         let slot = mesh.alloc_vertex();
-        assert_eq!(slot, 4);
+        assert_eq!(slot.index(), 4);
         for (_, c) in &mesh.attrs.vertex.cols {
             assert_eq!(c.len(), 5);
         }
-        mesh.free_vertex(v.index);
+        mesh.free_vertex(v.id());
         // The value is gone (and its heap memory with it), not just hidden.
         let col = mesh
             .attrs
@@ -303,8 +301,8 @@ mod tests {
         assert!(!col.has(v.index()));
         // The slot comes back under a new generation, without a value.
         let again = mesh.alloc_vertex();
-        assert_eq!(again, v.index);
-        let k = VertexKey::new(again, mesh.v_slots.generation_of(again));
+        assert_eq!(again, v.id());
+        let k = mesh.vkey(again);
         assert_eq!(mesh.attr(&name, k).unwrap(), None);
         assert_eq!(mesh.attr(&w, k).unwrap(), None);
         assert!(mesh.attr(&name, v).is_err());

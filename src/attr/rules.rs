@@ -33,6 +33,10 @@ use super::rule::{Linear, Rule};
 pub struct Interpolate;
 
 impl<T: Linear> Rule<T> for Interpolate {
+    // Inlined into the column's merge and interpolate: left to the
+    // compiler's heuristics it was not, after an unrelated change moved it
+    // to another codegen unit (+8% instructions in `ErasedColumn::merge`).
+    #[inline]
     fn merge(inputs: &[(Option<&T>, f64)]) -> Option<T> {
         let mut total = 0.0;
         let mut present = 0usize;

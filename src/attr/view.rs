@@ -35,7 +35,7 @@ macro_rules! element_view {
             type Key = $key;
             #[inline(always)]
             fn parts(self) -> (&'m Mesh, usize) {
-                (self.mesh, self.$field as usize)
+                (self.mesh, self.$field.index())
             }
         }
 

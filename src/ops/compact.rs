@@ -1,7 +1,8 @@
 //! `compact`: dense storage after many edits.
 
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
-use crate::mesh::{HalfedgeRecord, Mesh, HOLE_BIT, NONE};
+use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, IdVec, Vid};
+use crate::mesh::Mesh;
 use crate::slots::Slots;
 
 /// Old → new key maps returned by [`Mesh::compact`]. Keys keep their
@@ -9,7 +10,7 @@ use crate::slots::Slots;
 /// maps to `None`.
 #[derive(Clone, Debug, Default)]
 pub struct KeyMaps {
-    /// Per old vertex slot: (new index or `NONE`, generation).
+    /// Per old vertex slot: (new index or `u32::MAX`, generation).
     vertices: Vec<(u32, u32)>,
     /// Per old edge slot.
     edges: Vec<(u32, u32)>,
@@ -17,9 +18,12 @@ pub struct KeyMaps {
     faces: Vec<(u32, u32)>,
 }
 
+/// A vacant slot's entry in a map.
+const GONE: u32 = u32::MAX;
+
 fn lookup(map: &[(u32, u32)], index: usize, generation: u32) -> Option<u32> {
     let &(new, g) = map.get(index)?;
-    (new != NONE && g == generation).then_some(new)
+    (new != GONE && g == generation).then_some(new)
 }
 
 impl KeyMaps {
@@ -35,8 +39,9 @@ impl KeyMaps {
 
     /// The new key of a half-edge (it stays on the same side of its edge).
     pub fn halfedge(&self, h: HalfedgeKey) -> Option<HalfedgeKey> {
-        lookup(&self.edges, h.index() >> 1, h.generation())
-            .map(|e| HalfedgeKey::new(2 * e + (h.index() as u32 & 1), h.generation()))
+        let old = h.id();
+        lookup(&self.edges, old.edge().index(), h.generation())
+            .map(|e| Eid::new(e).halfedge(old.side()).key(h.generation()))
     }
 
     /// The new key of a face or hole.
@@ -49,7 +54,7 @@ impl KeyMaps {
 fn order(slots: &Slots) -> (Vec<u32>, Vec<(u32, u32)>) {
     let live: Vec<u32> = slots.live_indices().collect();
     let mut map: Vec<(u32, u32)> = (0..slots.slot_count())
-        .map(|i| (NONE, slots.generation(i).unwrap_or(0)))
+        .map(|i| (GONE, slots.generation(i).unwrap_or(0)))
         .collect();
     for (new, &old) in live.iter().enumerate() {
         map[old as usize].0 = new as u32;
@@ -85,31 +90,37 @@ impl Mesh {
         let (v_live, v_map) = order(&self.v_slots);
         let (e_live, e_map) = order(&self.e_slots);
         let (f_live, f_map) = order(&self.f_slots);
-        let hnew = |h: u32| 2 * e_map[(h >> 1) as usize].0 + (h & 1);
-        let mut he = Vec::with_capacity(2 * e_live.len());
-        let mut h_order = Vec::with_capacity(2 * e_live.len());
+        let vnew = |v: Vid| Vid::new(v_map[v.index()].0);
+        let fnew = |f: Fid| Fid::new(f_map[f.index()].0);
+        let hnew = |h: Hid| Eid::new(e_map[h.edge().index()].0).halfedge(h.side());
+        let mut he = IdVec::from_vec(Vec::with_capacity(Eid::halfedge_slots(e_live.len())));
+        let mut h_order = Vec::with_capacity(Eid::halfedge_slots(e_live.len()));
         for &e in &e_live {
-            for h in [2 * e, 2 * e + 1] {
-                let r = self.he[h as usize];
+            for h in Eid::new(e).halfedges() {
+                let r = self.he[h];
                 he.push(HalfedgeRecord {
-                    origin: v_map[r.origin as usize].0,
+                    origin: vnew(r.origin),
                     next: hnew(r.next),
-                    face: f_map[r.face as usize].0,
+                    face: fnew(r.face),
                 });
-                h_order.push(h);
+                h_order.push(h.raw());
             }
         }
-        let v_halfedge: Vec<u32> = v_live
-            .iter()
-            .map(|&v| hnew(self.v_halfedge[v as usize]))
-            .collect();
-        let f_halfedge: Vec<u32> = f_live
-            .iter()
-            .map(|&f| {
-                let raw = self.f_halfedge[f as usize];
-                (raw & HOLE_BIT) | hnew(raw & !HOLE_BIT)
-            })
-            .collect();
+        let v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(
+            v_live
+                .iter()
+                .map(|&v| hnew(self.v_halfedge[Vid::new(v)]))
+                .collect(),
+        );
+        let f_halfedge = IdVec::from_vec(
+            f_live
+                .iter()
+                .map(|&f| {
+                    let link = self.f_halfedge[Fid::new(f)];
+                    link.with_halfedge(hnew(link.halfedge()))
+                })
+                .collect(),
+        );
         let gens = |live: &[u32], s: &Slots| -> Vec<u32> {
             live.iter().map(|&i| s.generation_of(i)).collect()
         };
