@@ -8,9 +8,10 @@
 //! bowtie), the hole passes through it once per fan and the fans are chained
 //! so that turning around the vertex still visits every half-edge.
 
-use crate::attr::{Column, Interpolate, POSITION};
 use crate::error::{BuildError, Error, Result};
 use crate::keys::{FaceKey, VertexKey};
+use crate::store::rules::Interpolate;
+use crate::store::{Column, POSITION};
 use std::borrow::Cow;
 
 use crate::layout::{Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};

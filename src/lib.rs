@@ -57,6 +57,7 @@ mod serde_impl;
 pub mod shapes;
 mod slots;
 pub mod stats;
+mod store;
 pub mod traverse;
 pub mod validate;
 pub mod view;

@@ -16,12 +16,13 @@
 //! [`Fid`]; the layout they follow is in [`layout`](crate::layout));
 //! generations are checked once, at the public door.
 
-use crate::attr::{AttrStore, Column, Interpolate, POSITION};
 use crate::error::{Error, Result};
 use crate::keys::{AnyKey, EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 pub(crate) use crate::layout::HalfedgeRecord;
 use crate::layout::{Eid, FaceLink, Fid, Hid, IdVec, Vid};
 use crate::slots::Slots;
+use crate::store::rules::Interpolate;
+use crate::store::{AttrStore, Column, POSITION};
 
 /// A polygon mesh stored as a half-edge graph.
 ///

@@ -26,12 +26,12 @@ use serde::de::Error as _;
 use serde::ser::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::attr::registry::make_column;
-use crate::attr::{Column, Columns, Dynamic, ErasedColumn, Value, ValueType, POSITION};
+use crate::attr::registry::{column_type_key, make_column};
 use crate::keys::ElementKind;
 use crate::layout::{Eid, FaceLink, HalfedgeRecord, Hid, IdVec, MAX_HALFEDGE_SLOTS};
 use crate::mesh::Mesh;
 use crate::slots::Slots;
+use crate::store::{Column, Columns, Dynamic, ErasedColumn, Value, ValueType, POSITION};
 
 /// One attribute column as serialized.
 #[derive(Serialize, Deserialize)]
@@ -86,7 +86,7 @@ fn columns_out(
                 .collect();
             Ok(ColumnData {
                 name: name.clone(),
-                rust_type: meta.value_type.is_none().then(|| c.type_key()),
+                rust_type: meta.value_type.is_none().then(|| column_type_key(&**c)),
                 dynamic: meta.value_type,
                 values,
             })
@@ -218,7 +218,7 @@ fn mesh_from(data: MeshData) -> Result<Mesh, String> {
         let col = mesh
             .attrs
             .vertex
-            .typed::<[f64; 3], crate::attr::Interpolate>(p)
+            .typed::<[f64; 3], crate::store::rules::Interpolate>(p)
             .ok_or("the position column is missing or not [f64; 3] with Interpolate")?;
         if mesh.attrs.vertex.cols[p].0 != POSITION {
             return Err(format!("the position column must be named {POSITION:?}"));

@@ -4,8 +4,8 @@
 use std::fmt;
 use std::marker::PhantomData;
 
-use super::attribute::Attribute;
 use crate::keys::{AnyKey, EdgeKey, ElementKind, FaceKey, HalfedgeKey, VertexKey};
+use crate::store::Attribute;
 
 mod sealed {
     pub trait Sealed {}

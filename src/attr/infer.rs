@@ -1,13 +1,13 @@
 //! Inferring an absent value from neighbours, on demand (the halfedges
 //! package's `_infer_value`).
 
-use super::attribute::Attribute;
 use super::handle::{Attr, Element};
-use super::rule::Rule;
 use crate::error::Result;
 use crate::keys::ElementKind;
 use crate::layout::{Eid, Fid, Hid, Vid};
 use crate::mesh::Mesh;
+use crate::store::rule::Rule;
+use crate::store::Attribute;
 
 impl Mesh {
     /// The value of `key`'s element, or, if it has none, the value its

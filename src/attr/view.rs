@@ -5,12 +5,11 @@
 use std::any::Any;
 use std::marker::PhantomData;
 
-use super::attribute::Attribute;
 use super::handle::Element;
-use super::value::{Value, ValueType};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::slots::Slots;
+use crate::store::{Attribute, Value, ValueType};
 use crate::view::{EdgeView, FaceView, HalfedgeView, VertexView};
 
 mod sealed {
