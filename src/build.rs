@@ -168,7 +168,27 @@ impl Mesh {
 
     /// Build from compact buffers, as [`Mesh::to_polygons`] returns them. A
     /// topology-only mesh results when `positions` is empty; then the vertex
-    /// count is one past the largest index.
+    /// count is one past the largest index, and at most the number of
+    /// indices (no face list uses more vertices than it has corners).
+    ///
+    /// # Errors
+    /// As [`Mesh::from_polygons`]; [`BuildError::MalformedOffsets`] when the
+    /// offsets do not cut the indices into faces;
+    /// [`BuildError::IndexOutOfRange`] (naming the face) for an index past
+    /// the positions, or, without positions, for an index at least the
+    /// number of indices.
+    ///
+    /// # Complexity
+    /// O(corners) time and memory (O(corners · log corners) when the
+    /// indices are spread far wider than their number), whatever the
+    /// index values.
+    ///
+    /// ```
+    /// use meshloom::{BuildError, Error, Mesh, Polygons};
+    /// let p = Polygons { positions: vec![], offsets: vec![0, 3], indices: vec![0, 1, u32::MAX] };
+    /// let err = Mesh::from_buffers(&p).unwrap_err();
+    /// assert!(matches!(err, Error::Build(BuildError::IndexOutOfRange { face: 0, vertex_count: 3, .. })));
+    /// ```
     pub fn from_buffers(polygons: &Polygons) -> Result<Mesh> {
         Ok(build_buffers(polygons, false)?.mesh)
     }
@@ -181,6 +201,10 @@ impl Mesh {
     /// Build, also returning the keys of the input's vertices and faces and
     /// the number of unreferenced vertices dropped. `positions`, when given,
     /// must have `vertex_count` entries.
+    ///
+    /// # Complexity
+    /// O(corners) to build the mesh whatever `vertex_count` is; the returned
+    /// key map has one entry per input vertex, O(`vertex_count`).
     pub fn build<F, I>(
         positions: Option<&[[f64; 3]]>,
         vertex_count: usize,
@@ -261,7 +285,7 @@ fn build_buffers(polygons: &Polygons, want_keys: bool) -> Result<Built> {
         }));
     }
     let (positions, n) = if p.positions.is_empty() {
-        (None, p.indices.iter().max().map_or(0, |&m| m as usize + 1))
+        (None, topology_vertex_count(&p.indices))
     } else {
         (Some(&p.positions[..]), p.positions.len())
     };
@@ -271,6 +295,20 @@ fn build_buffers(polygons: &Polygons, want_keys: bool) -> Result<Built> {
         &p.offsets
     };
     build_flat(positions, n, offsets, &p.indices, want_keys)
+}
+
+/// The vertex count of topology-only buffers: one past the largest index,
+/// but at most the number of indices. A face list of `n` corners uses at
+/// most `n` vertices, so a larger index can only claim vertices no face
+/// uses (`u32::MAX` would claim four billion); the builder then refuses it
+/// as [`BuildError::IndexOutOfRange`] naming its face, and memory and time
+/// stay linear in the input.
+pub(crate) fn topology_vertex_count(indices: &[u32]) -> usize {
+    indices
+        .iter()
+        .max()
+        .map_or(0, |&m| m as usize + 1)
+        .min(indices.len())
 }
 
 /// Flatten face lists (checking index ranges) and build.
