@@ -168,32 +168,40 @@ impl Mesh {
 
     /// Build from compact buffers, as [`Mesh::to_polygons`] returns them. A
     /// topology-only mesh results when `positions` is empty; then the vertex
-    /// count is one past the largest index, and at most the number of
-    /// indices (no face list uses more vertices than it has corners).
+    /// count is one past the largest index, and the vertices no face uses
+    /// are dropped as always.
     ///
     /// # Errors
     /// As [`Mesh::from_polygons`]; [`BuildError::MalformedOffsets`] when the
     /// offsets do not cut the indices into faces;
     /// [`BuildError::IndexOutOfRange`] (naming the face) for an index past
-    /// the positions, or, without positions, for an index at least the
-    /// number of indices.
+    /// the positions.
     ///
     /// # Complexity
-    /// O(corners) time and memory (O(corners · log corners) when the
-    /// indices are spread far wider than their number), whatever the
-    /// index values.
+    /// O(corners) time and memory whatever the index values (O(corners ·
+    /// log corners) when they are spread far wider than their number: the
+    /// used indices are then compacted by sorting), never proportional to
+    /// the largest index.
     ///
     /// ```
-    /// use meshloom::{BuildError, Error, Mesh, Polygons};
+    /// use meshloom::{Mesh, Polygons};
+    /// // Claims four billion vertices and uses three: builds a triangle.
     /// let p = Polygons { positions: vec![], offsets: vec![0, 3], indices: vec![0, 1, u32::MAX] };
-    /// let err = Mesh::from_buffers(&p).unwrap_err();
-    /// assert!(matches!(err, Error::Build(BuildError::IndexOutOfRange { face: 0, vertex_count: 3, .. })));
+    /// let m = Mesh::from_buffers(&p)?;
+    /// assert_eq!((m.vertex_count(), m.face_count()), (3, 1));
+    /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn from_buffers(polygons: &Polygons) -> Result<Mesh> {
         Ok(build_buffers(polygons, false)?.mesh)
     }
 
     /// [`Mesh::from_buffers`], also returning the input's keys.
+    ///
+    /// # Errors
+    /// As `from_buffers`; and [`BuildError::TooLarge`] for topology-only
+    /// buffers whose largest index is more than twice the number of
+    /// indices (plus 64): the returned key map has an entry per input
+    /// vertex, and would not be bounded by the input's size.
     pub fn build_buffers(polygons: &Polygons) -> Result<Built> {
         build_buffers(polygons, true)
     }
@@ -285,7 +293,17 @@ fn build_buffers(polygons: &Polygons, want_keys: bool) -> Result<Built> {
         }));
     }
     let (positions, n) = if p.positions.is_empty() {
-        (None, topology_vertex_count(&p.indices))
+        // One past the largest index: the builder stays linear in the
+        // corners however large that is, but a key map per input vertex
+        // would not.
+        let n = p.indices.iter().max().map_or(0, |&m| m as usize + 1);
+        if want_keys && n > UsedVertices::dense_span_limit(p.indices.len()) {
+            return Err(BuildError::TooLarge {
+                what: "the key map of topology-only buffers: their largest index claims more than two vertices per corner",
+            }
+            .into());
+        }
+        (None, n)
     } else {
         (Some(&p.positions[..]), p.positions.len())
     };
@@ -295,20 +313,6 @@ fn build_buffers(polygons: &Polygons, want_keys: bool) -> Result<Built> {
         &p.offsets
     };
     build_flat(positions, n, offsets, &p.indices, want_keys)
-}
-
-/// The vertex count of topology-only buffers: one past the largest index,
-/// but at most the number of indices. A face list of `n` corners uses at
-/// most `n` vertices, so a larger index can only claim vertices no face
-/// uses (`u32::MAX` would claim four billion); the builder then refuses it
-/// as [`BuildError::IndexOutOfRange`] naming its face, and memory and time
-/// stay linear in the input.
-pub(crate) fn topology_vertex_count(indices: &[u32]) -> usize {
-    indices
-        .iter()
-        .max()
-        .map_or(0, |&m| m as usize + 1)
-        .min(indices.len())
 }
 
 /// Flatten face lists (checking index ranges) and build.
@@ -520,7 +524,7 @@ impl<'a> UsedVertices<'a> {
     fn of(input: Flat<'a>, n_in: usize) -> Self {
         let indices = input.indices;
         let span = indices.iter().max().map_or(0, |&m| m as usize + 1);
-        if span > 2 * indices.len() + 64 {
+        if span > Self::dense_span_limit(indices.len()) {
             return Self::sparse(indices);
         }
         let mut used = vec![0u64; span.div_ceil(64)];
@@ -550,6 +554,11 @@ impl<'a> UsedVertices<'a> {
             input_of_slot: Some(input_of_slot),
             indices: Cow::Owned(renumbered),
         }
+    }
+
+    /// The largest index span the dense path takes for `corners` corners.
+    fn dense_span_limit(corners: usize) -> usize {
+        2 * corners + 64
     }
 
     /// Used vertices of indices spread far wider than their number.

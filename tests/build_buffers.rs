@@ -57,45 +57,57 @@ fn three_indices(last: u32) -> Polygons {
 /// Issue 10, defect 2: a topology-only triangle whose third index is huge
 /// made the builder allocate memory proportional to the index (16 GiB for
 /// `u32::MAX`, 8 GiB for 2^31) or run a loop of that length (`u32::MAX -
-/// 1`). A face list of three corners uses at most three vertices: the
-/// index is out of range, and the error names the face.
+/// 1`). The vertex count of topology-only buffers is one past the largest
+/// index, the unused vertices are dropped, and building is linear in the
+/// corners: a triangle, at once, in a few hundred bytes.
 #[test]
-fn huge_topology_only_index_is_out_of_range() {
+fn huge_topology_only_index_builds_in_linear_memory() {
     for last in [u32::MAX, u32::MAX - 1, 1 << 31, 3] {
+        let m = Mesh::from_buffers(&three_indices(last)).unwrap();
+        assert_eq!((m.vertex_count(), m.face_count()), (3, 1), "{last}");
+        assert!(m.heap_bytes() < 4096, "{last}: {}", m.heap_bytes());
+        let (back, _) = m.to_polygons();
+        assert_eq!(back.indices, [0, 1, 2]);
+    }
+}
+
+/// `build_buffers` returns a key per input vertex: for such an input that
+/// map would be proportional to the index, so it is refused; a gap of a
+/// few unused vertices is fine.
+#[test]
+fn huge_topology_only_index_refuses_the_key_map() {
+    for last in [u32::MAX, u32::MAX - 1, 1 << 31, 70] {
+        let r = Mesh::build_buffers(&three_indices(last));
+        assert!(
+            matches!(r, Err(Error::Build(BuildError::TooLarge { .. }))),
+            "{last}: {r:?}"
+        );
+    }
+    // Up to 2 * 3 + 64 = 70 input vertices for three corners.
+    let b = Mesh::build_buffers(&three_indices(69)).unwrap();
+    assert_eq!(
+        (b.mesh.vertex_count(), b.unreferenced, b.vertices.len()),
+        (3, 67, 70)
+    );
+    let b = Mesh::build_buffers(&buffers(&[0, 3, 6], &[0, 1, 3, 3, 1, 4])).unwrap();
+    assert_eq!((b.mesh.vertex_count(), b.unreferenced), (4, 1));
+    assert_eq!(b.vertices[2], None);
+}
+
+/// With positions the same index is past the vertex count: a typed error
+/// naming the face.
+#[test]
+fn huge_index_past_the_positions_is_out_of_range() {
+    for last in [u32::MAX, u32::MAX - 1, 1 << 31, 3] {
+        let mut p = three_indices(last);
+        p.positions = vec![[0.0; 3]; 3];
         let expected = BuildError::IndexOutOfRange {
             face: 0,
             index: i64::from(last),
             vertex_count: 3,
         };
-        let r = Mesh::from_buffers(&three_indices(last));
-        assert_eq!(r.unwrap_err(), Error::Build(expected.clone()), "{last}");
-        let r = Mesh::build_buffers(&three_indices(last));
-        assert_eq!(r.unwrap_err(), Error::Build(expected), "{last}");
+        assert_eq!(Mesh::from_buffers(&p).unwrap_err(), Error::Build(expected));
     }
-    // Below the corner count a gap is fine: vertex 2 is unused.
-    let b = Mesh::build_buffers(&buffers(&[0, 3, 6], &[0, 1, 3, 3, 1, 4])).unwrap();
-    assert_eq!((b.mesh.vertex_count(), b.unreferenced), (4, 1));
-    assert_eq!(b.vertices.len(), 5);
-    assert_eq!(b.vertices[2], None);
-}
-
-/// The same input with positions: the index is past the positions.
-#[test]
-fn huge_index_past_the_positions_is_out_of_range() {
-    let mut p = three_indices(u32::MAX);
-    p.positions = vec![[0.0; 3]; 3];
-    let r = Mesh::from_buffers(&p);
-    assert!(
-        matches!(
-            r,
-            Err(Error::Build(BuildError::IndexOutOfRange {
-                face: 0,
-                vertex_count: 3,
-                ..
-            }))
-        ),
-        "{r:?}"
-    );
 }
 
 /// A caller may claim billions of vertices and use three: building stays
