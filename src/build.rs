@@ -792,6 +792,8 @@ fn link_boundary(
     let mut hole_out: IdVec<Vid, Hid> = IdVec::filled(Hid::NONE, links.v_halfedge.len());
     for &(g, o) in boundary {
         he[g].origin = o;
+        // Rule 11: a boundary vertex names a half-edge in a hole.
+        links.v_halfedge[o] = g;
         let slot = &mut hole_out[o];
         *slot = if slot.is_none() { g } else { MANY };
         links.out_degree[o] += 1;

@@ -223,7 +223,7 @@ pub enum BuildError {
 /// element where it broke and what was found.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ValidationError {
-    /// The rule's number, 1 to 10.
+    /// The rule's number, 1 to 11.
     pub rule: u8,
     /// The element where the rule broke, when one can be named.
     pub key: Option<AnyKey>,
@@ -245,6 +245,7 @@ impl ValidationError {
             8 => "vertex links",
             9 => "no dangling edges",
             10 => "no multi-edges",
+            11 => "boundary vertices point into a hole",
             _ => "unknown rule",
         }
     }

@@ -6,9 +6,17 @@
 //! half-edge, [`set_face`](RawEdit::set_face) also points the face at it.
 //! `next` is the only face-order link (there is no `prev`);
 //! [`link(a, b)`](RawEdit::link) sets `next(a) = b`. Between setters the
-//! mesh may break its rules; call [`RawEdit::validate`] (or
-//! [`RawEdit::finish`]) when done, and do not use views on a mesh that does
-//! not validate. Attribute columns follow new and removed elements (new
+//! mesh may break its rules; call [`RawEdit::finish`] when done, and do not
+//! use views on a mesh that does not validate.
+//!
+//! Rule 11 of [`validate`](crate::validate) (a vertex that touches a hole
+//! names an outgoing half-edge in a hole) is the one rule the setters need
+//! not keep by hand: [`finish`](RawEdit::finish) re-establishes it for
+//! every vertex (pointing each vertex that touches a hole, and names a
+//! half-edge leaving it that lies in none, at one that lies in a hole)
+//! before it validates. [`RawEdit::validate`] checks the mesh as it is, so
+//! in the middle of an edit it may report rule 11 where `finish` would
+//! not. Attribute columns follow new and removed elements (new
 //! elements hold default values), but no merge or split rule runs: that is
 //! the operator writer's choice.
 //!
@@ -218,11 +226,17 @@ impl RawEdit<'_> {
         self.mesh.validate().map_err(Error::Invalid)
     }
 
-    /// End the edit: [`validate`](RawEdit::validate), consuming the guard.
+    /// End the edit: re-establish rule 11 (boundary vertices name a
+    /// half-edge in a hole; see the [module docs](self)), then
+    /// [`validate`](RawEdit::validate), consuming the guard.
     ///
     /// # Errors
     /// As `validate`.
+    ///
+    /// # Complexity
+    /// O(half-edges) for rule 11, plus `validate`.
     pub fn finish(self) -> Result<()> {
+        self.mesh.point_all_at_holes();
         self.validate()
     }
 }

@@ -396,6 +396,54 @@ impl Mesh {
         self.is_hole(self.he[h].face)
     }
 
+    /// Whether a hole touches vertex `v`: O(1), by rule 11 (a vertex that
+    /// touches a hole names an outgoing half-edge that lies in one).
+    #[inline]
+    pub(crate) fn on_boundary(&self, v: Vid) -> bool {
+        self.in_hole(self.v_halfedge[v])
+    }
+
+    /// Re-establish rule 11 at `v` after an edit that may have changed which
+    /// of its half-edges lie in holes: keep its half-edge if that lies in a
+    /// hole, else turn around `v` for one that does. O(1) when it already
+    /// points into a hole, else O(degree of `v`).
+    pub(crate) fn point_at_hole(&mut self, v: Vid) {
+        if self.on_boundary(v) {
+            return;
+        }
+        if let Some(h) = self.outgoing(v).find(|&h| self.in_hole(h)) {
+            self.v_halfedge[v] = h;
+        }
+    }
+
+    /// Re-establish rule 11 for every vertex: O(half-edges). Robust to any
+    /// links (a mesh being deserialized or raw-edited, not yet validated):
+    /// it reads only in-range slots, and moves a vertex's half-edge only
+    /// from one that leaves the vertex but lies in no hole to one that
+    /// leaves it and lies in a hole, so every other broken rule is left for
+    /// [`validate`](Mesh::validate) to report.
+    pub(crate) fn point_all_at_holes(&mut self) {
+        for h in self.hids().collect::<Vec<_>>() {
+            let r = self.he[h];
+            let hole = self.f_halfedge.get(r.face).is_some_and(|l| l.is_hole())
+                && self.f_slots.is_live(r.face.index());
+            if !hole || !self.v_slots.is_live(r.origin.index()) {
+                continue;
+            }
+            let Some(&cur) = self.v_halfedge.get(r.origin) else {
+                continue;
+            };
+            let cur_ok = self.he.get(cur).is_some_and(|c| {
+                c.origin == r.origin
+                    && self.e_slots.is_live(cur.edge().index())
+                    && !self.f_halfedge.get(c.face).is_some_and(|l| l.is_hole())
+            });
+            if cur_ok {
+                self.v_halfedge[r.origin] = h;
+            }
+        }
+    }
+
     // ----- allocation (internal; columns follow every slot) -------------------
 
     /// A new vertex slot with no links yet. Columns grow; values are set by

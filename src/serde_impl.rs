@@ -233,6 +233,9 @@ fn mesh_from(data: MeshData) -> Result<Mesh, String> {
         }
         mesh.attrs.position = Some(p);
     }
+    // Meshes saved before rule 11 existed (or by hand) may name an interior
+    // half-edge at a boundary vertex: point them into the hole first.
+    mesh.point_all_at_holes();
     mesh.validate().map_err(|e| e.to_string())?;
     Ok(mesh)
 }
@@ -318,6 +321,25 @@ mod tests {
         let mut bad = json;
         bad["position"] = serde_json::json!(5);
         assert!(serde_json::from_value::<Mesh>(bad).is_err());
+    }
+
+    /// A mesh saved before rule 11 (a boundary vertex naming an interior
+    /// half-edge) loads, and comes back pointing into its hole.
+    #[test]
+    fn boundary_vertices_are_pointed_into_holes_on_load() {
+        let mesh = Mesh::from_faces(4, &[[0u32, 1, 2], [0, 2, 3]]).unwrap();
+        let v = mesh.vertices().next().unwrap();
+        let inner = mesh
+            .vertex(v)
+            .unwrap()
+            .outgoing()
+            .find(|&h| !mesh.halfedge(h).unwrap().is_boundary())
+            .unwrap();
+        let mut json = serde_json::to_value(&mesh).unwrap();
+        json["vertex_halfedge"][v.index()] = serde_json::json!(inner.index());
+        let back: Mesh = serde_json::from_value(json).unwrap();
+        back.validate().unwrap();
+        assert!(back.vertex(v).unwrap().halfedge().is_boundary());
     }
 
     #[test]

@@ -27,6 +27,12 @@
 //! 9. **No dangling edges.** Every edge has a face (not a hole) on at least
 //!    one side.
 //! 10. **No multi-edges.** No two edges join the same two vertices.
+//! 11. **Boundary vertices point into a hole.** A vertex with an outgoing
+//!     half-edge in a hole names such a half-edge (any of them where several
+//!     holes meet), so "is this vertex on the boundary" is one look-up
+//!     ([`VertexView::is_boundary`](crate::VertexView::is_boundary)), as in
+//!     pmp-library. The operators, the builder and deserialization keep it;
+//!     [`RawEdit::finish`](crate::link::RawEdit::finish) re-establishes it.
 
 pub use crate::error::ValidationError;
 use crate::keys::AnyKey;
@@ -262,6 +268,7 @@ impl Mesh {
                 return Err(broken(8, key, "does not name a half-edge leaving it"));
             }
             ends.clear();
+            let mut touches_hole = false;
             for o in self.outgoing(v) {
                 if self.origin(o) != v {
                     return Err(broken(
@@ -270,6 +277,7 @@ impl Mesh {
                         "its ring reaches a half-edge leaving elsewhere",
                     ));
                 }
+                touches_hole |= self.in_hole(o);
                 ends.push(self.dest(o));
             }
             if ends.len() != out_degree[v] as usize {
@@ -289,6 +297,16 @@ impl Mesh {
                     10,
                     key,
                     format!("two edges join it to {}", self.vkey(w[0])),
+                ));
+            }
+            if touches_hole && !self.in_hole(h) {
+                return Err(broken(
+                    11,
+                    key,
+                    format!(
+                        "a hole touches it but it names {}, which lies in no hole",
+                        self.hkey(h)
+                    ),
                 ));
             }
         }

@@ -223,7 +223,7 @@ impl<'m> VertexView<'m> {
     }
 
     /// One outgoing half-edge: the first that [`outgoing`](Self::outgoing)
-    /// yields.
+    /// yields. On a boundary vertex it lies in a hole.
     #[inline]
     pub fn halfedge(self) -> HalfedgeView<'m> {
         HalfedgeView {
@@ -291,10 +291,23 @@ impl<'m> VertexView<'m> {
         VertexOutgoing::new(self.mesh, self.v).count()
     }
 
-    /// Whether a hole touches the vertex.
+    /// Whether a hole touches the vertex. O(1): a boundary vertex's
+    /// [`halfedge`](Self::halfedge) lies in a hole (rule 11 of
+    /// [`validate`](crate::validate)).
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::icosahedron();
+    /// let v = mesh.vertices().next().unwrap();
+    /// assert!(!mesh.vertex(v)?.is_boundary());
+    /// let f = mesh.vertex(v)?.faces().next().unwrap();
+    /// mesh.remove_face(f)?;
+    /// assert!(mesh.vertex(v)?.is_boundary());
+    /// assert!(mesh.vertex(v)?.halfedge().is_boundary());
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     #[inline]
     pub fn is_boundary(self) -> bool {
-        VertexOutgoing::new(self.mesh, self.v).any(|h| self.mesh.in_hole(h))
+        self.mesh.on_boundary(self.v)
     }
 }
 

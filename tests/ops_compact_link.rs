@@ -136,3 +136,29 @@ fn operators_terminate_on_a_mesh_left_broken_by_raw_edits() {
         "an operator did not return on a broken mesh"
     );
 }
+
+/// Rule 11 through the raw setters: `set_origin` reflects into the vertex,
+/// which may leave a boundary vertex naming an interior half-edge. `validate`
+/// reports that as rule 11; `finish` re-establishes the rule, then
+/// validates.
+#[test]
+fn raw_edit_finish_points_boundary_vertices_into_holes() {
+    // Two triangles: every vertex is on the boundary.
+    let mut m = meshloom::Mesh::from_faces(4, &[[0u32, 1, 2], [0, 2, 3]]).unwrap();
+    let v: Vec<_> = m.vertices().collect();
+    let inner = m.find_halfedge(v[0], v[2]).unwrap().unwrap();
+    assert!(!m.halfedge(inner).unwrap().is_boundary());
+    let mut edit = m.raw_edit();
+    edit.set_origin(inner, v[0]).unwrap(); // v0 now names 0 -> 2, no hole
+    match edit.validate() {
+        Err(Error::Invalid(e)) => assert_eq!(
+            (e.rule, e.rule_name()),
+            (11, "boundary vertices point into a hole")
+        ),
+        other => panic!("{other:?}"),
+    }
+    edit.finish().unwrap();
+    m.validate().unwrap();
+    let v0 = m.vertex(v[0]).unwrap();
+    assert!(v0.is_boundary() && v0.halfedge().is_boundary());
+}

@@ -23,6 +23,27 @@ struct CollapsePlan {
     /// triangular hole) that disappears.
     left_goes: bool,
     right_goes: bool,
+    /// Who may need another half-edge for rule 11 afterwards.
+    rule11: Rule11,
+}
+
+/// The vertices a collapse may leave naming a half-edge that no longer lies
+/// in a hole (rule 11), found while planning: `b` when a hole touched `a`
+/// or `b` (b gets a's ring), an apex `c` or `d` when its triangle is a hole
+/// that closes. Nothing on a closed mesh.
+#[derive(Copy, Clone)]
+struct Rule11 {
+    b: bool,
+    c: Vid,
+    d: Vid,
+}
+
+impl Rule11 {
+    const NOTHING: Rule11 = Rule11 {
+        b: false,
+        c: Vid::NONE,
+        d: Vid::NONE,
+    };
 }
 
 impl Mesh {
@@ -119,9 +140,12 @@ impl Mesh {
             }
             last_b.twin()
         };
-        if self.holes > 0 {
-            self.check_collapse_boundary(hk, h, f_left, f_right, left_goes, right_goes)?;
-        }
+        let rule11 = if self.holes > 0 {
+            let apexes = [(left_goes, c), (right_goes, d)];
+            self.check_collapse_boundary(hk, h, f_left, f_right, apexes)?
+        } else {
+            Rule11::NOTHING
+        };
         // No other face may hold both a and b. Triangles around a cannot
         // (their third corner would be a common neighbour).
         for o in self.outgoing(a) {
@@ -153,6 +177,7 @@ impl Mesh {
             pt,
             left_goes,
             right_goes,
+            rule11,
         })
     }
 
@@ -163,19 +188,23 @@ impl Mesh {
         h: Hid,
         f_left: Fid,
         f_right: Fid,
-        left_goes: bool,
-        right_goes: bool,
-    ) -> Result<()> {
+        apexes: [(bool, Vid); 2],
+    ) -> Result<Rule11> {
         const OP: &str = "collapse_edge";
         let t = h.twin();
+        let (hole_left, hole_right) = (self.is_hole(f_left), self.is_hole(f_right));
         // An interior edge between two boundary vertices would pinch.
-        let on_boundary = |v_ring_start: Hid| self.ring_from(v_ring_start).any(|o| self.in_hole(o));
-        if !self.is_hole(f_left) && !self.is_hole(f_right) && on_boundary(h) && on_boundary(t) {
+        // (Rule 11 makes each test one look-up.)
+        let (a_bnd, b_bnd) = (
+            self.on_boundary(self.origin(h)),
+            self.on_boundary(self.origin(t)),
+        );
+        if !hole_left && !hole_right && a_bnd && b_bnd {
             return Err(refuse(OP, hk, Refusal::NonManifold));
         }
         // A disappearing triangle must not leave an edge with holes on both
         // sides.
-        for (goes, x) in [(left_goes, h), (right_goes, t)] {
+        for ((goes, _), x) in apexes.into_iter().zip([h, t]) {
             if goes && !self.in_hole(x) {
                 let n = self.next(x);
                 let p = self.next(n);
@@ -184,13 +213,12 @@ impl Mesh {
                 }
             }
         }
-        Ok(())
-    }
-
-    /// The half-edges leaving `origin(h)`, starting at `h`, clockwise.
-    #[inline]
-    fn ring_from(&self, h: Hid) -> impl Iterator<Item = Hid> + '_ {
-        crate::circulate::VertexOutgoing::from_halfedge(self, h)
+        let apex = |(goes, v): (bool, Vid), hole: bool| if goes && hole { v } else { Vid::NONE };
+        Ok(Rule11 {
+            b: a_bnd || b_bnd,
+            c: apex(apexes[0], hole_left),
+            d: apex(apexes[1], hole_right),
+        })
     }
 
     /// Whether [`collapse_edge`](Mesh::collapse_edge) would succeed;
@@ -300,7 +328,10 @@ impl Mesh {
             before_tph,
             left_goes,
             right_goes,
+            rule11,
         } = self.plan_collapse(hk)?;
+        // Rule 11: which of b, c and d touched a hole before (a's holes
+        // become b's). Only they can need another half-edge afterwards.
         self.attrs
             .vertex
             .merge(b.index(), &[(a.index(), 1.0 - t), (b.index(), t)]);
@@ -334,6 +365,16 @@ impl Mesh {
         if right_goes {
             // Two-sided loop (pt: d -> b, nt: b -> d): keep pt.
             self.dissolve_two_gon(nt, pt, None);
+        }
+        // Rule 11: b has a's holes now; a closed triangular hole may have
+        // held its apex's half-edge.
+        if rule11.b {
+            self.point_at_hole(b);
+        }
+        for v in [rule11.c, rule11.d] {
+            if !v.is_none() {
+                self.point_at_hole(v);
+            }
         }
         self.debug_validate();
         Ok(self.vkey(b))

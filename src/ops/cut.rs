@@ -49,8 +49,14 @@ impl Mesh {
         };
         let closed = vs.len() > 1 && vs[0] == vs[vs.len() - 1];
         let k = vs.len().saturating_sub(1);
-        let holes_at =
-            |v: Vid| -> Vec<Hid> { self.outgoing(v).filter(|&o| self.in_hole(o)).collect() };
+        // (O(1) for a vertex no hole touches, by rule 11.)
+        let holes_at = |v: Vid| -> Vec<Hid> {
+            if self.on_boundary(v) {
+                self.outgoing(v).filter(|&o| self.in_hole(o)).collect()
+            } else {
+                Vec::new()
+            }
+        };
         let mut hole_out = [None, None];
         if !closed && k >= 1 {
             for (end, &v) in [vs[0], vs[k]].iter().enumerate() {
@@ -94,7 +100,7 @@ impl Mesh {
         }
         let inner = if closed { 0..k } else { 1..k };
         for i in inner.clone() {
-            if !holes_at(vs[i]).is_empty() {
+            if self.on_boundary(vs[i]) {
                 return Err(refuse(OP, path[i], Refusal::Boundary));
             }
         }

@@ -148,9 +148,15 @@ impl Mesh {
         // Neither face is a hole (refused above): no flag to keep.
         self.f_halfedge[f0] = FaceLink::new(h, false);
         self.f_halfedge[f1] = FaceLink::new(t, false);
-        // a and b may have named h and t; t1 and h1 surely leave them.
-        self.v_halfedge[a] = t1;
-        self.v_halfedge[b] = h1;
+        // a and b may have named h and t; t1 and h1 surely leave them. A
+        // vertex that named another half-edge keeps it: a boundary vertex
+        // names one in a hole (rule 11), which h and t are not.
+        if self.v_halfedge[a] == h {
+            self.v_halfedge[a] = t1;
+        }
+        if self.v_halfedge[b] == t {
+            self.v_halfedge[b] = h1;
+        }
         if !self.attrs.face.cols.is_empty() {
             let pair = [(f0.index(), 0.5), (f1.index(), 0.5)];
             self.attrs.face.merge(f0.index(), &pair);

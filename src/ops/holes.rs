@@ -63,6 +63,11 @@ impl Mesh {
         let sides: Vec<Hid> = self.face_loop(f).collect();
         self.set_hole(f, true);
         self.attrs.face.interpolate(f.index(), &[]);
+        // Rule 11: every corner is now on the boundary.
+        for &x in &sides {
+            let v = self.origin(x);
+            self.v_halfedge[v] = x;
+        }
         let mut kept = Vec::new();
         let mut dangling = Vec::new();
         for &x in &sides {
@@ -144,6 +149,12 @@ impl Mesh {
         let h = self.plan_fill_hole(hole)?;
         self.set_hole(h, false);
         self.attrs.face.interpolate(h.index(), &[]);
+        // Rule 11: a corner that named a half-edge of the hole names another
+        // hole's, if one still touches it.
+        let corners: Vec<Vid> = self.face_loop(h).map(|x| self.origin(x)).collect();
+        for v in corners {
+            self.point_at_hole(v);
+        }
         self.debug_validate();
         Ok(hole)
     }

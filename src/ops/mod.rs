@@ -142,11 +142,18 @@ impl Mesh {
     }
 
     /// Give every half-edge of the `next` cycle through `start` the face `f`
-    /// and point `f` at `start`.
+    /// and point `f` at `start`. When `f` is a hole, every vertex on the
+    /// cycle is pointed at its half-edge there (rule 11: its corners are
+    /// now on the boundary).
     pub(crate) fn relabel_loop(&mut self, start: Hid, f: Fid) {
+        let hole = self.is_hole(f);
         let mut h = start;
         for _ in 0..self.he.len() {
             self.he[h].face = f;
+            if hole {
+                let o = self.he[h].origin;
+                self.v_halfedge[o] = h;
+            }
             h = self.he[h].next;
             if h == start {
                 break;

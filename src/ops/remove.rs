@@ -236,10 +236,10 @@ impl Mesh {
     fn plan_remove_vertex(&self, vk: VertexKey) -> Result<(Vec<Hid>, Vec<Hid>)> {
         const OP: &str = "remove_vertex";
         let v = self.check_vertex(vk)?;
-        let outs: Vec<Hid> = self.outgoing(v).collect();
-        if outs.iter().any(|&o| self.in_hole(o)) {
+        if self.on_boundary(v) {
             return Err(refuse(OP, vk, Refusal::Boundary));
         }
+        let outs: Vec<Hid> = self.outgoing(v).collect();
         let k = outs.len();
         let mut lasts = Vec::with_capacity(k);
         let mut corners = Vec::new();

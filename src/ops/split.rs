@@ -108,6 +108,7 @@ impl Mesh {
         let b = self.origin(tw);
         let nh = self.next(h);
         let nt = self.next(tw);
+        let f_tw = self.face_of(tw);
         let m = self.alloc_vertex();
         let ne = self.alloc_edge();
         // n0: a -> m (in h's face), n1: m -> a (in tw's face).
@@ -120,12 +121,18 @@ impl Mesh {
         self.he[n1] = HalfedgeRecord {
             origin: m,
             next: nt,
-            face: self.face_of(tw),
+            face: f_tw,
         };
         self.he[h].origin = m;
         self.set_next(ph, n0);
         self.set_next(tw, n1);
-        self.v_halfedge[m] = h;
+        // Rule 11: on a boundary edge m leaves into the hole (h and n1
+        // lie in the faces of h and tw); n0 lies in h's face, like h.
+        self.v_halfedge[m] = if self.holes > 0 && self.is_hole(f_tw) {
+            n1
+        } else {
+            h
+        };
         if self.v_halfedge[a] == h {
             self.v_halfedge[a] = n0;
         }

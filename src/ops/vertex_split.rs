@@ -110,6 +110,8 @@ impl Mesh {
         let f_c = self.face_of(hc);
         let f_d = self.face_of(tdb);
         let after_hc = self.next(hc);
+        // Rule 11: only a boundary b can leave holes at b or at a.
+        let b_on_boundary = self.holes > 0 && self.on_boundary(b);
         let a = self.alloc_vertex();
         let (e_ab, e_ac, e_ad) = (self.alloc_edge(), self.alloc_edge(), self.alloc_edge());
         let [h, t] = e_ab.halfedges(); // a -> b, b -> a
@@ -170,6 +172,15 @@ impl Mesh {
         self.set_face_link(right, t);
         self.v_halfedge[a] = h;
         self.v_halfedge[b] = hc;
+        // da took d -> b's place in f_d (a hole, maybe): d keeps a half-edge
+        // in that face.
+        if self.v_halfedge[d] == tdb {
+            self.v_halfedge[d] = da;
+        }
+        if b_on_boundary {
+            self.point_at_hole(a);
+            self.point_at_hole(b);
+        }
         // Attributes.
         self.attrs
             .vertex
