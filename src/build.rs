@@ -435,7 +435,7 @@ fn build_flat(
     let mesh = assemble(links, twins.edges, f_halfedge, holes, positions, &vertices);
     debug_assert_eq!(mesh.validate(), Ok(()));
     let (keys, face_keys) = if want_keys {
-        input_keys(n_in, faces.face_count(), &vertices)
+        input_keys(&mesh, n_in, faces.face_count(), &vertices)
     } else {
         (Vec::new(), Vec::new())
     };
@@ -980,14 +980,15 @@ fn assemble(
 /// The key of each input vertex (`None` for unused ones) and face: one entry
 /// per input vertex, as the caller asked.
 fn input_keys(
+    mesh: &Mesh,
     n_in: usize,
     nf: usize,
     vertices: &UsedVertices<'_>,
 ) -> (Vec<Option<VertexKey>>, Vec<FaceKey>) {
     let mut keys = vec![None; n_in];
     for slot in 0..vertices.count as u32 {
-        keys[vertices.input(slot)] = Some(Vid::new(slot).key(1));
+        keys[vertices.input(slot)] = Some(mesh.vkey(Vid::new(slot)));
     }
-    let faces = (0..nf as u32).map(|f| Fid::new(f).key(1)).collect();
+    let faces = (0..nf as u32).map(|f| mesh.fkey(Fid::new(f))).collect();
     (keys, faces)
 }

@@ -57,12 +57,24 @@ struct MeshData {
     /// A face's half-edge, top bit set for holes.
     face_halfedge: Vec<FaceLink>,
     face_generations: Vec<u32>,
+    /// Each arena's base generation (absent in meshes saved before it
+    /// existed: 1).
+    #[serde(default = "first_base")]
+    vertex_base: u32,
+    #[serde(default = "first_base")]
+    edge_base: u32,
+    #[serde(default = "first_base")]
+    face_base: u32,
     /// Index of the position column among the vertex columns.
     position: Option<usize>,
     vertex_attrs: Vec<ColumnData>,
     halfedge_attrs: Vec<ColumnData>,
     edge_attrs: Vec<ColumnData>,
     face_attrs: Vec<ColumnData>,
+}
+
+fn first_base() -> u32 {
+    Slots::FIRST_BASE
 }
 
 fn columns_out(
@@ -107,6 +119,9 @@ impl Serialize for Mesh {
             edge_generations: self.e_slots.generations().to_vec(),
             face_halfedge: self.f_halfedge.as_slice().to_vec(),
             face_generations: self.f_slots.generations().to_vec(),
+            vertex_base: self.v_slots.base(),
+            edge_base: self.e_slots.base(),
+            face_base: self.f_slots.base(),
             position: self.attrs.position,
             vertex_attrs: columns_out(self, ElementKind::Vertex, v_live)
                 .map_err(S::Error::custom)?,
@@ -192,15 +207,20 @@ fn mesh_from(data: MeshData) -> Result<Mesh, String> {
     {
         return Err("too many slots for 32-bit links".into());
     }
-    let f_slots = Slots::from_generations(data.face_generations);
+    let slots = |kind: &str, generations: Vec<u32>, base: u32| {
+        Slots::from_generations(generations, base).map_err(|e| format!("{kind} {e}"))
+    };
+    let v_slots = slots("vertex", data.vertex_generations, data.vertex_base)?;
+    let e_slots = slots("edge", data.edge_generations, data.edge_base)?;
+    let f_slots = slots("face", data.face_generations, data.face_base)?;
     let holes = (0..nf)
         .filter(|&f| f_slots.is_live(f) && data.face_halfedge[f].is_hole())
         .count();
     let mut mesh = Mesh {
         v_halfedge: IdVec::from_vec(data.vertex_halfedge),
-        v_slots: Slots::from_generations(data.vertex_generations),
+        v_slots,
         he: IdVec::from_vec(data.halfedges),
-        e_slots: Slots::from_generations(data.edge_generations),
+        e_slots,
         f_halfedge: IdVec::from_vec(data.face_halfedge),
         f_slots,
         holes,

@@ -323,7 +323,34 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
             (true, true, 0, true, true)
         }
         Op::Compact => {
-            m.compact();
+            // Every key from before is stale or maps to the same element
+            // (same position, same ends); none names another element.
+            let vs: Vec<_> = m.vertices().map(|v| (v, m.position(v).ok())).collect();
+            let hs: Vec<_> = m
+                .halfedges()
+                .map(|h| (h, m.halfedge(h).unwrap().origin().key()))
+                .collect();
+            let fs: Vec<_> = m
+                .faces_and_holes()
+                .map(|f| (f, m.face(f).unwrap().degree()))
+                .collect();
+            let maps = m.compact();
+            for &(v, p) in &vs {
+                let n = maps.vertex(v).expect("a live vertex maps");
+                assert!(!m.contains_vertex(v) || n == v, "{v:?} names {n:?}");
+                assert_eq!(m.position(n).ok(), p);
+            }
+            for &(h, o) in &hs {
+                let n = maps.halfedge(h).expect("a live half-edge maps");
+                assert!(!m.contains_halfedge(h) || n == h, "{h:?} names {n:?}");
+                let origin = m.halfedge(n).unwrap().origin().key();
+                assert_eq!(Some(origin), maps.vertex(o));
+            }
+            for &(f, d) in &fs {
+                let n = maps.face(f).expect("a live face maps");
+                assert!(!m.contains_face(f) || n == f, "{f:?} names {n:?}");
+                assert_eq!(m.face(n).unwrap().degree(), d);
+            }
             (true, true, 0, true, true)
         }
         Op::Extrude(i) => {

@@ -367,6 +367,7 @@ impl Mesh {
             values: col.raw(),
             present: col.present_bits(),
             generations: slots.generations(),
+            base: slots.base(),
             dense_intact: slots.intact() && col.present_bits().is_none(),
             intact: slots.intact(),
             marker: PhantomData,
