@@ -246,12 +246,14 @@ impl Mesh {
     ///            d              d
     /// ```
     ///
-    /// Returns `b`, which keeps its key. Attributes: `b = merge(a: 0,
-    /// b: 1)` (positions: `b` stays where it was; see
-    /// [`collapse_edge_at`](Mesh::collapse_edge_at)); merging edges merge
-    /// with equal weights; a disappearing triangle's values merge (weight 0)
-    /// into the face that receives its kept edge. χ is unchanged, except that
-    /// it grows by 1 when a triangular hole closes.
+    /// Returns `b`, which keeps its key. Attributes (the surviving element
+    /// is always the first contributor): `b = merge(b: 1, a: 0)` (positions:
+    /// `b` stays where it was; see [`collapse_edge_at`](Mesh::collapse_edge_at));
+    /// where a triangle disappears, its side at `b` (`b–c`, resp. `b–d`) is
+    /// kept and `merge(kept: ½, other: ½)` with its side at `a`; the
+    /// triangle's values merge (weight 0) into the face that receives the
+    /// kept side, that face first. χ is unchanged, except that it grows by 1
+    /// when a triangular hole closes.
     ///
     /// # Errors
     /// [`Error::StaleKey`](crate::Error::StaleKey);
@@ -298,8 +300,8 @@ impl Mesh {
     }
 
     /// [`collapse_edge`](Mesh::collapse_edge) with the merged vertex at
-    /// parameter `t` from `a` to `b`: `b = merge(a: 1−t, b: t)` (t = 0.5
-    /// puts it at the midpoint).
+    /// parameter `t` from `a` to `b`: `b = merge(b: t, a: 1−t)`, the
+    /// surviving `b` first (t = 0.5 puts it at the midpoint).
     ///
     /// # Errors
     /// As `collapse_edge`, and [`Refusal::Parameter`] when `t` is not in
@@ -332,9 +334,10 @@ impl Mesh {
         } = self.plan_collapse(hk)?;
         // Rule 11: which of b, c and d touched a hole before (a's holes
         // become b's). Only they can need another half-edge afterwards.
+        // The surviving vertex first (the documented order KeepFirst reads).
         self.attrs
             .vertex
-            .merge(b.index(), &[(a.index(), 1.0 - t), (b.index(), t)]);
+            .merge(b.index(), &[(b.index(), t), (a.index(), 1.0 - t)]);
         // Every half-edge leaving a now leaves b (the ring of a is walked by
         // next/twin, which the origins do not affect).
         let mut o = h;

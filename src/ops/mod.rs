@@ -37,7 +37,10 @@
 //!
 //! # Attribute rules per operator
 //!
-//! Every column of every arena runs its rule ([`attr::Rule`](crate::attr::Rule)):
+//! Every column of every arena runs its rule ([`attr::Rule`](crate::attr::Rule)).
+//! Where elements merge, **the surviving element is always the first
+//! contributor**, then the others in the order listed below, so
+//! [`KeepFirst`](crate::attr::KeepFirst) keeps the survivor's value:
 //!
 //! - **split_edge** at `t`: new vertex = `interpolate(a: 1−t, b: t)`; the old
 //!   edge splits into its two halves with shares `1−t` (the half at `b`) and
@@ -50,17 +53,20 @@
 //!   [`Interpolate`](crate::attr::Interpolate)). A new corner copies the
 //!   corner of the same vertex in the old face; the centre of `poke_face`
 //!   interpolates all corners with equal weights (positions: the centroid).
-//! - **collapse_edge** (`a` into `b`): `b = merge(a: 0, b: 1)`
-//!   (`collapse_edge_at` takes `t`: `merge(a: 1−t, b: t)`); where a triangle
-//!   disappears its two merging edges `merge` with equal weights and the
-//!   triangle's values merge into the face that receives the kept edge with
-//!   weight 0 (conserved totals are kept, interpolated values unchanged).
-//! - **flip_edge**: both faces merge (equal weights) and split again (equal
-//!   shares); the edge keeps its values; the two new corners copy the
-//!   corners they replace at the same vertex.
-//! - **remove_edge**, **merge_faces**, **remove_vertex**: the kept face =
-//!   `merge` of all merged faces, equal weights; removed edges and vertices
-//!   lose their values.
+//! - **collapse_edge** (`a` into `b`): `b = merge(b: 1, a: 0)`
+//!   (`collapse_edge_at` takes `t`: `merge(b: t, a: 1−t)`); where a triangle
+//!   disappears its side at `b` is kept and merges with its side at `a`
+//!   (`merge(kept: ½, removed: ½)`), and the triangle's values merge into
+//!   the face that receives the kept side (`merge(that face: 1, triangle:
+//!   0)`: conserved totals are kept, interpolated values unchanged).
+//! - **flip_edge**: both faces merge (`merge(face of h: ½, face of twin: ½)`)
+//!   and split again (equal shares); the edge keeps its values; the two new
+//!   corners copy the corners they replace at the same vertex.
+//! - **remove_edge**: `merge(face of the first half-edge: ½, other face: ½)`,
+//!   kept in the first; **merge_faces** `(f, g)`: `merge(f: ½, g: ½)`;
+//!   **remove_vertex**: `merge` of the faces around the vertex, equal
+//!   weights, in ring order from the face of its first outgoing half-edge
+//!   (the kept one). Removed edges and vertices lose their values.
 //! - **remove_face**: the face's values are dropped (it becomes a hole).
 //!   **fill_hole**: the new face gets `interpolate` of nothing.
 //!

@@ -11,8 +11,10 @@
 //! | [`Discard`] | absent | absent | absent | caches that must be recomputed |
 //!
 //! "First" is the first contributor in the order the operation passes them,
-//! which each operator documents (a collapse passes the surviving vertex
-//! first), so every result is deterministic.
+//! which each operator documents: every merge passes the surviving element
+//! first (a collapse the vertex it keeps, a face merge the face it keeps),
+//! so every result is deterministic and [`KeepFirst`] keeps the survivor's
+//! value.
 
 use super::rule::{Linear, Rule};
 
