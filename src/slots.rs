@@ -263,6 +263,7 @@ impl Slots {
     /// [`MAX_LIVE_GENERATION`], a live generation past it, or a generation
     /// below the base. Vacant slots are the even ones; those with a next
     /// generation go on the free list, the others stay retired.
+    #[cfg(any(feature = "serde", test))]
     pub(crate) fn from_generations(generations: Vec<u32>, base: u32) -> Result<Self, String> {
         if base & 1 == 0 || base > MAX_LIVE_GENERATION {
             return Err(format!(
