@@ -8,12 +8,17 @@
 //! bowtie), the hole passes through it once per fan and the fans are chained
 //! so that turning around the vertex still visits every half-edge.
 
-use crate::attr::{Column, Interpolate, POSITION};
 use crate::error::{BuildError, Error, Result};
 use crate::keys::{FaceKey, VertexKey};
+use crate::store::rules::Interpolate;
+use crate::store::{Column, POSITION};
 use std::borrow::Cow;
 
-use crate::mesh::{HalfedgeRecord, Mesh, HOLE_BIT, NONE};
+use crate::layout::{Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};
+use crate::mesh::Mesh;
+
+/// An index of [`IndexMaps`] for a slot that was not exported.
+const UNMAPPED: u32 = u32::MAX;
 use crate::slots::Slots;
 
 /// An integer type usable as a vertex index in face lists.
@@ -88,13 +93,13 @@ impl IndexMaps {
     /// The dense index of a vertex key, if it was exported.
     pub fn vertex_index(&self, v: VertexKey) -> Option<usize> {
         let i = *self.vertex_slot.get(v.index())?;
-        (i != NONE && self.vertices[i as usize] == v).then_some(i as usize)
+        (i != UNMAPPED && self.vertices[i as usize] == v).then_some(i as usize)
     }
 
     /// The dense index of a face key, if it was exported (holes are not).
     pub fn face_index(&self, f: FaceKey) -> Option<usize> {
         let i = *self.face_slot.get(f.index())?;
-        (i != NONE && self.faces[i as usize] == f).then_some(i as usize)
+        (i != UNMAPPED && self.faces[i as usize] == f).then_some(i as usize)
     }
 }
 
@@ -163,12 +168,40 @@ impl Mesh {
 
     /// Build from compact buffers, as [`Mesh::to_polygons`] returns them. A
     /// topology-only mesh results when `positions` is empty; then the vertex
-    /// count is one past the largest index.
+    /// count is one past the largest index, and the vertices no face uses
+    /// are dropped as always.
+    ///
+    /// # Errors
+    /// As [`Mesh::from_polygons`]; [`BuildError::MalformedOffsets`] when the
+    /// offsets do not cut the indices into faces;
+    /// [`BuildError::IndexOutOfRange`] (naming the face) for an index past
+    /// the positions.
+    ///
+    /// # Complexity
+    /// O(corners) time and memory whatever the index values (O(corners ·
+    /// log corners) when they are spread far wider than their number: the
+    /// used indices are then compacted by sorting), never proportional to
+    /// the largest index.
+    ///
+    /// ```
+    /// use meshloom::{Mesh, Polygons};
+    /// // Claims four billion vertices and uses three: builds a triangle.
+    /// let p = Polygons { positions: vec![], offsets: vec![0, 3], indices: vec![0, 1, u32::MAX] };
+    /// let m = Mesh::from_buffers(&p)?;
+    /// assert_eq!((m.vertex_count(), m.face_count()), (3, 1));
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn from_buffers(polygons: &Polygons) -> Result<Mesh> {
         Ok(build_buffers(polygons, false)?.mesh)
     }
 
     /// [`Mesh::from_buffers`], also returning the input's keys.
+    ///
+    /// # Errors
+    /// As `from_buffers`; and [`BuildError::TooLarge`] for topology-only
+    /// buffers whose largest index is more than twice the number of
+    /// indices (plus 64): the returned key map has an entry per input
+    /// vertex, and would not be bounded by the input's size.
     pub fn build_buffers(polygons: &Polygons) -> Result<Built> {
         build_buffers(polygons, true)
     }
@@ -176,6 +209,10 @@ impl Mesh {
     /// Build, also returning the keys of the input's vertices and faces and
     /// the number of unreferenced vertices dropped. `positions`, when given,
     /// must have `vertex_count` entries.
+    ///
+    /// # Complexity
+    /// O(corners) to build the mesh whatever `vertex_count` is; the returned
+    /// key map has one entry per input vertex, O(`vertex_count`).
     pub fn build<F, I>(
         positions: Option<&[[f64; 3]]>,
         vertex_count: usize,
@@ -200,7 +237,7 @@ impl Mesh {
     /// assert_eq!(maps.vertex_index(maps.vertices[3]), Some(3));
     /// ```
     pub fn to_polygons(&self) -> (Polygons, IndexMaps) {
-        let mut vertex_slot = vec![NONE; self.v_slots.slot_count()];
+        let mut vertex_slot = vec![UNMAPPED; self.v_slots.slot_count()];
         let mut vertices = Vec::with_capacity(self.vertex_count());
         for v in self.vertices() {
             vertex_slot[v.index()] = vertices.len() as u32;
@@ -213,7 +250,7 @@ impl Mesh {
                 .collect(),
             None => Vec::new(),
         };
-        let mut face_slot = vec![NONE; self.f_slots.slot_count()];
+        let mut face_slot = vec![UNMAPPED; self.f_slots.slot_count()];
         let mut faces = Vec::with_capacity(self.face_count());
         let mut offsets = Vec::with_capacity(self.face_count() + 1);
         let mut indices = Vec::with_capacity(self.halfedge_count());
@@ -221,8 +258,8 @@ impl Mesh {
         for f in self.faces() {
             face_slot[f.index()] = faces.len() as u32;
             faces.push(f);
-            for h in self.face_loop_raw(f.index) {
-                indices.push(vertex_slot[self.origin_of(h) as usize]);
+            for h in self.face_loop(f.id()) {
+                indices.push(vertex_slot[self.origin(h).index()]);
             }
             offsets.push(indices.len() as u32);
         }
@@ -256,7 +293,17 @@ fn build_buffers(polygons: &Polygons, want_keys: bool) -> Result<Built> {
         }));
     }
     let (positions, n) = if p.positions.is_empty() {
-        (None, p.indices.iter().max().map_or(0, |&m| m as usize + 1))
+        // One past the largest index: the builder stays linear in the
+        // corners however large that is, but a key map per input vertex
+        // would not.
+        let n = p.indices.iter().max().map_or(0, |&m| m as usize + 1);
+        if want_keys && n > UsedVertices::dense_span_limit(p.indices.len()) {
+            return Err(BuildError::TooLarge {
+                what: "the key map of topology-only buffers: their largest index claims more than two vertices per corner",
+            }
+            .into());
+        }
+        (None, n)
     } else {
         (Some(&p.positions[..]), p.positions.len())
     };
@@ -317,24 +364,54 @@ where
     build_flat(positions.map(|p| &p[..n]), n, &offsets, &indices, want_keys)
 }
 
-/// Call `f(corner, origin, dest)` for every side of every face.
-#[inline]
-fn for_each_side(offsets: &[u32], indices: &[u32], mut f: impl FnMut(usize, u32, u32)) {
-    for w in offsets.windows(2) {
-        let (s, e) = (w[0] as usize, w[1] as usize);
-        for c in s..e - 1 {
-            f(c, indices[c], indices[c + 1]);
+/// Flat faces: face `f` is `indices[offsets[f]..offsets[f + 1]]`.
+#[derive(Copy, Clone)]
+struct Flat<'a> {
+    offsets: &'a [u32],
+    indices: &'a [u32],
+}
+
+impl<'a> Flat<'a> {
+    /// Number of faces.
+    fn face_count(self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    /// Face `f`'s corners.
+    fn face(self, f: usize) -> &'a [u32] {
+        &self.indices[self.offsets[f] as usize..self.offsets[f + 1] as usize]
+    }
+
+    /// The same faces over other (renumbered) indices.
+    fn with_indices(self, indices: &'a [u32]) -> Flat<'a> {
+        Flat {
+            offsets: self.offsets,
+            indices,
         }
-        f(e - 1, indices[e - 1], indices[s]);
+    }
+
+    /// Call `f(corner, origin, dest)` for every side of every face (faces
+    /// have at least three corners: checked first).
+    #[inline]
+    fn for_each_side(self, mut f: impl FnMut(usize, u32, u32)) {
+        let indices = self.indices;
+        for w in self.offsets.windows(2) {
+            let (s, e) = (w[0] as usize, w[1] as usize);
+            for c in s..e - 1 {
+                f(c, indices[c], indices[c + 1]);
+            }
+            f(e - 1, indices[e - 1], indices[s]);
+        }
+    }
+
+    /// The face a corner belongs to (error paths only).
+    fn face_of_corner(self, c: usize) -> usize {
+        self.offsets.partition_point(|&o| o as usize <= c) - 1
     }
 }
 
-/// The face a corner belongs to (error paths only).
-fn face_of_corner(offsets: &[u32], c: usize) -> usize {
-    offsets.partition_point(|&o| o as usize <= c) - 1
-}
-
-/// The builder proper, over validated-in-range flat input.
+/// The builder proper, over flat input: checks, then builds in linear
+/// time, one named stage after the other.
 fn build_flat(
     positions: Option<&[[f64; 3]]>,
     n_in: usize,
@@ -342,31 +419,63 @@ fn build_flat(
     indices: &[u32],
     want_keys: bool,
 ) -> Result<Built> {
-    let nf = offsets.len() - 1;
-    let nc = indices.len();
-    if nc >= (1 << 29) {
+    let input = Flat { offsets, indices };
+    check_size(input)?;
+    check_index_range(input, n_in)?;
+    check_faces(input)?;
+    let vertices = UsedVertices::of(input, n_in);
+    check_positions(positions, &vertices)?;
+    let faces = input.with_indices(&vertices.indices);
+    let sides = bucket_sides(faces, vertices.count);
+    let twins = pair_twins(faces, sides, &vertices)?;
+    let mut links = link_faces(faces, vertices.count, &twins);
+    link_boundary(&mut links, &twins.boundary, &vertices)?;
+    let (f_halfedge, holes) = make_hole_faces(&mut links.he, faces, &twins);
+    check_vertex_rings(&links, &vertices)?;
+    let mesh = assemble(links, twins.edges, f_halfedge, holes, positions, &vertices);
+    debug_assert_eq!(mesh.validate(), Ok(()));
+    let (keys, face_keys) = if want_keys {
+        input_keys(&mesh, n_in, faces.face_count(), &vertices)
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    Ok(Built {
+        mesh,
+        vertices: keys,
+        faces: face_keys,
+        unreferenced: n_in - vertices.count,
+    })
+}
+
+/// Refuse input whose corners would not fit the 32-bit links.
+fn check_size(input: Flat<'_>) -> Result<()> {
+    if input.indices.len() >= (1 << 29) {
         return Err(BuildError::TooLarge {
             what: "more than 2^29 corners",
         }
         .into());
     }
-    if indices.iter().any(|&i| i as usize >= n_in) {
-        let c = indices
-            .iter()
-            .position(|&i| i as usize >= n_in)
-            .unwrap_or(0);
+    Ok(())
+}
+
+/// Every index must name one of the `n_in` input vertices.
+fn check_index_range(input: Flat<'_>, n_in: usize) -> Result<()> {
+    if let Some(c) = input.indices.iter().position(|&i| i as usize >= n_in) {
         return Err(BuildError::IndexOutOfRange {
-            face: face_of_corner(offsets, c),
-            index: i64::from(indices[c]),
+            face: input.face_of_corner(c),
+            index: i64::from(input.indices[c]),
             vertex_count: n_in,
         }
         .into());
     }
+    Ok(())
+}
 
-    // 1. Per face: degree and repeated vertices.
+/// Stage 1, per face: at least three corners, no corner twice.
+fn check_faces(input: Flat<'_>) -> Result<()> {
     let mut scratch: Vec<u32> = Vec::new();
-    for f in 0..nf {
-        let face = &indices[offsets[f] as usize..offsets[f + 1] as usize];
+    for f in 0..input.face_count() {
+        let face = input.face(f);
         if face.len() < 3 {
             return Err(BuildError::TooFewVertices {
                 face: f,
@@ -392,124 +501,229 @@ fn build_flat(
             .into());
         }
     }
+    Ok(())
+}
 
-    // 2. Drop unreferenced vertices; remap to dense slots (only when some
-    //    vertex is unreferenced: otherwise slots are the input indices).
-    // Sized by the largest index, not the vertex count: a caller may claim
-    // billions of vertices and use three.
-    let span = indices.iter().max().map_or(0, |&m| m as usize + 1);
-    let mut used = vec![0u64; span.div_ceil(64)];
-    for &i in indices {
-        used[i as usize / 64] |= 1 << (i % 64);
-    }
-    let nv = used.iter().map(|w| w.count_ones() as usize).sum::<usize>();
-    let unreferenced = n_in - nv;
-    // Input index of each slot; `None` when it is the identity.
-    let input_of_slot: Option<Vec<u32>> = (unreferenced > 0).then(|| {
-        (0..span as u32)
-            .filter(|&i| used[i as usize / 64] >> (i % 64) & 1 == 1)
-            .collect()
-    });
-    drop(used);
-    let input = |slot: u32| input_of_slot.as_ref().map_or(slot, |m| m[slot as usize]) as usize;
-    let indices: Cow<'_, [u32]> = match &input_of_slot {
-        None => Cow::Borrowed(indices),
-        Some(map) => {
-            let mut slot_of = vec![NONE; span];
-            for (slot, &i) in map.iter().enumerate() {
-                slot_of[i as usize] = slot as u32;
-            }
-            Cow::Owned(indices.iter().map(|&i| slot_of[i as usize]).collect())
+/// Stage 2: the input vertices some face uses, numbered densely (a vertex
+/// exists only while an edge touches it), and the corners renumbered.
+struct UsedVertices<'a> {
+    /// Number of used vertices: the vertex slots.
+    count: usize,
+    /// Input index of each slot; `None` when it is the identity (no vertex
+    /// unused).
+    input_of_slot: Option<Vec<u32>>,
+    /// The corners, by slot.
+    indices: Cow<'a, [u32]>,
+}
+
+impl<'a> UsedVertices<'a> {
+    /// Memory and time stay linear in the corners whatever the indices: a
+    /// dense bitset over the index span when the span is at most a few
+    /// times the corner count, else a sort of the corners (a caller may
+    /// claim billions of vertices and use three).
+    fn of(input: Flat<'a>, n_in: usize) -> Self {
+        let indices = input.indices;
+        let span = indices.iter().max().map_or(0, |&m| m as usize + 1);
+        if span > Self::dense_span_limit(indices.len()) {
+            return Self::sparse(indices);
         }
-    };
+        let mut used = vec![0u64; span.div_ceil(64)];
+        for &i in indices {
+            used[i as usize / 64] |= 1 << (i % 64);
+        }
+        let count = used.iter().map(|w| w.count_ones() as usize).sum::<usize>();
+        if count == n_in {
+            return UsedVertices {
+                count,
+                input_of_slot: None,
+                indices: Cow::Borrowed(indices),
+            };
+        }
+        let input_of_slot: Vec<u32> = (0..span)
+            .filter(|&i| used[i / 64] >> (i % 64) & 1 == 1)
+            .map(|i| i as u32)
+            .collect();
+        drop(used);
+        let mut slot_of = vec![u32::MAX; span];
+        for (slot, &i) in input_of_slot.iter().enumerate() {
+            slot_of[i as usize] = slot as u32;
+        }
+        let renumbered = indices.iter().map(|&i| slot_of[i as usize]).collect();
+        UsedVertices {
+            count: input_of_slot.len(),
+            input_of_slot: Some(input_of_slot),
+            indices: Cow::Owned(renumbered),
+        }
+    }
+
+    /// The largest index span the dense path takes for `corners` corners.
+    fn dense_span_limit(corners: usize) -> usize {
+        2 * corners + 64
+    }
+
+    /// Used vertices of indices spread far wider than their number.
+    fn sparse(indices: &'a [u32]) -> Self {
+        let mut input_of_slot = indices.to_vec();
+        input_of_slot.sort_unstable();
+        input_of_slot.dedup();
+        let renumbered = indices
+            .iter()
+            .map(|i| input_of_slot.binary_search(i).unwrap_or(0) as u32)
+            .collect();
+        UsedVertices {
+            count: input_of_slot.len(),
+            input_of_slot: Some(input_of_slot),
+            indices: Cow::Owned(renumbered),
+        }
+    }
+
+    /// The input index of vertex slot `slot` (slots are `u32` as stored).
+    fn input(&self, slot: u32) -> usize {
+        self.input_of_slot
+            .as_ref()
+            .map_or(slot, |m| m[slot as usize]) as usize
+    }
+
+    /// The input index of vertex `v`.
+    fn input_of(&self, v: Vid) -> usize {
+        self.input(v.raw())
+    }
+}
+
+/// Every used vertex needs a finite position.
+fn check_positions(positions: Option<&[[f64; 3]]>, vertices: &UsedVertices<'_>) -> Result<()> {
     if let Some(p) = positions {
-        for slot in 0..nv as u32 {
-            let q = p[input(slot)];
+        for slot in 0..vertices.count as u32 {
+            let q = p[vertices.input(slot)];
             if !q.iter().all(|c| c.is_finite()) {
                 return Err(BuildError::NonFinitePosition {
-                    vertex: input(slot),
+                    vertex: vertices.input(slot),
                     position: q,
                 }
                 .into());
             }
         }
     }
+    Ok(())
+}
 
-    // 3. Bucket corners by their edge's lower vertex (counting sort). Each
-    //    entry packs the higher vertex, the direction and the corner, so a
-    //    bucket sorts as plain integers.
+/// Stage 3's result: every side in a bucket of its lower vertex. Entry `x`
+/// packs the higher vertex (`x >> 33`), the direction (bit 32: 1 when the
+/// side runs from the higher vertex) and the corner (the low 32 bits), so a
+/// bucket sorts as plain integers.
+struct Buckets {
+    /// Bucket `v` is `entries[end[v - 1]..end[v]]` (from 0 for `v = 0`).
+    end: Vec<u32>,
+    entries: Vec<u64>,
+}
+
+impl Buckets {
+    fn higher(x: u64) -> u32 {
+        (x >> 33) as u32
+    }
+
+    fn from_higher(x: u64) -> bool {
+        (x >> 32) & 1 == 1
+    }
+
+    fn corner(x: u64) -> usize {
+        (x & 0xffff_ffff) as usize
+    }
+}
+
+/// Stage 3: bucket the sides by their lower vertex (a counting sort).
+fn bucket_sides(faces: Flat<'_>, nv: usize) -> Buckets {
     let mut start = vec![0u32; nv + 1];
-    for_each_side(offsets, &indices, |_, a, b| {
-        start[a.min(b) as usize + 1] += 1
-    });
+    faces.for_each_side(|_, a, b| start[a.min(b) as usize + 1] += 1);
     for i in 0..nv {
         start[i + 1] += start[i];
     }
     // Placing advances start[lo] to the end of bucket lo, which is where
     // bucket lo + 1 begins: afterwards bucket v is start[v - 1]..start[v].
-    let mut bucket = vec![0u64; nc];
-    for_each_side(offsets, &indices, |c, a, b| {
+    let mut entries = vec![0u64; faces.indices.len()];
+    faces.for_each_side(|c, a, b| {
         let (lo, hi, dir) = if a < b { (a, b, 0) } else { (b, a, 1) };
         let slot = &mut start[lo as usize];
-        bucket[*slot as usize] = (u64::from(hi) << 33) | (dir << 32) | c as u64;
+        entries[*slot as usize] = (u64::from(hi) << 33) | (dir << 32) | c as u64;
         *slot += 1;
     });
+    start.pop();
+    Buckets {
+        end: start,
+        entries,
+    }
+}
 
-    // 4. Pair each directed edge with its twin and number the edges in
-    //    bucket order, so the edges of a vertex sit together in memory.
-    //    Corner c's half-edge is he_of[c]; an unpaired side's twin lies in a
-    //    hole and is recorded, with its origin, in `boundary`.
-    let corner = |x: u64| (x & 0xffff_ffff) as usize;
-    let mut he_of = vec![NONE; nc];
-    let mut boundary: Vec<(u32, u32)> = Vec::new();
+/// Stage 4's result: each corner's half-edge, the hole half-edges with their
+/// origins, and the number of edges.
+struct Twins {
+    /// The half-edge of the side that starts at corner `c`.
+    he_of: Vec<Hid>,
+    /// Each unpaired side's twin (it lies in a hole) and its origin.
+    boundary: Vec<(Hid, Vid)>,
+    edges: usize,
+}
+
+/// Stage 4: pair each directed side with its twin and number the edges in
+/// bucket order, so the edges of a vertex sit together in memory.
+fn pair_twins(faces: Flat<'_>, mut sides: Buckets, vertices: &UsedVertices<'_>) -> Result<Twins> {
+    let mut he_of = vec![Hid::NONE; faces.indices.len()];
+    let mut boundary: Vec<(Hid, Vid)> = Vec::new();
     let mut ne = 0u32;
-    for v in 0..nv {
-        let begin = if v == 0 { 0 } else { start[v - 1] as usize };
-        let group = &mut bucket[begin..start[v] as usize];
+    let mut begin = 0;
+    for (v, &end) in sides.end.iter().enumerate() {
+        let group = &mut sides.entries[begin..end as usize];
+        begin = end as usize;
         group.sort_unstable();
         let mut i = 0;
         while i < group.len() {
-            let hi = group[i] >> 33;
+            let hi = Buckets::higher(group[i]);
             let mut j = i + 1;
-            while j < group.len() && group[j] >> 33 == hi {
+            while j < group.len() && Buckets::higher(group[j]) == hi {
                 j += 1;
             }
+            let edge = Eid::new(ne);
             match j - i {
                 1 => {
-                    let dir = (group[i] >> 32) & 1;
                     // The hole half-edge runs against the corner's side.
-                    let origin = if dir == 1 { v as u32 } else { hi as u32 };
-                    he_of[corner(group[i])] = 2 * ne;
-                    boundary.push((2 * ne + 1, origin));
+                    let x = group[i];
+                    let origin = if Buckets::from_higher(x) {
+                        v as u32
+                    } else {
+                        hi
+                    };
+                    let [inner, outer] = edge.halfedges();
+                    he_of[Buckets::corner(x)] = inner;
+                    boundary.push((outer, Vid::new(origin)));
                 }
                 2 => {
                     let (c0, c1) = (group[i], group[i + 1]);
-                    if (c0 >> 32) & 1 == (c1 >> 32) & 1 {
-                        let (a, b) = if (c0 >> 32) & 1 == 1 {
-                            (input(hi as u32), input(v as u32))
+                    if Buckets::from_higher(c0) == Buckets::from_higher(c1) {
+                        let (lo, hi) = (vertices.input(v as u32), vertices.input(hi));
+                        let (a, b) = if Buckets::from_higher(c0) {
+                            (hi, lo)
                         } else {
-                            (input(v as u32), input(hi as u32))
+                            (lo, hi)
                         };
                         return Err(BuildError::InconsistentOrientation {
                             a,
                             b,
                             faces: [
-                                face_of_corner(offsets, corner(c0)),
-                                face_of_corner(offsets, corner(c1)),
+                                faces.face_of_corner(Buckets::corner(c0)),
+                                faces.face_of_corner(Buckets::corner(c1)),
                             ],
                         }
                         .into());
                     }
-                    he_of[corner(c0)] = 2 * ne;
-                    he_of[corner(c1)] = 2 * ne + 1;
+                    [he_of[Buckets::corner(c0)], he_of[Buckets::corner(c1)]] = edge.halfedges();
                 }
                 _ => {
                     let mut fs: Vec<usize> = group[i..j]
                         .iter()
-                        .map(|&x| face_of_corner(offsets, corner(x)))
+                        .map(|&x| faces.face_of_corner(Buckets::corner(x)))
                         .collect();
                     fs.sort_unstable();
-                    let (a, b) = (input(v as u32), input(hi as u32));
+                    let (a, b) = (vertices.input(v as u32), vertices.input(hi));
                     return Err(BuildError::NonManifoldEdge {
                         a: a.min(b),
                         b: a.max(b),
@@ -522,163 +736,101 @@ fn build_flat(
             i = j;
         }
     }
-    drop(bucket);
-    drop(start);
-    let nh = 2 * ne as usize;
+    Ok(Twins {
+        he_of,
+        boundary,
+        edges: ne as usize,
+    })
+}
 
-    // 5. Interior half-edges.
-    let mut he = vec![HalfedgeRecord::VACANT; nh];
-    let mut v_halfedge = vec![NONE; nv];
-    let mut out_degree = vec![0u32; nv];
-    for f in 0..nf {
-        let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
+/// The links being built.
+struct Links {
+    he: IdVec<Hid, HalfedgeRecord>,
+    v_halfedge: IdVec<Vid, Hid>,
+    /// Half-edges leaving each vertex, to check its ring.
+    out_degree: IdVec<Vid, u32>,
+}
+
+/// Stage 5: the half-edges of the faces, and a half-edge for every vertex.
+fn link_faces(faces: Flat<'_>, nv: usize, twins: &Twins) -> Links {
+    let he_of = &twins.he_of;
+    let mut links = Links {
+        he: IdVec::filled(HalfedgeRecord::VACANT, Eid::halfedge_slots(twins.edges)),
+        v_halfedge: IdVec::filled(Hid::NONE, nv),
+        out_degree: IdVec::filled(0, nv),
+    };
+    for f in 0..faces.face_count() {
+        let (s, e) = (faces.offsets[f] as usize, faces.offsets[f + 1] as usize);
         for c in s..e {
             let n = if c + 1 < e { c + 1 } else { s };
-            let h = he_of[c] as usize;
-            he[h] = HalfedgeRecord {
-                origin: indices[c],
+            let h = he_of[c];
+            let origin = Vid::new(faces.indices[c]);
+            links.he[h] = HalfedgeRecord {
+                origin,
                 next: he_of[n],
-                face: f as u32,
+                face: Fid::new(f as u32),
             };
-            v_halfedge[indices[c] as usize] = h as u32;
-            out_degree[indices[c] as usize] += 1;
+            links.v_halfedge[origin] = h;
+            links.out_degree[origin] += 1;
         }
     }
+    links
+}
 
-    // 6. Boundary half-edges: origins, and the hole half-edge leaving each
-    //    boundary vertex (MANY at a bowtie, where several leave).
-    const MANY: u32 = NONE - 1;
-    let mut hole_out = vec![NONE; nv];
-    for &(g, o) in &boundary {
-        he[g as usize].origin = o;
-        let slot = &mut hole_out[o as usize];
-        *slot = if *slot == NONE { g } else { MANY };
-        out_degree[o as usize] += 1;
+/// Stage 6: the hole half-edges' origins, and each one's `next`: the hole
+/// half-edge leaving the vertex it enters (where several leave one vertex,
+/// a bowtie, the fans there are chained).
+fn link_boundary(
+    links: &mut Links,
+    boundary: &[(Hid, Vid)],
+    vertices: &UsedVertices<'_>,
+) -> Result<()> {
+    // (A vertex's "several hole half-edges leave it" marker: no half-edge
+    // has this id, as a mesh has fewer than 2^31 of them.)
+    const MANY: Hid = Hid::new(u32::MAX - 1);
+    let he = &mut links.he;
+    let mut hole_out: IdVec<Vid, Hid> = IdVec::filled(Hid::NONE, links.v_halfedge.len());
+    for &(g, o) in boundary {
+        he[g].origin = o;
+        // Rule 11: a boundary vertex names a half-edge in a hole.
+        links.v_halfedge[o] = g;
+        let slot = &mut hole_out[o];
+        *slot = if slot.is_none() { g } else { MANY };
+        links.out_degree[o] += 1;
     }
-    let boundary: Vec<u32> = boundary.into_iter().map(|(g, _)| g).collect();
-    // Link each hole half-edge to the one leaving the vertex it enters.
     let mut bowtie = false;
-    for &g in &boundary {
-        let a = he[(g ^ 1) as usize].origin; // g enters a
-        match hole_out[a as usize] {
+    for &(g, _) in boundary {
+        let a = he[g.twin()].origin; // g enters a
+        match hole_out[a] {
             MANY => bowtie = true,
-            k => he[g as usize].next = k,
+            k => he[g].next = k,
         }
     }
     drop(hole_out);
     if bowtie {
-        link_bowties(&mut he, &boundary, &input)?;
+        link_bowties(he, boundary, vertices)?;
     }
-    if let Some(&g) = boundary.iter().find(|&&g| he[g as usize].next == NONE) {
-        let a = he[(g ^ 1) as usize].origin;
+    if let Some(&(g, _)) = boundary.iter().find(|&&(g, _)| he[g].next.is_none()) {
+        let a = he[g.twin()].origin;
         return Err(BuildError::NonManifoldVertex {
-            vertex: input(a),
-            face: he[(g ^ 1) as usize].face as usize,
+            vertex: vertices.input_of(a),
+            face: he[g.twin()].face.index(),
         }
         .into());
     }
-
-    // 7. Hole faces: walk every unassigned boundary loop.
-    let mut hole_starts = Vec::new();
-    for &g in &boundary {
-        if he[g as usize].face != NONE {
-            continue;
-        }
-        let f = (nf + hole_starts.len()) as u32;
-        hole_starts.push(g);
-        let mut h = g;
-        for _ in 0..=boundary.len() {
-            he[h as usize].face = f;
-            h = he[h as usize].next;
-            if h == g || h == NONE {
-                break;
-            }
-        }
-    }
-    let mut f_halfedge = Vec::with_capacity(nf + hole_starts.len());
-    f_halfedge.extend(offsets[..nf].iter().map(|&c| he_of[c as usize]));
-    f_halfedge.extend(hole_starts.iter().map(|&g| g | HOLE_BIT));
-    drop(he_of);
-
-    // 8. Every vertex's ring must reach all its half-edges: faces that meet
-    //    at a vertex in separate closed fans cannot share one ring.
-    for v in 0..nv {
-        let start = v_halfedge[v];
-        let (mut h, mut ring) = (start, 0u32);
-        loop {
-            ring += 1;
-            h = he[(h ^ 1) as usize].next;
-            if h == start || ring > out_degree[v] {
-                break;
-            }
-        }
-        if ring != out_degree[v] {
-            return Err(BuildError::NonManifoldVertex {
-                vertex: input(v as u32),
-                face: he[start as usize].face.min(he[(start ^ 1) as usize].face) as usize,
-            }
-            .into());
-        }
-    }
-    drop(out_degree);
-
-    let holes = hole_starts.len();
-    let mut mesh = Mesh {
-        v_halfedge,
-        v_slots: Slots::full(nv),
-        he,
-        e_slots: Slots::full(ne as usize),
-        f_halfedge,
-        f_slots: Slots::full(nf + holes),
-        holes,
-        attrs: Default::default(),
-    };
-    if let Some(p) = positions {
-        let values: Vec<[f64; 3]> = match &input_of_slot {
-            None => p.to_vec(),
-            Some(map) => map.iter().map(|&i| p[i as usize]).collect(),
-        };
-        mesh.attrs.position = Some(mesh.attrs.vertex.push(
-            POSITION,
-            Box::new(Column::<[f64; 3], Interpolate>::dense(values)),
-        ));
-    }
-    debug_assert_eq!(mesh.validate(), Ok(()));
-
-    let (vertices, faces) = if want_keys {
-        // One entry per input vertex: the caller asked for this map.
-        let mut vertices = vec![None; n_in];
-        for slot in 0..nv as u32 {
-            vertices[input(slot)] = Some(VertexKey::new(slot, 1));
-        }
-        (
-            vertices,
-            (0..nf as u32).map(|f| FaceKey::new(f, 1)).collect(),
-        )
-    } else {
-        (Vec::new(), Vec::new())
-    };
-    Ok(Built {
-        mesh,
-        vertices,
-        faces,
-        unreferenced,
-    })
+    Ok(())
 }
 
 /// At each vertex with several hole half-edges leaving it, find the fan each
 /// starts, and chain the fans: the hole half-edge ending fan `i` continues
 /// with the one starting fan `i + 1`.
 fn link_bowties(
-    he: &mut [HalfedgeRecord],
-    boundary: &[u32],
-    input: &dyn Fn(u32) -> usize,
+    he: &mut IdVec<Hid, HalfedgeRecord>,
+    boundary: &[(Hid, Vid)],
+    vertices: &UsedVertices<'_>,
 ) -> Result<()> {
     // Hole half-edges leaving each bowtie vertex, grouped by vertex.
-    let mut leaving: Vec<(u32, u32)> = boundary
-        .iter()
-        .map(|&k| (he[k as usize].origin, k))
-        .collect();
+    let mut leaving: Vec<(Vid, Hid)> = boundary.iter().map(|&(k, o)| (o, k)).collect();
     leaving.sort_unstable();
     let mut kept = Vec::with_capacity(leaving.len());
     for (i, &(a, k)) in leaving.iter().enumerate() {
@@ -700,20 +852,20 @@ fn link_bowties(
         // The hole half-edge that ends the fan started by each k.
         let mut ends = Vec::with_capacity(j - i);
         for &(_, k) in &leaving[i..j] {
-            let mut o = he[(k ^ 1) as usize].next; // first interior outgoing
-            let mut end = NONE;
+            let mut o = he[k.twin()].next; // first interior outgoing
+            let mut end = Hid::NONE;
             for _ in 0..budget {
-                let x = o ^ 1; // enters a
-                if he[x as usize].face == NONE {
+                let x = o.twin(); // enters a
+                if he[x].face.is_none() {
                     end = x;
                     break;
                 }
-                o = he[x as usize].next;
+                o = he[x].next;
             }
-            if end == NONE {
+            if end.is_none() {
                 return Err(BuildError::NonManifoldVertex {
-                    vertex: input(a),
-                    face: he[(k ^ 1) as usize].face as usize,
+                    vertex: vertices.input_of(a),
+                    face: he[k.twin()].face.index(),
                 }
                 .into());
             }
@@ -721,9 +873,122 @@ fn link_bowties(
         }
         let m = j - i;
         for (fan, &end) in ends.iter().enumerate() {
-            he[end as usize].next = leaving[i + (fan + 1) % m].1;
+            he[end].next = leaving[i + (fan + 1) % m].1;
         }
         i = j;
     }
     Ok(())
+}
+
+/// Stage 7: a hole face for every boundary loop (numbered after the input
+/// faces), and every face's link. Returns the links and the hole count.
+fn make_hole_faces(
+    he: &mut IdVec<Hid, HalfedgeRecord>,
+    faces: Flat<'_>,
+    twins: &Twins,
+) -> (IdVec<Fid, FaceLink>, usize) {
+    let nf = faces.face_count();
+    let boundary = &twins.boundary;
+    let mut hole_starts = Vec::new();
+    for &(g, _) in boundary {
+        if !he[g].face.is_none() {
+            continue;
+        }
+        let f = Fid::new((nf + hole_starts.len()) as u32);
+        hole_starts.push(g);
+        let mut h = g;
+        for _ in 0..=boundary.len() {
+            he[h].face = f;
+            h = he[h].next;
+            if h == g || h.is_none() {
+                break;
+            }
+        }
+    }
+    let mut f_halfedge = IdVec::from_vec(Vec::with_capacity(nf + hole_starts.len()));
+    for &c in &faces.offsets[..nf] {
+        f_halfedge.push(FaceLink::new(twins.he_of[c as usize], false));
+    }
+    for &g in &hole_starts {
+        f_halfedge.push(FaceLink::new(g, true));
+    }
+    (f_halfedge, hole_starts.len())
+}
+
+/// Stage 8: every vertex's ring must reach all its half-edges (faces that
+/// meet at a vertex in separate closed fans cannot share one ring).
+fn check_vertex_rings(links: &Links, vertices: &UsedVertices<'_>) -> Result<()> {
+    let Links {
+        he,
+        v_halfedge,
+        out_degree,
+    } = links;
+    for v in v_halfedge.ids() {
+        let start = v_halfedge[v];
+        let (mut h, mut ring) = (start, 0u32);
+        loop {
+            ring += 1;
+            h = he[h.twin()].next;
+            if h == start || ring > out_degree[v] {
+                break;
+            }
+        }
+        if ring != out_degree[v] {
+            return Err(BuildError::NonManifoldVertex {
+                vertex: vertices.input_of(v),
+                face: he[start].face.min(he[start.twin()].face).index(),
+            }
+            .into());
+        }
+    }
+    Ok(())
+}
+
+/// The mesh from the links, with the positions of the used vertices.
+fn assemble(
+    links: Links,
+    edges: usize,
+    f_halfedge: IdVec<Fid, FaceLink>,
+    holes: usize,
+    positions: Option<&[[f64; 3]]>,
+    vertices: &UsedVertices<'_>,
+) -> Mesh {
+    let faces = f_halfedge.len();
+    let mut mesh = Mesh {
+        v_halfedge: links.v_halfedge,
+        v_slots: Slots::full(vertices.count),
+        he: links.he,
+        e_slots: Slots::full(edges),
+        f_halfedge,
+        f_slots: Slots::full(faces),
+        holes,
+        attrs: Default::default(),
+    };
+    if let Some(p) = positions {
+        let values: Vec<[f64; 3]> = match &vertices.input_of_slot {
+            None => p[..vertices.count].to_vec(),
+            Some(map) => map.iter().map(|&i| p[i as usize]).collect(),
+        };
+        mesh.attrs.position = Some(mesh.attrs.vertex.push(
+            POSITION,
+            Box::new(Column::<[f64; 3], Interpolate>::dense(values)),
+        ));
+    }
+    mesh
+}
+
+/// The key of each input vertex (`None` for unused ones) and face: one entry
+/// per input vertex, as the caller asked.
+fn input_keys(
+    mesh: &Mesh,
+    n_in: usize,
+    nf: usize,
+    vertices: &UsedVertices<'_>,
+) -> (Vec<Option<VertexKey>>, Vec<FaceKey>) {
+    let mut keys = vec![None; n_in];
+    for slot in 0..vertices.count as u32 {
+        keys[vertices.input(slot)] = Some(mesh.vkey(Vid::new(slot)));
+    }
+    let faces = (0..nf as u32).map(|f| mesh.fkey(Fid::new(f))).collect();
+    (keys, faces)
 }

@@ -1,7 +1,8 @@
 //! Error types. Every error names what was wrong and where.
 
+use std::fmt;
+
 use crate::keys::{AnyKey, ElementKind};
-use crate::validate::ValidationError;
 
 /// What can go wrong in a mesh operation.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -217,6 +218,50 @@ pub enum BuildError {
         what: &'static str,
     },
 }
+
+/// A broken structural rule: its number (see [`validate`](crate::validate)), the
+/// element where it broke and what was found.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ValidationError {
+    /// The rule's number, 1 to 11.
+    pub rule: u8,
+    /// The element where the rule broke, when one can be named.
+    pub key: Option<AnyKey>,
+    /// What was found.
+    pub detail: String,
+}
+
+impl ValidationError {
+    /// The rule's short name.
+    pub fn rule_name(&self) -> &'static str {
+        match self.rule {
+            1 => "storage",
+            2 => "links in range",
+            3 => "no loops",
+            4 => "next is a permutation",
+            5 => "faces are cycles",
+            6 => "face links",
+            7 => "face size",
+            8 => "vertex links",
+            9 => "no dangling edges",
+            10 => "no multi-edges",
+            11 => "boundary vertices point into a hole",
+            _ => "unknown rule",
+        }
+    }
+}
+
+impl fmt::Display for ValidationError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "rule {} ({}) broken", self.rule, self.rule_name())?;
+        if let Some(k) = &self.key {
+            write!(f, " at {k}")?;
+        }
+        write!(f, ": {}", self.detail)
+    }
+}
+
+impl std::error::Error for ValidationError {}
 
 /// The result type of meshloom's fallible operations.
 pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -14,6 +14,7 @@
 use crate::attr::{Attr, Attribute, Rule};
 use crate::error::{Error, Result};
 use crate::keys::{EdgeKey, FaceKey, VertexKey};
+use crate::layout::Vid;
 use crate::mesh::Mesh;
 
 /// A 3D point type that geometry code can read and write as `[f64; 3]`.
@@ -196,7 +197,7 @@ impl Mesh {
     fn point_in<P: Point + Attribute, R: Rule<P>>(
         &self,
         h: &Attr<VertexKey, P, R>,
-        v: u32,
+        v: Vid,
     ) -> Result<[f64; 3]> {
         self.attr(h, self.vkey(v))?
             .map(Point::xyz)
@@ -212,9 +213,9 @@ impl Mesh {
     ) -> Result<[f64; 3]> {
         let fs = self.check_face(f)?;
         let mut n = [0.0; 3];
-        for he in self.face_loop_raw(fs) {
-            let a = self.point_in(h, self.origin_of(he))?;
-            let b = self.point_in(h, self.dest_of(he))?;
+        for he in self.face_loop(fs) {
+            let a = self.point_in(h, self.origin(he))?;
+            let b = self.point_in(h, self.dest(he))?;
             n[0] += (a[1] - b[1]) * (a[2] + b[2]);
             n[1] += (a[2] - b[2]) * (a[0] + b[0]);
             n[2] += (a[0] - b[0]) * (a[1] + b[1]);
@@ -232,9 +233,9 @@ impl Mesh {
         h: &Attr<VertexKey, P, R>,
         e: EdgeKey,
     ) -> Result<f64> {
-        let s = self.check_edge(e)?;
-        let a = self.point_in(h, self.origin_of(2 * s))?;
-        let b = self.point_in(h, self.origin_of(2 * s + 1))?;
+        let [x, y] = self.check_edge(e)?.halfedges();
+        let a = self.point_in(h, self.origin(x))?;
+        let b = self.point_in(h, self.origin(y))?;
         Ok(norm(sub(a, b)))
     }
 
@@ -279,8 +280,8 @@ impl Mesh {
         let fs = self.check_face(f)?;
         let mut c = [0.0; 3];
         let mut n = 0usize;
-        for he in self.face_loop_raw(fs) {
-            let p = self.point_in(h, self.origin_of(he))?;
+        for he in self.face_loop(fs) {
+            let p = self.point_in(h, self.origin(he))?;
             for k in 0..3 {
                 c[k] += p[k];
             }

@@ -6,9 +6,9 @@
 //! it as [`Error::StaleKey`](crate::Error::StaleKey) instead of handing back
 //! whatever element reuses the slot.
 //!
-//! Half-edges come in twin pairs stored side by side: the half-edges of edge
-//! `e` are `2e` and `2e + 1`, so a [`HalfedgeKey`] shares its generation with
-//! its [`EdgeKey`] and `twin` needs no storage.
+//! Half-edges come in twin pairs stored side by side (the layout lives in
+//! `layout.rs`), so a [`HalfedgeKey`] shares its generation with its
+//! [`EdgeKey`] and `twin` needs no storage.
 
 use std::fmt;
 
@@ -78,12 +78,12 @@ impl HalfedgeKey {
     /// The twin half-edge key (same edge, other direction). Pure arithmetic:
     /// valid exactly when `self` is.
     pub const fn twin_key(self) -> HalfedgeKey {
-        HalfedgeKey::new(self.index ^ 1, self.generation)
+        self.id().twin().key(self.generation)
     }
 
     /// The edge this half-edge belongs to. Pure arithmetic.
     pub const fn edge_key(self) -> EdgeKey {
-        EdgeKey::new(self.index >> 1, self.generation)
+        self.id().edge().key(self.generation)
     }
 }
 
@@ -91,7 +91,7 @@ impl EdgeKey {
     /// One of the edge's half-edges: `side` 0 or 1 (any other value is
     /// taken modulo 2). Pure arithmetic.
     pub const fn halfedge_key(self, side: u32) -> HalfedgeKey {
-        HalfedgeKey::new(self.index * 2 + (side & 1), self.generation)
+        self.id().halfedge(side).key(self.generation)
     }
 }
 

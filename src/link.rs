@@ -6,9 +6,17 @@
 //! half-edge, [`set_face`](RawEdit::set_face) also points the face at it.
 //! `next` is the only face-order link (there is no `prev`);
 //! [`link(a, b)`](RawEdit::link) sets `next(a) = b`. Between setters the
-//! mesh may break its rules; call [`RawEdit::validate`] (or
-//! [`RawEdit::finish`]) when done, and do not use views on a mesh that does
-//! not validate. Attribute columns follow new and removed elements (new
+//! mesh may break its rules; call [`RawEdit::finish`] when done, and do not
+//! use views on a mesh that does not validate.
+//!
+//! Rule 11 of [`validate`](crate::validate) (a vertex that touches a hole
+//! names an outgoing half-edge in a hole) is the one rule the setters need
+//! not keep by hand: [`finish`](RawEdit::finish) re-establishes it for
+//! every vertex (pointing each vertex that touches a hole, and names a
+//! half-edge leaving it that lies in none, at one that lies in a hole)
+//! before it validates. [`RawEdit::validate`] checks the mesh as it is, so
+//! in the middle of an edit it may report rule 11 where `finish` would
+//! not. Attribute columns follow new and removed elements (new
 //! elements hold default values), but no merge or split rule runs: that is
 //! the operator writer's choice.
 //!
@@ -38,7 +46,8 @@
 
 use crate::error::{Error, Result};
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
-use crate::mesh::{Mesh, NONE};
+use crate::layout::Vid;
+use crate::mesh::Mesh;
 
 /// A guard for raw link edits; see the [module docs](self).
 pub struct RawEdit<'m> {
@@ -59,7 +68,7 @@ impl RawEdit<'_> {
     /// [`Error::StaleKey`].
     pub fn origin(&self, h: HalfedgeKey) -> Result<Option<VertexKey>> {
         let h = self.mesh.check_halfedge(h)?;
-        let o = self.mesh.he[h as usize].origin;
+        let o = self.mesh.he[h].origin;
         Ok(self.live_vertex(o))
     }
 
@@ -69,8 +78,11 @@ impl RawEdit<'_> {
     /// [`Error::StaleKey`].
     pub fn next(&self, h: HalfedgeKey) -> Result<Option<HalfedgeKey>> {
         let h = self.mesh.check_halfedge(h)?;
-        let n = self.mesh.he[h as usize].next;
-        Ok((n != NONE && self.mesh.e_slots.is_live((n >> 1) as usize)).then(|| self.mesh.hkey(n)))
+        let n = self.mesh.he[h].next;
+        Ok(
+            (!n.is_none() && self.mesh.e_slots.is_live(n.edge().index()))
+                .then(|| self.mesh.hkey(n)),
+        )
     }
 
     /// The face link of `h`, if set.
@@ -79,12 +91,12 @@ impl RawEdit<'_> {
     /// [`Error::StaleKey`].
     pub fn face(&self, h: HalfedgeKey) -> Result<Option<FaceKey>> {
         let h = self.mesh.check_halfedge(h)?;
-        let f = self.mesh.he[h as usize].face;
-        Ok((f != NONE && self.mesh.f_slots.is_live(f as usize)).then(|| self.mesh.fkey(f)))
+        let f = self.mesh.he[h].face;
+        Ok((!f.is_none() && self.mesh.f_slots.is_live(f.index())).then(|| self.mesh.fkey(f)))
     }
 
-    fn live_vertex(&self, v: u32) -> Option<VertexKey> {
-        (v != NONE && self.mesh.v_slots.is_live(v as usize)).then(|| self.mesh.vkey(v))
+    fn live_vertex(&self, v: Vid) -> Option<VertexKey> {
+        (!v.is_none() && self.mesh.v_slots.is_live(v.index())).then(|| self.mesh.vkey(v))
     }
 
     /// Set `origin(h) = v` and reflect it: `v`'s half-edge becomes `h`.
@@ -94,8 +106,8 @@ impl RawEdit<'_> {
     pub fn set_origin(&mut self, h: HalfedgeKey, v: VertexKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let v = self.mesh.check_vertex(v)?;
-        self.mesh.he[h as usize].origin = v;
-        self.mesh.v_halfedge[v as usize] = h;
+        self.mesh.he[h].origin = v;
+        self.mesh.v_halfedge[v] = h;
         Ok(())
     }
 
@@ -107,7 +119,7 @@ impl RawEdit<'_> {
     pub fn set_face(&mut self, h: HalfedgeKey, f: FaceKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let f = self.mesh.check_face(f)?;
-        self.mesh.he[h as usize].face = f;
+        self.mesh.he[h].face = f;
         self.mesh.set_face_link(f, h);
         Ok(())
     }
@@ -131,7 +143,7 @@ impl RawEdit<'_> {
     pub fn set_vertex_halfedge(&mut self, v: VertexKey, h: HalfedgeKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let v = self.mesh.check_vertex(v)?;
-        self.mesh.v_halfedge[v as usize] = h;
+        self.mesh.v_halfedge[v] = h;
         Ok(())
     }
 
@@ -153,7 +165,7 @@ impl RawEdit<'_> {
     /// [`Error::StaleKey`].
     pub fn set_hole(&mut self, f: FaceKey, hole: bool) -> Result<()> {
         let f = self.mesh.check_face(f)?;
-        self.mesh.set_hole_raw(f, hole);
+        self.mesh.set_hole(f, hole);
         Ok(())
     }
 
@@ -214,11 +226,17 @@ impl RawEdit<'_> {
         self.mesh.validate().map_err(Error::Invalid)
     }
 
-    /// End the edit: [`validate`](RawEdit::validate), consuming the guard.
+    /// End the edit: re-establish rule 11 (boundary vertices name a
+    /// half-edge in a hole; see the [module docs](self)), then
+    /// [`validate`](RawEdit::validate), consuming the guard.
     ///
     /// # Errors
     /// As `validate`.
+    ///
+    /// # Complexity
+    /// O(half-edges) for rule 11, plus `validate`.
     pub fn finish(self) -> Result<()> {
+        self.mesh.point_all_at_holes();
         self.validate()
     }
 }

@@ -12,38 +12,17 @@
 //! There is no `prev` link: `prev(h)` is found by turning around `origin(h)`
 //! (O(vertex degree), not O(face degree)), which keeps a triangle mesh with
 //! f64 positions at about 132 heap bytes per vertex, generations included.
-//! Internal links are plain `u32` slot indices; generations are checked once,
-//! at the public door.
+//! Internal links are typed slot indices ([`Vid`], [`Hid`], [`Eid`],
+//! [`Fid`]; the layout they follow is in [`layout`](crate::layout));
+//! generations are checked once, at the public door.
 
-use crate::attr::{AttrStore, Column, Interpolate, POSITION};
 use crate::error::{Error, Result};
 use crate::keys::{AnyKey, EdgeKey, FaceKey, HalfedgeKey, VertexKey};
+pub(crate) use crate::layout::HalfedgeRecord;
+use crate::layout::{Eid, FaceLink, Fid, Hid, IdVec, Vid};
 use crate::slots::Slots;
-
-/// "No element" in an internal link.
-pub(crate) const NONE: u32 = u32::MAX;
-/// The hole flag, stored in the top bit of a face's half-edge link.
-pub(crate) const HOLE_BIT: u32 = 1 << 31;
-
-/// One half-edge's links.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub(crate) struct HalfedgeRecord {
-    /// The vertex it leaves.
-    pub(crate) origin: u32,
-    /// The next half-edge around its face.
-    pub(crate) next: u32,
-    /// The face (or hole) on its left.
-    pub(crate) face: u32,
-}
-
-impl HalfedgeRecord {
-    pub(crate) const VACANT: HalfedgeRecord = HalfedgeRecord {
-        origin: NONE,
-        next: NONE,
-        face: NONE,
-    };
-}
+use crate::store::rules::Interpolate;
+use crate::store::{AttrStore, Column, POSITION};
 
 /// A polygon mesh stored as a half-edge graph.
 ///
@@ -64,11 +43,14 @@ impl HalfedgeRecord {
 /// ```
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {
-    pub(crate) v_halfedge: Vec<u32>,
+    /// Per vertex slot: an outgoing half-edge.
+    pub(crate) v_halfedge: IdVec<Vid, Hid>,
     pub(crate) v_slots: Slots,
-    pub(crate) he: Vec<HalfedgeRecord>,
+    /// Per half-edge slot: its links (edge `e` owns `2e` and `2e + 1`).
+    pub(crate) he: IdVec<Hid, HalfedgeRecord>,
     pub(crate) e_slots: Slots,
-    pub(crate) f_halfedge: Vec<u32>,
+    /// Per face slot: a half-edge and the hole flag.
+    pub(crate) f_halfedge: IdVec<Fid, FaceLink>,
     pub(crate) f_slots: Slots,
     pub(crate) holes: usize,
     pub(crate) attrs: AttrStore,
@@ -96,7 +78,7 @@ impl Mesh {
     /// Number of half-edges (twice the edges).
     #[inline]
     pub fn halfedge_count(&self) -> usize {
-        2 * self.e_slots.live()
+        Eid::halfedge_slots(self.e_slots.live())
     }
 
     /// Number of edges.
@@ -136,11 +118,11 @@ impl Mesh {
     /// Heap bytes held by the connectivity, generations, free lists and
     /// every attribute column (capacities, not lengths).
     pub fn heap_bytes(&self) -> usize {
-        self.v_halfedge.capacity() * 4
+        self.v_halfedge.capacity() * std::mem::size_of::<Hid>()
             + self.v_slots.heap_bytes()
             + self.he.capacity() * std::mem::size_of::<HalfedgeRecord>()
             + self.e_slots.heap_bytes()
-            + self.f_halfedge.capacity() * 4
+            + self.f_halfedge.capacity() * std::mem::size_of::<FaceLink>()
             + self.f_slots.heap_bytes()
             + self.attrs.heap_bytes()
     }
@@ -150,52 +132,44 @@ impl Mesh {
     /// Every vertex key, in slot order.
     #[inline]
     pub fn vertices(&self) -> impl Iterator<Item = VertexKey> + '_ {
-        self.v_slots
-            .live_indices()
-            .map(|i| VertexKey::new(i, self.v_slots.generation_of(i)))
+        self.vids().map(|v| self.vkey(v))
     }
 
     /// Every half-edge key, in slot order (twins adjacent).
     #[inline]
     pub fn halfedges(&self) -> impl Iterator<Item = HalfedgeKey> + '_ {
-        self.e_slots.live_indices().flat_map(|e| {
-            let g = self.e_slots.generation_of(e);
-            [HalfedgeKey::new(2 * e, g), HalfedgeKey::new(2 * e + 1, g)]
+        self.eids().flat_map(|e| {
+            let g = self.e_slots.generation_of(e.raw());
+            e.halfedges().map(|h| h.key(g))
         })
     }
 
     /// Every edge key, in slot order.
     #[inline]
     pub fn edges(&self) -> impl Iterator<Item = EdgeKey> + '_ {
-        self.e_slots
-            .live_indices()
-            .map(|i| EdgeKey::new(i, self.e_slots.generation_of(i)))
+        self.eids().map(|e| self.ekey(e))
     }
 
     /// Every face key, holes excluded, in slot order.
     #[inline]
     pub fn faces(&self) -> impl Iterator<Item = FaceKey> + '_ {
-        self.f_slots
-            .live_indices()
-            .filter(|&f| self.f_halfedge[f as usize] & HOLE_BIT == 0)
-            .map(|i| FaceKey::new(i, self.f_slots.generation_of(i)))
+        self.fids()
+            .filter(|&f| !self.is_hole(f))
+            .map(|f| self.fkey(f))
     }
 
     /// Every hole face key, in slot order.
     #[inline]
     pub fn holes(&self) -> impl Iterator<Item = FaceKey> + '_ {
-        self.f_slots
-            .live_indices()
-            .filter(|&f| self.f_halfedge[f as usize] & HOLE_BIT != 0)
-            .map(|i| FaceKey::new(i, self.f_slots.generation_of(i)))
+        self.fids()
+            .filter(|&f| self.is_hole(f))
+            .map(|f| self.fkey(f))
     }
 
     /// Every face key, holes included, in slot order.
     #[inline]
     pub fn faces_and_holes(&self) -> impl Iterator<Item = FaceKey> + '_ {
-        self.f_slots
-            .live_indices()
-            .map(|i| FaceKey::new(i, self.f_slots.generation_of(i)))
+        self.fids().map(|f| self.fkey(f))
     }
 
     // ----- keys by slot (for walking while editing) --------------------------
@@ -210,7 +184,7 @@ impl Mesh {
     #[inline]
     pub fn vertex_at(&self, i: usize) -> Option<VertexKey> {
         let (i, g) = self.v_slots.live_at(i)?;
-        Some(VertexKey::new(i, g))
+        Some(Vid::new(i).key(g))
     }
 
     /// The edge living in slot `i`, if any (`i` from 0 to
@@ -233,7 +207,7 @@ impl Mesh {
     #[inline]
     pub fn edge_at(&self, i: usize) -> Option<EdgeKey> {
         let (i, g) = self.e_slots.live_at(i)?;
-        Some(EdgeKey::new(i, g))
+        Some(Eid::new(i).key(g))
     }
 
     /// The face (not a hole) living in slot `i`, if any (`i` from 0 to
@@ -242,7 +216,8 @@ impl Mesh {
     #[inline]
     pub fn face_at(&self, i: usize) -> Option<FaceKey> {
         let (i, g) = self.f_slots.live_at(i)?;
-        (!self.is_hole_raw(i)).then(|| FaceKey::new(i, g))
+        let f = Fid::new(i);
+        (!self.is_hole(f)).then(|| f.key(g))
     }
 
     // ----- key checks at the door -------------------------------------------
@@ -256,7 +231,7 @@ impl Mesh {
     /// Whether the key names a live half-edge of this mesh.
     #[inline]
     pub fn contains_halfedge(&self, h: HalfedgeKey) -> bool {
-        self.e_slots.is_current(h.index >> 1, h.generation)
+        self.e_slots.is_current(h.id().edge().raw(), h.generation)
     }
 
     /// Whether the key names a live edge of this mesh.
@@ -272,166 +247,250 @@ impl Mesh {
     }
 
     #[inline]
-    pub(crate) fn check_vertex(&self, v: VertexKey) -> Result<u32> {
+    pub(crate) fn check_vertex(&self, v: VertexKey) -> Result<Vid> {
         if self.contains_vertex(v) {
-            Ok(v.index)
+            Ok(v.id())
         } else {
             Err(Error::StaleKey(AnyKey::Vertex(v)))
         }
     }
 
     #[inline]
-    pub(crate) fn check_halfedge(&self, h: HalfedgeKey) -> Result<u32> {
+    pub(crate) fn check_halfedge(&self, h: HalfedgeKey) -> Result<Hid> {
         if self.contains_halfedge(h) {
-            Ok(h.index)
+            Ok(h.id())
         } else {
             Err(Error::StaleKey(AnyKey::Halfedge(h)))
         }
     }
 
     #[inline]
-    pub(crate) fn check_edge(&self, e: EdgeKey) -> Result<u32> {
+    pub(crate) fn check_edge(&self, e: EdgeKey) -> Result<Eid> {
         if self.contains_edge(e) {
-            Ok(e.index)
+            Ok(e.id())
         } else {
             Err(Error::StaleKey(AnyKey::Edge(e)))
         }
     }
 
     #[inline]
-    pub(crate) fn check_face(&self, f: FaceKey) -> Result<u32> {
+    pub(crate) fn check_face(&self, f: FaceKey) -> Result<Fid> {
         if self.contains_face(f) {
-            Ok(f.index)
+            Ok(f.id())
         } else {
             Err(Error::StaleKey(AnyKey::Face(f)))
         }
     }
 
-    // ----- raw slot -> key ---------------------------------------------------
+    // ----- typed slot -> key ---------------------------------------------------
 
     #[inline]
-    pub(crate) fn vkey(&self, v: u32) -> VertexKey {
-        VertexKey::new(v, self.v_slots.generation_of(v))
+    pub(crate) fn vkey(&self, v: Vid) -> VertexKey {
+        v.key(self.v_slots.generation_of(v.raw()))
     }
 
     #[inline]
-    pub(crate) fn hkey(&self, h: u32) -> HalfedgeKey {
-        HalfedgeKey::new(h, self.e_slots.generation_of(h >> 1))
+    pub(crate) fn hkey(&self, h: Hid) -> HalfedgeKey {
+        h.key(self.e_slots.generation_of(h.edge().raw()))
     }
 
     #[inline]
-    pub(crate) fn ekey(&self, e: u32) -> EdgeKey {
-        EdgeKey::new(e, self.e_slots.generation_of(e))
+    pub(crate) fn ekey(&self, e: Eid) -> EdgeKey {
+        e.key(self.e_slots.generation_of(e.raw()))
     }
 
     #[inline]
-    pub(crate) fn fkey(&self, f: u32) -> FaceKey {
-        FaceKey::new(f, self.f_slots.generation_of(f))
+    pub(crate) fn fkey(&self, f: Fid) -> FaceKey {
+        f.key(self.f_slots.generation_of(f.raw()))
     }
 
-    // ----- raw navigation (no checks; internal links are trusted) -------------
+    // ----- live slots, typed, in slot order -----------------------------------
 
+    /// The live vertex slots.
     #[inline]
-    pub(crate) fn origin_of(&self, h: u32) -> u32 {
-        self.he[h as usize].origin
+    pub(crate) fn vids(&self) -> impl Iterator<Item = Vid> + '_ {
+        self.v_slots.live_indices().map(Vid::new)
     }
 
+    /// The live edge slots.
     #[inline]
-    pub(crate) fn dest_of(&self, h: u32) -> u32 {
-        self.he[(h ^ 1) as usize].origin
+    pub(crate) fn eids(&self) -> impl Iterator<Item = Eid> + '_ {
+        self.e_slots.live_indices().map(Eid::new)
     }
 
+    /// The live half-edge slots (twins adjacent).
     #[inline]
-    pub(crate) fn next_of(&self, h: u32) -> u32 {
-        self.he[h as usize].next
+    pub(crate) fn hids(&self) -> impl Iterator<Item = Hid> + '_ {
+        self.eids().flat_map(Eid::halfedges)
     }
 
+    /// The live face slots, holes included.
     #[inline]
-    pub(crate) fn face_of(&self, h: u32) -> u32 {
-        self.he[h as usize].face
+    pub(crate) fn fids(&self) -> impl Iterator<Item = Fid> + '_ {
+        self.f_slots.live_indices().map(Fid::new)
+    }
+
+    // ----- navigation (no checks; internal links are trusted) -----------------
+
+    /// The vertex `h` leaves.
+    #[inline]
+    pub(crate) fn origin(&self, h: Hid) -> Vid {
+        self.he[h].origin
+    }
+
+    /// The vertex `h` enters.
+    #[inline]
+    pub(crate) fn dest(&self, h: Hid) -> Vid {
+        self.he[h.twin()].origin
+    }
+
+    /// The half-edge after `h` in its face.
+    #[inline]
+    pub(crate) fn next(&self, h: Hid) -> Hid {
+        self.he[h].next
+    }
+
+    /// The face (or hole) left of `h`.
+    #[inline]
+    pub(crate) fn face_of(&self, h: Hid) -> Fid {
+        self.he[h].face
     }
 
     /// The half-edge before `h` in its face, found by turning around
-    /// `origin(h)`: O(degree of that vertex).
+    /// `origin(h)`: O(degree of that vertex). [`Hid::NONE`] if a corrupted
+    /// ring never comes back.
     #[inline]
-    pub(crate) fn prev_of(&self, h: u32) -> u32 {
+    pub(crate) fn prev(&self, h: Hid) -> Hid {
         let mut o = h;
         // Bounded: the ring around a vertex has at most 2E half-edges.
         let mut budget = self.he.len();
         loop {
-            let t = o ^ 1;
-            let n = self.he[t as usize].next;
+            let t = o.twin();
+            let n = self.he[t].next;
             if n == h {
                 return t;
             }
             o = n;
             budget -= 1;
             if budget == 0 {
-                return NONE;
+                return Hid::NONE;
             }
         }
     }
 
+    /// Whether face slot `f` is a hole.
     #[inline]
-    pub(crate) fn is_hole_raw(&self, f: u32) -> bool {
-        self.f_halfedge[f as usize] & HOLE_BIT != 0
+    pub(crate) fn is_hole(&self, f: Fid) -> bool {
+        self.f_halfedge[f].is_hole()
     }
 
+    /// The half-edge face slot `f` names.
     #[inline]
-    pub(crate) fn face_halfedge_raw(&self, f: u32) -> u32 {
-        self.f_halfedge[f as usize] & !HOLE_BIT
+    pub(crate) fn face_halfedge(&self, f: Fid) -> Hid {
+        self.f_halfedge[f].halfedge()
     }
 
     /// Whether half-edge `h` lies in a hole.
     #[inline]
-    pub(crate) fn in_hole_raw(&self, h: u32) -> bool {
-        self.is_hole_raw(self.he[h as usize].face)
+    pub(crate) fn in_hole(&self, h: Hid) -> bool {
+        self.is_hole(self.he[h].face)
+    }
+
+    /// Whether a hole touches vertex `v`: O(1), by rule 11 (a vertex that
+    /// touches a hole names an outgoing half-edge that lies in one).
+    #[inline]
+    pub(crate) fn on_boundary(&self, v: Vid) -> bool {
+        self.in_hole(self.v_halfedge[v])
+    }
+
+    /// Re-establish rule 11 at `v` after an edit that may have changed which
+    /// of its half-edges lie in holes: keep its half-edge if that lies in a
+    /// hole, else turn around `v` for one that does. O(1) when it already
+    /// points into a hole, else O(degree of `v`).
+    pub(crate) fn point_at_hole(&mut self, v: Vid) {
+        if self.on_boundary(v) {
+            return;
+        }
+        if let Some(h) = self.outgoing(v).find(|&h| self.in_hole(h)) {
+            self.v_halfedge[v] = h;
+        }
+    }
+
+    /// Re-establish rule 11 for every vertex: O(half-edges). Robust to any
+    /// links (a mesh being deserialized or raw-edited, not yet validated):
+    /// it reads only in-range slots, and moves a vertex's half-edge only
+    /// from one that leaves the vertex but lies in no hole to one that
+    /// leaves it and lies in a hole, so every other broken rule is left for
+    /// [`validate`](Mesh::validate) to report.
+    pub(crate) fn point_all_at_holes(&mut self) {
+        for h in self.hids().collect::<Vec<_>>() {
+            let r = self.he[h];
+            let hole = self.f_halfedge.get(r.face).is_some_and(|l| l.is_hole())
+                && self.f_slots.is_live(r.face.index());
+            if !hole || !self.v_slots.is_live(r.origin.index()) {
+                continue;
+            }
+            let Some(&cur) = self.v_halfedge.get(r.origin) else {
+                continue;
+            };
+            let cur_ok = self.he.get(cur).is_some_and(|c| {
+                c.origin == r.origin
+                    && self.e_slots.is_live(cur.edge().index())
+                    && !self.f_halfedge.get(c.face).is_some_and(|l| l.is_hole())
+            });
+            if cur_ok {
+                self.v_halfedge[r.origin] = h;
+            }
+        }
     }
 
     // ----- allocation (internal; columns follow every slot) -------------------
 
     /// A new vertex slot with no links yet. Columns grow; values are set by
     /// the caller's rule.
-    pub(crate) fn alloc_vertex(&mut self) -> u32 {
+    // Inlined: measured (instruction counts of poke_face) to matter.
+    #[inline(always)]
+    pub(crate) fn alloc_vertex(&mut self) -> Vid {
         let (i, _, is_new) = self.v_slots.alloc();
+        let v = Vid::new(i);
         if is_new {
-            self.v_halfedge.push(NONE);
+            self.v_halfedge.push(Hid::NONE);
         } else {
-            self.v_halfedge[i as usize] = NONE;
+            self.v_halfedge[v] = Hid::NONE;
         }
         self.attrs.vertex.ensure_len(self.v_slots.slot_count());
-        i
+        v
     }
 
     /// A new edge slot (two half-edges) with no links yet.
-    pub(crate) fn alloc_edge(&mut self) -> u32 {
-        let (e, _, is_new) = self.e_slots.alloc();
+    pub(crate) fn alloc_edge(&mut self) -> Eid {
+        let (i, _, is_new) = self.e_slots.alloc();
+        let e = Eid::new(i);
         if is_new {
             self.he.push(HalfedgeRecord::VACANT);
             self.he.push(HalfedgeRecord::VACANT);
         } else {
-            self.he[2 * e as usize] = HalfedgeRecord::VACANT;
-            self.he[2 * e as usize + 1] = HalfedgeRecord::VACANT;
+            for h in e.halfedges() {
+                self.he[h] = HalfedgeRecord::VACANT;
+            }
         }
-        self.attrs.edge.ensure_len(self.e_slots.slot_count());
-        self.attrs
-            .halfedge
-            .ensure_len(2 * self.e_slots.slot_count());
+        let slots = self.e_slots.slot_count();
+        self.attrs.edge.ensure_len(slots);
+        self.attrs.halfedge.ensure_len(Eid::halfedge_slots(slots));
         e
     }
 
     /// A new face slot (a hole if `hole`) with no links yet.
-    pub(crate) fn alloc_face(&mut self, hole: bool) -> u32 {
-        let (f, _, is_new) = self.f_slots.alloc();
-        let link = if hole {
-            HOLE_BIT | (NONE >> 1)
-        } else {
-            NONE >> 1
-        };
+    // Inlined: measured (instruction counts of poke_face) to matter.
+    #[inline(always)]
+    pub(crate) fn alloc_face(&mut self, hole: bool) -> Fid {
+        let (i, _, is_new) = self.f_slots.alloc();
+        let f = Fid::new(i);
+        let link = FaceLink::unset(hole);
         if is_new {
             self.f_halfedge.push(link);
         } else {
-            self.f_halfedge[f as usize] = link;
+            self.f_halfedge[f] = link;
         }
         if hole {
             self.holes += 1;
@@ -441,37 +500,37 @@ impl Mesh {
     }
 
     /// Remove a vertex slot and its attribute values.
-    pub(crate) fn free_vertex(&mut self, v: u32) {
-        self.attrs.vertex.clear(v as usize);
-        self.v_halfedge[v as usize] = NONE;
-        self.v_slots.free(v);
+    pub(crate) fn free_vertex(&mut self, v: Vid) {
+        self.attrs.vertex.clear(v.index());
+        self.v_halfedge[v] = Hid::NONE;
+        self.v_slots.free(v.raw());
     }
 
     /// Remove an edge slot, both half-edges and their attribute values.
-    pub(crate) fn free_edge(&mut self, e: u32) {
-        self.attrs.edge.clear(e as usize);
-        self.attrs.halfedge.clear(2 * e as usize);
-        self.attrs.halfedge.clear(2 * e as usize + 1);
-        self.he[2 * e as usize] = HalfedgeRecord::VACANT;
-        self.he[2 * e as usize + 1] = HalfedgeRecord::VACANT;
-        self.e_slots.free(e);
+    pub(crate) fn free_edge(&mut self, e: Eid) {
+        self.attrs.edge.clear(e.index());
+        for h in e.halfedges() {
+            self.attrs.halfedge.clear(h.index());
+            self.he[h] = HalfedgeRecord::VACANT;
+        }
+        self.e_slots.free(e.raw());
     }
 
     /// Remove a face slot and its attribute values.
-    pub(crate) fn free_face(&mut self, f: u32) {
-        if self.is_hole_raw(f) {
+    pub(crate) fn free_face(&mut self, f: Fid) {
+        if self.is_hole(f) {
             self.holes -= 1;
         }
-        self.attrs.face.clear(f as usize);
-        self.f_halfedge[f as usize] = NONE >> 1;
-        self.f_slots.free(f);
+        self.attrs.face.clear(f.index());
+        self.f_halfedge[f] = FaceLink::unset(false);
+        self.f_slots.free(f.raw());
     }
 
     /// Set or clear a face's hole flag.
-    pub(crate) fn set_hole_raw(&mut self, f: u32, hole: bool) {
-        let was = self.is_hole_raw(f);
-        if was != hole {
-            self.f_halfedge[f as usize] ^= HOLE_BIT;
+    pub(crate) fn set_hole(&mut self, f: Fid, hole: bool) {
+        let link = self.f_halfedge[f];
+        if link.is_hole() != hole {
+            self.f_halfedge[f] = link.with_hole(hole);
             if hole {
                 self.holes += 1;
             } else {
@@ -496,7 +555,7 @@ impl Mesh {
         let i = self.check_vertex(v)?;
         self.attrs
             .positions()
-            .and_then(|c| c.get(i as usize).copied())
+            .and_then(|c| c.get(i.index()).copied())
             .ok_or(Error::NoPositions)
     }
 
@@ -514,7 +573,7 @@ impl Mesh {
             });
         }
         let col = self.attrs.positions_mut().ok_or(Error::NoPositions)?;
-        col.set(i as usize, Some(p));
+        col.set(i.index(), Some(p));
         Ok(())
     }
 

@@ -26,11 +26,12 @@ use serde::de::Error as _;
 use serde::ser::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::attr::registry::make_column;
-use crate::attr::{Column, Columns, Dynamic, ErasedColumn, Value, ValueType, POSITION};
+use crate::attr::registry::{column_type_key, make_column};
 use crate::keys::ElementKind;
-use crate::mesh::{HalfedgeRecord, Mesh, HOLE_BIT};
+use crate::layout::{Eid, FaceLink, HalfedgeRecord, Hid, IdVec, MAX_HALFEDGE_SLOTS};
+use crate::mesh::Mesh;
 use crate::slots::Slots;
+use crate::store::{Column, Columns, Dynamic, ErasedColumn, Value, ValueType, POSITION};
 
 /// One attribute column as serialized.
 #[derive(Serialize, Deserialize)]
@@ -49,19 +50,31 @@ struct ColumnData {
 /// The serialized form of a mesh.
 #[derive(Serialize, Deserialize)]
 struct MeshData {
-    vertex_halfedge: Vec<u32>,
+    vertex_halfedge: Vec<Hid>,
     vertex_generations: Vec<u32>,
     halfedges: Vec<HalfedgeRecord>,
     edge_generations: Vec<u32>,
     /// A face's half-edge, top bit set for holes.
-    face_halfedge: Vec<u32>,
+    face_halfedge: Vec<FaceLink>,
     face_generations: Vec<u32>,
+    /// Each arena's base generation (absent in meshes saved before it
+    /// existed: 1).
+    #[serde(default = "first_base")]
+    vertex_base: u32,
+    #[serde(default = "first_base")]
+    edge_base: u32,
+    #[serde(default = "first_base")]
+    face_base: u32,
     /// Index of the position column among the vertex columns.
     position: Option<usize>,
     vertex_attrs: Vec<ColumnData>,
     halfedge_attrs: Vec<ColumnData>,
     edge_attrs: Vec<ColumnData>,
     face_attrs: Vec<ColumnData>,
+}
+
+fn first_base() -> u32 {
+    Slots::FIRST_BASE
 }
 
 fn columns_out(
@@ -85,7 +98,7 @@ fn columns_out(
                 .collect();
             Ok(ColumnData {
                 name: name.clone(),
-                rust_type: meta.value_type.is_none().then(|| c.type_key()),
+                rust_type: meta.value_type.is_none().then(|| column_type_key(&**c)),
                 dynamic: meta.value_type,
                 values,
             })
@@ -96,16 +109,19 @@ fn columns_out(
 impl Serialize for Mesh {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let v_live = |i: usize| self.v_slots.is_live(i);
-        let h_live = |i: usize| self.e_slots.is_live(i / 2);
+        let h_live = |i: usize| self.e_slots.is_live(Hid::new(i as u32).edge().index());
         let e_live = |i: usize| self.e_slots.is_live(i);
         let f_live = |i: usize| self.f_slots.is_live(i);
         let data = MeshData {
-            vertex_halfedge: self.v_halfedge.clone(),
+            vertex_halfedge: self.v_halfedge.as_slice().to_vec(),
             vertex_generations: self.v_slots.generations().to_vec(),
-            halfedges: self.he.clone(),
+            halfedges: self.he.as_slice().to_vec(),
             edge_generations: self.e_slots.generations().to_vec(),
-            face_halfedge: self.f_halfedge.clone(),
+            face_halfedge: self.f_halfedge.as_slice().to_vec(),
             face_generations: self.f_slots.generations().to_vec(),
+            vertex_base: self.v_slots.base(),
+            edge_base: self.e_slots.base(),
+            face_base: self.f_slots.base(),
             position: self.attrs.position,
             vertex_attrs: columns_out(self, ElementKind::Vertex, v_live)
                 .map_err(S::Error::custom)?,
@@ -180,51 +196,66 @@ fn mesh_from(data: MeshData) -> Result<Mesh, String> {
         data.face_generations.len(),
     );
     if data.vertex_halfedge.len() != nv
-        || data.halfedges.len() != 2 * ne
+        || data.halfedges.len() != Eid::halfedge_slots(ne)
         || data.face_halfedge.len() != nf
     {
         return Err("link arrays and generations disagree in length".into());
     }
-    if nv > u32::MAX as usize / 2 || 2 * ne > u32::MAX as usize / 2 || nf > (HOLE_BIT - 1) as usize
+    if nv > MAX_HALFEDGE_SLOTS
+        || Eid::halfedge_slots(ne) > MAX_HALFEDGE_SLOTS
+        || nf > MAX_HALFEDGE_SLOTS
     {
         return Err("too many slots for 32-bit links".into());
     }
-    let f_slots = Slots::from_generations(data.face_generations);
+    let slots = |kind: &str, generations: Vec<u32>, base: u32| {
+        Slots::from_generations(generations, base).map_err(|e| format!("{kind} {e}"))
+    };
+    let v_slots = slots("vertex", data.vertex_generations, data.vertex_base)?;
+    let e_slots = slots("edge", data.edge_generations, data.edge_base)?;
+    let f_slots = slots("face", data.face_generations, data.face_base)?;
     let holes = (0..nf)
-        .filter(|&f| f_slots.is_live(f) && data.face_halfedge[f] & HOLE_BIT != 0)
+        .filter(|&f| f_slots.is_live(f) && data.face_halfedge[f].is_hole())
         .count();
     let mut mesh = Mesh {
-        v_halfedge: data.vertex_halfedge,
-        v_slots: Slots::from_generations(data.vertex_generations),
-        he: data.halfedges,
-        e_slots: Slots::from_generations(data.edge_generations),
-        f_halfedge: data.face_halfedge,
+        v_halfedge: IdVec::from_vec(data.vertex_halfedge),
+        v_slots,
+        he: IdVec::from_vec(data.halfedges),
+        e_slots,
+        f_halfedge: IdVec::from_vec(data.face_halfedge),
         f_slots,
         holes,
         attrs: Default::default(),
     };
     mesh.attrs.vertex = columns_in(ElementKind::Vertex, data.vertex_attrs, nv)?;
-    mesh.attrs.halfedge = columns_in(ElementKind::Halfedge, data.halfedge_attrs, 2 * ne)?;
+    mesh.attrs.halfedge = columns_in(
+        ElementKind::Halfedge,
+        data.halfedge_attrs,
+        Eid::halfedge_slots(ne),
+    )?;
     mesh.attrs.edge = columns_in(ElementKind::Edge, data.edge_attrs, ne)?;
     mesh.attrs.face = columns_in(ElementKind::Face, data.face_attrs, nf)?;
     if let Some(p) = data.position {
         let col = mesh
             .attrs
             .vertex
-            .typed::<[f64; 3], crate::attr::Interpolate>(p)
+            .typed::<[f64; 3], crate::store::rules::Interpolate>(p)
             .ok_or("the position column is missing or not [f64; 3] with Interpolate")?;
         if mesh.attrs.vertex.cols[p].0 != POSITION {
             return Err(format!("the position column must be named {POSITION:?}"));
         }
-        for v in mesh.v_slots.live_indices() {
-            if let Some(x) = col.get(v as usize) {
+        for v in mesh.vids() {
+            if let Some(x) = col.get(v.index()) {
                 if !x.iter().all(|c| c.is_finite()) {
+                    let v = v.raw();
                     return Err(format!("vertex slot {v} has the non-finite position {x:?}"));
                 }
             }
         }
         mesh.attrs.position = Some(p);
     }
+    // Meshes saved before rule 11 existed (or by hand) may name an interior
+    // half-edge at a boundary vertex: point them into the hole first.
+    mesh.point_all_at_holes();
     mesh.validate().map_err(|e| e.to_string())?;
     Ok(mesh)
 }
@@ -310,6 +341,25 @@ mod tests {
         let mut bad = json;
         bad["position"] = serde_json::json!(5);
         assert!(serde_json::from_value::<Mesh>(bad).is_err());
+    }
+
+    /// A mesh saved before rule 11 (a boundary vertex naming an interior
+    /// half-edge) loads, and comes back pointing into its hole.
+    #[test]
+    fn boundary_vertices_are_pointed_into_holes_on_load() {
+        let mesh = Mesh::from_faces(4, &[[0u32, 1, 2], [0, 2, 3]]).unwrap();
+        let v = mesh.vertices().next().unwrap();
+        let inner = mesh
+            .vertex(v)
+            .unwrap()
+            .outgoing()
+            .find(|&h| !mesh.halfedge(h).unwrap().is_boundary())
+            .unwrap();
+        let mut json = serde_json::to_value(&mesh).unwrap();
+        json["vertex_halfedge"][v.index()] = serde_json::json!(inner.index());
+        let back: Mesh = serde_json::from_value(json).unwrap();
+        back.validate().unwrap();
+        assert!(back.vertex(v).unwrap().halfedge().is_boundary());
     }
 
     #[test]

@@ -12,6 +12,7 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
+use crate::layout::IdVec;
 use crate::mesh::Mesh;
 
 /// Figures describing a mesh, from [`Mesh::stats`].
@@ -139,17 +140,14 @@ impl Mesh {
     /// ```
     pub fn stats(&self) -> Stats {
         let mut face_degrees = BTreeMap::new();
-        for f in self.f_slots.live_indices() {
-            if !self.is_hole_raw(f) {
-                *face_degrees
-                    .entry(self.face_loop_raw(f).count())
-                    .or_insert(0) += 1;
+        for f in self.fids() {
+            if !self.is_hole(f) {
+                *face_degrees.entry(self.face_loop(f).count()).or_insert(0) += 1;
             }
         }
         let boundary_edges = self
-            .e_slots
-            .live_indices()
-            .filter(|&e| self.in_hole_raw(2 * e) || self.in_hole_raw(2 * e + 1))
+            .eids()
+            .filter(|e| e.halfedges().iter().any(|&h| self.in_hole(h)))
             .count();
         let components = crate::traverse::components(self).count();
         let euler_characteristic = self.euler_characteristic();
@@ -179,10 +177,7 @@ impl Mesh {
     /// ```
     pub fn bounding_box(&self) -> Option<[[f64; 3]; 2]> {
         let column = self.position_slots()?;
-        let mut live = self
-            .v_slots
-            .live_indices()
-            .filter_map(|v| column.get(v as usize));
+        let mut live = self.vids().filter_map(|v| column.get(v.index()));
         let first = *live.next()?;
         Some(live.fold([first, first], |[lo, hi], p| {
             [
@@ -220,15 +215,15 @@ impl Mesh {
                 ..ComponentStats::default()
             })
             .collect();
-        for e in self.e_slots.live_indices() {
-            let a = self.vkey(self.origin_of(2 * e));
+        for e in self.eids() {
+            let a = self.vkey(self.origin(e.halfedge(0)));
             if let Some(c) = parts.of_vertex(a).and_then(|c| out.get_mut(c)) {
                 c.edges += 1;
             }
         }
-        for f in self.f_slots.live_indices() {
+        for f in self.fids() {
             if let Some(c) = parts.of_face(self.fkey(f)).and_then(|c| out.get_mut(c)) {
-                if self.is_hole_raw(f) {
+                if self.is_hole(f) {
                     c.holes += 1;
                 } else {
                     c.faces += 1;
@@ -245,17 +240,15 @@ impl Mesh {
     /// Number of cycles among the half-edges that lie in holes, following
     /// `next`.
     fn boundary_loop_count(&self) -> usize {
-        let mut seen = vec![false; self.he.len()];
+        let mut seen = IdVec::filled(false, self.he.len());
         let mut loops = 0;
-        for e in self.e_slots.live_indices() {
-            for h in [2 * e, 2 * e + 1] {
-                if seen[h as usize] || !self.in_hole_raw(h) {
-                    continue;
-                }
-                loops += 1;
-                for g in crate::circulate::FaceHalfedges::from_halfedge(self, h) {
-                    seen[g as usize] = true;
-                }
+        for h in self.hids() {
+            if seen[h] || !self.in_hole(h) {
+                continue;
+            }
+            loops += 1;
+            for g in crate::circulate::FaceHalfedges::from_halfedge(self, h) {
+                seen[g] = true;
             }
         }
         loops

@@ -27,54 +27,17 @@
 //! 9. **No dangling edges.** Every edge has a face (not a hole) on at least
 //!    one side.
 //! 10. **No multi-edges.** No two edges join the same two vertices.
+//! 11. **Boundary vertices point into a hole.** A vertex with an outgoing
+//!     half-edge in a hole names such a half-edge (any of them where several
+//!     holes meet), so "is this vertex on the boundary" is one look-up
+//!     ([`VertexView::is_boundary`](crate::VertexView::is_boundary)), as in
+//!     pmp-library. The operators, the builder and deserialization keep it;
+//!     [`RawEdit::finish`](crate::link::RawEdit::finish) re-establishes it.
 
-use std::fmt;
-
+pub use crate::error::ValidationError;
 use crate::keys::AnyKey;
-use crate::mesh::{Mesh, NONE};
-
-/// A broken structural rule: its number (see the [module docs](self)), the
-/// element where it broke and what was found.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ValidationError {
-    /// The rule's number, 1 to 10.
-    pub rule: u8,
-    /// The element where the rule broke, when one can be named.
-    pub key: Option<AnyKey>,
-    /// What was found.
-    pub detail: String,
-}
-
-impl ValidationError {
-    /// The rule's short name.
-    pub fn rule_name(&self) -> &'static str {
-        match self.rule {
-            1 => "storage",
-            2 => "links in range",
-            3 => "no loops",
-            4 => "next is a permutation",
-            5 => "faces are cycles",
-            6 => "face links",
-            7 => "face size",
-            8 => "vertex links",
-            9 => "no dangling edges",
-            10 => "no multi-edges",
-            _ => "unknown rule",
-        }
-    }
-}
-
-impl fmt::Display for ValidationError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "rule {} ({}) broken", self.rule, self.rule_name())?;
-        if let Some(k) = &self.key {
-            write!(f, " at {k}")?;
-        }
-        write!(f, ": {}", self.detail)
-    }
-}
-
-impl std::error::Error for ValidationError {}
+use crate::layout::{Eid, IdVec, Vid};
+use crate::mesh::Mesh;
 
 fn broken(rule: u8, key: Option<AnyKey>, detail: impl Into<String>) -> ValidationError {
     ValidationError {
@@ -108,7 +71,10 @@ impl Mesh {
 
     fn check_storage(&self) -> Result<(), ValidationError> {
         let [nv, nh, ne, nf] = self.slot_counts();
-        if self.v_halfedge.len() != nv || nh != 2 * ne || self.f_halfedge.len() != nf {
+        if self.v_halfedge.len() != nv
+            || nh != Eid::halfedge_slots(ne)
+            || self.f_halfedge.len() != nf
+        {
             return Err(broken(
                 1,
                 None,
@@ -169,44 +135,45 @@ impl Mesh {
 
     fn check_halfedges(&self) -> Result<(), ValidationError> {
         let nh = self.he.len();
-        let mut is_next_of = vec![0u8; nh];
-        for e in self.e_slots.live_indices() {
-            for h in [2 * e, 2 * e + 1] {
+        let mut is_next_of = IdVec::filled(0u8, nh);
+        for e in self.eids() {
+            for h in e.halfedges() {
                 let key = Some(AnyKey::Halfedge(self.hkey(h)));
-                let r = self.he[h as usize];
-                if !self.v_slots.is_live(r.origin as usize) {
+                let r = self.he[h];
+                if !self.v_slots.is_live(r.origin.index()) {
                     return Err(broken(
                         2,
                         key,
-                        format!("origin {} is not a live vertex", r.origin),
+                        format!("origin {} is not a live vertex", r.origin.raw()),
                     ));
                 }
-                if (r.next as usize) >= nh || !self.e_slots.is_live((r.next >> 1) as usize) {
+                if !self.he.contains(r.next) || !self.e_slots.is_live(r.next.edge().index()) {
                     return Err(broken(
                         2,
                         key,
-                        format!("next {} is not a live half-edge", r.next),
+                        format!("next {} is not a live half-edge", r.next.raw()),
                     ));
                 }
-                if !self.f_slots.is_live(r.face as usize) {
+                if !self.f_slots.is_live(r.face.index()) {
                     return Err(broken(
                         2,
                         key,
-                        format!("face {} is not a live face", r.face),
+                        format!("face {} is not a live face", r.face.raw()),
                     ));
                 }
-                let c = &mut is_next_of[r.next as usize];
+                let c = &mut is_next_of[r.next];
                 *c = c.saturating_add(1);
             }
-            let (a, b) = (self.origin_of(2 * e), self.origin_of(2 * e + 1));
+            let [h, t] = e.halfedges();
+            let (a, b) = (self.origin(h), self.origin(t));
             if a == b {
                 return Err(broken(
                     3,
                     Some(AnyKey::Edge(self.ekey(e))),
-                    format!("both half-edges leave vertex {a}"),
+                    format!("both half-edges leave vertex {}", a.raw()),
                 ));
             }
-            if self.in_hole_raw(2 * e) && self.in_hole_raw(2 * e + 1) {
+            if self.in_hole(h) && self.in_hole(t) {
                 return Err(broken(
                     9,
                     Some(AnyKey::Edge(self.ekey(e))),
@@ -214,69 +181,63 @@ impl Mesh {
                 ));
             }
         }
-        for e in self.e_slots.live_indices() {
-            for h in [2 * e, 2 * e + 1] {
-                let key = Some(AnyKey::Halfedge(self.hkey(h)));
-                if is_next_of[h as usize] != 1 {
-                    return Err(broken(
-                        4,
-                        key,
-                        format!("is the next of {} half-edges", is_next_of[h as usize]),
-                    ));
-                }
-                let n = self.next_of(h);
-                if self.face_of(n) != self.face_of(h) {
-                    return Err(broken(5, key, "next half-edge lies in another face"));
-                }
-                if self.origin_of(n) != self.dest_of(h) {
-                    return Err(broken(
-                        5,
-                        key,
-                        "next half-edge does not leave this one's end",
-                    ));
-                }
+        for h in self.hids() {
+            let key = Some(AnyKey::Halfedge(self.hkey(h)));
+            if is_next_of[h] != 1 {
+                return Err(broken(
+                    4,
+                    key,
+                    format!("is the next of {} half-edges", is_next_of[h]),
+                ));
+            }
+            let n = self.next(h);
+            if self.face_of(n) != self.face_of(h) {
+                return Err(broken(5, key, "next half-edge lies in another face"));
+            }
+            if self.origin(n) != self.dest(h) {
+                return Err(broken(
+                    5,
+                    key,
+                    "next half-edge does not leave this one's end",
+                ));
             }
         }
         Ok(())
     }
 
     fn check_faces(&self) -> Result<(), ValidationError> {
-        let mut per_face = vec![0u32; self.f_halfedge.len()];
-        for e in self.e_slots.live_indices() {
-            per_face[self.face_of(2 * e) as usize] += 1;
-            per_face[self.face_of(2 * e + 1) as usize] += 1;
+        let mut per_face = IdVec::filled(0u32, self.f_halfedge.len());
+        for h in self.hids() {
+            per_face[self.face_of(h)] += 1;
         }
-        let mut corners: Vec<u32> = Vec::new();
-        for f in self.f_slots.live_indices() {
+        let mut corners: Vec<Vid> = Vec::new();
+        for f in self.fids() {
             let key = Some(AnyKey::Face(self.fkey(f)));
-            let h = self.face_halfedge_raw(f);
-            if (h as usize) >= self.he.len()
-                || !self.e_slots.is_live((h >> 1) as usize)
+            let h = self.face_halfedge(f);
+            if !self.he.contains(h)
+                || !self.e_slots.is_live(h.edge().index())
                 || self.face_of(h) != f
             {
                 return Err(broken(
                     6,
                     key,
-                    format!("names half-edge {h}, which is not its own"),
+                    format!("names half-edge {}, which is not its own", h.raw()),
                 ));
             }
-            let len = self.face_loop_raw(f).count();
-            if len != per_face[f as usize] as usize {
+            let len = self.face_loop(f).count();
+            if len != per_face[f] as usize {
                 return Err(broken(
                     6,
                     key,
-                    format!(
-                        "its cycle has {len} half-edges but {} name it",
-                        per_face[f as usize]
-                    ),
+                    format!("its cycle has {len} half-edges but {} name it", per_face[f]),
                 ));
             }
-            if !self.is_hole_raw(f) {
+            if !self.is_hole(f) {
                 if len < 3 {
                     return Err(broken(7, key, format!("has {len} sides")));
                 }
                 corners.clear();
-                corners.extend(self.face_loop_raw(f).map(|h| self.origin_of(h)));
+                corners.extend(self.face_loop(f).map(|h| self.origin(h)));
                 corners.sort_unstable();
                 if let Some(w) = corners.windows(2).find(|w| w[0] == w[1]) {
                     return Err(broken(
@@ -291,41 +252,42 @@ impl Mesh {
     }
 
     fn check_vertices(&self) -> Result<(), ValidationError> {
-        let mut out_degree = vec![0u32; self.v_halfedge.len()];
-        for e in self.e_slots.live_indices() {
-            out_degree[self.origin_of(2 * e) as usize] += 1;
-            out_degree[self.origin_of(2 * e + 1) as usize] += 1;
+        let mut out_degree = IdVec::filled(0u32, self.v_halfedge.len());
+        for h in self.hids() {
+            out_degree[self.origin(h)] += 1;
         }
-        let mut ends: Vec<u32> = Vec::new();
-        for v in self.v_slots.live_indices() {
+        let mut ends: Vec<Vid> = Vec::new();
+        for v in self.vids() {
             let key = Some(AnyKey::Vertex(self.vkey(v)));
-            let h = self.v_halfedge[v as usize];
-            if h == NONE
-                || (h as usize) >= self.he.len()
-                || !self.e_slots.is_live((h >> 1) as usize)
-                || self.origin_of(h) != v
+            let h = self.v_halfedge[v];
+            if h.is_none()
+                || !self.he.contains(h)
+                || !self.e_slots.is_live(h.edge().index())
+                || self.origin(h) != v
             {
                 return Err(broken(8, key, "does not name a half-edge leaving it"));
             }
             ends.clear();
-            for o in self.outgoing_raw(v) {
-                if self.origin_of(o) != v {
+            let mut touches_hole = false;
+            for o in self.outgoing(v) {
+                if self.origin(o) != v {
                     return Err(broken(
                         8,
                         key,
                         "its ring reaches a half-edge leaving elsewhere",
                     ));
                 }
-                ends.push(self.dest_of(o));
+                touches_hole |= self.in_hole(o);
+                ends.push(self.dest(o));
             }
-            if ends.len() != out_degree[v as usize] as usize {
+            if ends.len() != out_degree[v] as usize {
                 return Err(broken(
                     8,
                     key,
                     format!(
                         "its ring visits {} of the {} half-edges leaving it",
                         ends.len(),
-                        out_degree[v as usize]
+                        out_degree[v]
                     ),
                 ));
             }
@@ -335,6 +297,16 @@ impl Mesh {
                     10,
                     key,
                     format!("two edges join it to {}", self.vkey(w[0])),
+                ));
+            }
+            if touches_hole && !self.in_hole(h) {
+                return Err(broken(
+                    11,
+                    key,
+                    format!(
+                        "a hole touches it but it names {}, which lies in no hole",
+                        self.hkey(h)
+                    ),
                 ));
             }
         }

@@ -22,34 +22,35 @@
 use crate::circulate::{FaceHalfedges, VertexNeighbors, VertexOutgoing};
 use crate::error::Result;
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
+use crate::layout::{Eid, Fid, Hid, Vid};
 use crate::mesh::Mesh;
 
 /// A checked half-edge.
 #[derive(Copy, Clone)]
 pub struct HalfedgeView<'m> {
     pub(crate) mesh: &'m Mesh,
-    pub(crate) h: u32,
+    pub(crate) h: Hid,
 }
 
 /// A checked vertex.
 #[derive(Copy, Clone)]
 pub struct VertexView<'m> {
     pub(crate) mesh: &'m Mesh,
-    pub(crate) v: u32,
+    pub(crate) v: Vid,
 }
 
 /// A checked face or hole.
 #[derive(Copy, Clone)]
 pub struct FaceView<'m> {
     pub(crate) mesh: &'m Mesh,
-    pub(crate) f: u32,
+    pub(crate) f: Fid,
 }
 
 /// A checked edge.
 #[derive(Copy, Clone)]
 pub struct EdgeView<'m> {
     pub(crate) mesh: &'m Mesh,
-    pub(crate) e: u32,
+    pub(crate) e: Eid,
 }
 
 impl Mesh {
@@ -121,14 +122,14 @@ impl Mesh {
         Ok(self.find_halfedge_raw(a, b).map(|h| self.hkey(h)))
     }
 
-    pub(crate) fn find_halfedge_raw(&self, a: u32, b: u32) -> Option<u32> {
-        VertexOutgoing::new(self, a).find(|&h| self.dest_of(h) == b)
+    pub(crate) fn find_halfedge_raw(&self, a: Vid, b: Vid) -> Option<Hid> {
+        VertexOutgoing::new(self, a).find(|&h| self.dest(h) == b)
     }
 }
 
 impl<'m> HalfedgeView<'m> {
     #[inline]
-    fn at(self, h: u32) -> HalfedgeView<'m> {
+    fn at(self, h: Hid) -> HalfedgeView<'m> {
         HalfedgeView { mesh: self.mesh, h }
     }
 
@@ -141,19 +142,19 @@ impl<'m> HalfedgeView<'m> {
     /// The opposite half-edge of the same edge.
     #[inline]
     pub fn twin(self) -> HalfedgeView<'m> {
-        self.at(self.h ^ 1)
+        self.at(self.h.twin())
     }
 
     /// The next half-edge around the face.
     #[inline]
     pub fn next(self) -> HalfedgeView<'m> {
-        self.at(self.mesh.next_of(self.h))
+        self.at(self.mesh.next(self.h))
     }
 
     /// The previous half-edge around the face. O(degree of the origin).
     #[inline]
     pub fn prev(self) -> HalfedgeView<'m> {
-        self.at(self.mesh.prev_of(self.h))
+        self.at(self.mesh.prev(self.h))
     }
 
     /// The vertex it leaves.
@@ -161,7 +162,7 @@ impl<'m> HalfedgeView<'m> {
     pub fn origin(self) -> VertexView<'m> {
         VertexView {
             mesh: self.mesh,
-            v: self.mesh.origin_of(self.h),
+            v: self.mesh.origin(self.h),
         }
     }
 
@@ -170,7 +171,7 @@ impl<'m> HalfedgeView<'m> {
     pub fn dest(self) -> VertexView<'m> {
         VertexView {
             mesh: self.mesh,
-            v: self.mesh.dest_of(self.h),
+            v: self.mesh.dest(self.h),
         }
     }
 
@@ -188,7 +189,7 @@ impl<'m> HalfedgeView<'m> {
     pub fn edge(self) -> EdgeView<'m> {
         EdgeView {
             mesh: self.mesh,
-            e: self.h >> 1,
+            e: self.h.edge(),
         }
     }
 
@@ -196,7 +197,7 @@ impl<'m> HalfedgeView<'m> {
     /// pmp-library meaning of a boundary half-edge).
     #[inline]
     pub fn is_boundary(self) -> bool {
-        self.mesh.in_hole_raw(self.h)
+        self.mesh.in_hole(self.h)
     }
 
     /// The half-edge turned once clockwise around its origin:
@@ -222,12 +223,12 @@ impl<'m> VertexView<'m> {
     }
 
     /// One outgoing half-edge: the first that [`outgoing`](Self::outgoing)
-    /// yields.
+    /// yields. On a boundary vertex it lies in a hole.
     #[inline]
     pub fn halfedge(self) -> HalfedgeView<'m> {
         HalfedgeView {
             mesh: self.mesh,
-            h: self.mesh.v_halfedge[self.v as usize],
+            h: self.mesh.v_halfedge[self.v],
         }
     }
 
@@ -237,7 +238,7 @@ impl<'m> VertexView<'m> {
         self.mesh
             .attrs
             .positions()
-            .and_then(|c| c.get(self.v as usize).copied())
+            .and_then(|c| c.get(self.v.index()).copied())
     }
 
     /// Outgoing half-edges, clockwise seen from the side face normals point
@@ -255,7 +256,7 @@ impl<'m> VertexView<'m> {
     #[inline]
     pub fn incoming(self) -> impl Iterator<Item = HalfedgeKey> + 'm {
         let m = self.mesh;
-        VertexOutgoing::new(m, self.v).map(move |h| m.hkey(h ^ 1))
+        VertexOutgoing::new(m, self.v).map(move |h| m.hkey(h.twin()))
     }
 
     /// Neighbouring vertices (the ends of the outgoing half-edges), same
@@ -273,7 +274,7 @@ impl<'m> VertexView<'m> {
         let m = self.mesh;
         VertexOutgoing::new(m, self.v)
             .map(move |h| m.face_of(h))
-            .filter(move |&f| !m.is_hole_raw(f))
+            .filter(move |&f| !m.is_hole(f))
             .map(move |f| m.fkey(f))
     }
 
@@ -281,7 +282,7 @@ impl<'m> VertexView<'m> {
     #[inline]
     pub fn edges(self) -> impl Iterator<Item = EdgeKey> + 'm {
         let m = self.mesh;
-        VertexOutgoing::new(m, self.v).map(move |h| m.ekey(h >> 1))
+        VertexOutgoing::new(m, self.v).map(move |h| m.ekey(h.edge()))
     }
 
     /// Number of edges at the vertex.
@@ -290,10 +291,23 @@ impl<'m> VertexView<'m> {
         VertexOutgoing::new(self.mesh, self.v).count()
     }
 
-    /// Whether a hole touches the vertex.
+    /// Whether a hole touches the vertex. O(1): a boundary vertex's
+    /// [`halfedge`](Self::halfedge) lies in a hole (rule 11 of
+    /// [`validate`](crate::validate)).
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::icosahedron();
+    /// let v = mesh.vertices().next().unwrap();
+    /// assert!(!mesh.vertex(v)?.is_boundary());
+    /// let f = mesh.vertex(v)?.faces().next().unwrap();
+    /// mesh.remove_face(f)?;
+    /// assert!(mesh.vertex(v)?.is_boundary());
+    /// assert!(mesh.vertex(v)?.halfedge().is_boundary());
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     #[inline]
     pub fn is_boundary(self) -> bool {
-        VertexOutgoing::new(self.mesh, self.v).any(|h| self.mesh.in_hole_raw(h))
+        self.mesh.on_boundary(self.v)
     }
 }
 
@@ -310,14 +324,14 @@ impl<'m> FaceView<'m> {
     pub fn halfedge(self) -> HalfedgeView<'m> {
         HalfedgeView {
             mesh: self.mesh,
-            h: self.mesh.face_halfedge_raw(self.f),
+            h: self.mesh.face_halfedge(self.f),
         }
     }
 
     /// Whether this is a hole (the outside of a boundary loop).
     #[inline]
     pub fn is_hole(self) -> bool {
-        self.mesh.is_hole_raw(self.f)
+        self.mesh.is_hole(self.f)
     }
 
     /// The half-edges around the face, following `next`: counter-clockwise
@@ -332,14 +346,14 @@ impl<'m> FaceView<'m> {
     #[inline]
     pub fn vertices(self) -> impl Iterator<Item = VertexKey> + 'm {
         let m = self.mesh;
-        FaceHalfedges::new(m, self.f).map(move |h| m.vkey(m.origin_of(h)))
+        FaceHalfedges::new(m, self.f).map(move |h| m.vkey(m.origin(h)))
     }
 
     /// The sides, same order.
     #[inline]
     pub fn edges(self) -> impl Iterator<Item = EdgeKey> + 'm {
         let m = self.mesh;
-        FaceHalfedges::new(m, self.f).map(move |h| m.ekey(h >> 1))
+        FaceHalfedges::new(m, self.f).map(move |h| m.ekey(h.edge()))
     }
 
     /// The faces across each side, same order, holes skipped. A face sharing
@@ -348,8 +362,8 @@ impl<'m> FaceView<'m> {
     pub fn neighbors(self) -> impl Iterator<Item = FaceKey> + 'm {
         let m = self.mesh;
         FaceHalfedges::new(m, self.f)
-            .map(move |h| m.face_of(h ^ 1))
-            .filter(move |&g| !m.is_hole_raw(g))
+            .map(move |h| m.face_of(h.twin()))
+            .filter(move |&g| !m.is_hole(g))
             .map(move |g| m.fkey(g))
     }
 
@@ -372,7 +386,7 @@ impl<'m> EdgeView<'m> {
     pub fn halfedge(self, side: u32) -> HalfedgeView<'m> {
         HalfedgeView {
             mesh: self.mesh,
-            h: 2 * self.e + (side & 1),
+            h: self.e.halfedge(side),
         }
     }
 
@@ -386,17 +400,17 @@ impl<'m> EdgeView<'m> {
     /// The faces on either side, `None` for a hole.
     #[inline]
     pub fn faces(self) -> [Option<FaceKey>; 2] {
-        let side = |s: u32| {
-            let f = self.mesh.face_of(2 * self.e + s);
-            (!self.mesh.is_hole_raw(f)).then(|| self.mesh.fkey(f))
-        };
-        [side(0), side(1)]
+        self.e.halfedges().map(|h| {
+            let f = self.mesh.face_of(h);
+            (!self.mesh.is_hole(f)).then(|| self.mesh.fkey(f))
+        })
     }
 
     /// Whether a hole lies on either side.
     #[inline]
     pub fn is_boundary(self) -> bool {
-        self.mesh.in_hole_raw(2 * self.e) || self.mesh.in_hole_raw(2 * self.e + 1)
+        let [h, t] = self.e.halfedges();
+        self.mesh.in_hole(h) || self.mesh.in_hole(t)
     }
 }
 

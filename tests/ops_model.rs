@@ -323,7 +323,34 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
             (true, true, 0, true, true)
         }
         Op::Compact => {
-            m.compact();
+            // Every key from before is stale or maps to the same element
+            // (same position, same ends); none names another element.
+            let vs: Vec<_> = m.vertices().map(|v| (v, m.position(v).ok())).collect();
+            let hs: Vec<_> = m
+                .halfedges()
+                .map(|h| (h, m.halfedge(h).unwrap().origin().key()))
+                .collect();
+            let fs: Vec<_> = m
+                .faces_and_holes()
+                .map(|f| (f, m.face(f).unwrap().degree()))
+                .collect();
+            let maps = m.compact();
+            for &(v, p) in &vs {
+                let n = maps.vertex(v).expect("a live vertex maps");
+                assert!(!m.contains_vertex(v) || n == v, "{v:?} names {n:?}");
+                assert_eq!(m.position(n).ok(), p);
+            }
+            for &(h, o) in &hs {
+                let n = maps.halfedge(h).expect("a live half-edge maps");
+                assert!(!m.contains_halfedge(h) || n == h, "{h:?} names {n:?}");
+                let origin = m.halfedge(n).unwrap().origin().key();
+                assert_eq!(Some(origin), maps.vertex(o));
+            }
+            for &(f, d) in &fs {
+                let n = maps.face(f).expect("a live face maps");
+                assert!(!m.contains_face(f) || n == f, "{f:?} names {n:?}");
+                assert_eq!(m.face(n).unwrap().degree(), d);
+            }
             (true, true, 0, true, true)
         }
         Op::Extrude(i) => {
@@ -410,6 +437,7 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
         if let Err(e) = m.validate() {
             panic!("{op:?} broke the mesh: {e}");
         }
+        check_boundary_test(m, op);
         assert_eq!(m.euler_characteristic(), chi + dchi, "χ after {op:?}");
         if keep_f {
             assert!(
@@ -425,6 +453,23 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
         }
     } else {
         assert_eq!(snapshot(m), before, "refused {op:?} changed the mesh");
+    }
+}
+
+/// Rule 11 seen from outside: the O(1) `is_boundary` of every vertex agrees
+/// with a walk around it, and a boundary vertex's half-edge lies in a hole.
+fn check_boundary_test(m: &Mesh, op: &Op) {
+    for v in m.vertices() {
+        let view = m.vertex(v).unwrap();
+        let walked = view
+            .outgoing()
+            .any(|h| m.halfedge(h).unwrap().is_boundary());
+        assert_eq!(
+            view.is_boundary(),
+            walked,
+            "is_boundary of {v:?} after {op:?}"
+        );
+        assert_eq!(view.halfedge().is_boundary(), walked, "{v:?} after {op:?}");
     }
 }
 
@@ -507,6 +552,45 @@ fn random_streams_on_small_shapes() {
     }
     QuickCheck::new()
         .tests(800)
+        .quickcheck(prop as fn(Case) -> TestResult);
+}
+
+/// Many more short streams, each step checked through `validate` (rule 11
+/// among the others) and `check_boundary_test`: the boundary rule is kept
+/// by every operator, also on meshes with holes, bowties and several
+/// pieces. `MESHLOOM_MODEL_CASES` raises the count for a longer run.
+#[test]
+fn boundary_rule_on_random_streams() {
+    fn prop(case: Case) -> TestResult {
+        let m = match case.shape % 3 {
+            0 => small_shape(case.shape / 3),
+            1 => {
+                let meshes = real_meshes();
+                meshes[case.shape as usize % meshes.len()].clone()
+            }
+            _ => {
+                // A shape with holes punched in first.
+                let mut m = small_shape(case.shape / 3);
+                let faces: Vec<_> = m.faces().step_by(3).collect();
+                for f in faces {
+                    let _ = m.remove_face(f);
+                }
+                if m.is_empty() {
+                    return TestResult::discard();
+                }
+                m
+            }
+        };
+        run(m, &case.ops);
+        TestResult::passed()
+    }
+    let cases = std::env::var("MESHLOOM_MODEL_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(600);
+    QuickCheck::new()
+        .tests(cases)
+        .max_tests(4 * cases)
         .quickcheck(prop as fn(Case) -> TestResult);
 }
 

@@ -3,18 +3,15 @@
 
 use std::marker::PhantomData;
 
-use super::attribute::Attribute;
-use super::column::Column;
 use super::handle::{Attr, EdgeAttr, Element, FaceAttr, HalfedgeAttr, VertexAttr};
-use super::rule::Rule;
-use super::rules::Interpolate;
-use super::value::{Dynamic, Value, ValueType};
 use super::view::{AttrView, AttrViewMut};
-use super::Columns;
 use crate::error::{Error, Result};
 use crate::keys::ElementKind;
 use crate::mesh::Mesh;
 use crate::slots::Slots;
+use crate::store::rule::Rule;
+use crate::store::rules::Interpolate;
+use crate::store::{Attribute, Column, Columns, Dynamic, Value, ValueType};
 
 /// What [`Mesh::attr_info`] tells about one column.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,12 +29,7 @@ pub struct AttrInfo {
 
 impl Mesh {
     pub(crate) fn columns_of(&self, kind: ElementKind) -> &Columns {
-        match kind {
-            ElementKind::Vertex => &self.attrs.vertex,
-            ElementKind::Halfedge => &self.attrs.halfedge,
-            ElementKind::Edge => &self.attrs.edge,
-            ElementKind::Face => &self.attrs.face,
-        }
+        self.attrs.columns(kind)
     }
 
     /// The generations of an arena and the shift from a slot to its
@@ -231,7 +223,11 @@ impl Mesh {
     /// [`Mesh::set_position`].
     pub fn position_attr(&self) -> Option<VertexAttr<[f64; 3], Interpolate>> {
         let i = self.attrs.position?;
-        Some(Attr::new(i, self.attrs.vertex.meta[i].id, super::POSITION))
+        Some(Attr::new(
+            i,
+            self.attrs.vertex.meta[i].id,
+            crate::store::POSITION,
+        ))
     }
 
     /// Remove a column and every value in it. Removing the position column
@@ -371,6 +367,7 @@ impl Mesh {
             values: col.raw(),
             present: col.present_bits(),
             generations: slots.generations(),
+            base: slots.base(),
             dense_intact: slots.intact() && col.present_bits().is_none(),
             intact: slots.intact(),
             marker: PhantomData,
@@ -417,16 +414,5 @@ fn stale_handle<K: Element, T: Attribute, R>(h: &Attr<K, T, R>) -> Error {
     Error::AttributeHandle {
         kind: K::KIND,
         name: h.name.clone(),
-    }
-}
-
-impl super::AttrStore {
-    pub(crate) fn columns_mut(&mut self, kind: ElementKind) -> &mut Columns {
-        match kind {
-            ElementKind::Vertex => &mut self.vertex,
-            ElementKind::Halfedge => &mut self.halfedge,
-            ElementKind::Edge => &mut self.edge,
-            ElementKind::Face => &mut self.face,
-        }
     }
 }

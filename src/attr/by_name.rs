@@ -1,13 +1,12 @@
 //! Attribute values by column name as dynamic [`Value`]s: how file
 //! readers and writers move attributes whose types they learn at run time.
 
-use super::attribute::Attribute;
 use super::handle::Element;
-use super::value::{Value, ValueType};
 use super::view::check_dynamic;
 use crate::error::{Error, Result};
 use crate::keys::{AnyKey, EdgeKey, ElementKind, FaceKey, HalfedgeKey, VertexKey};
 use crate::mesh::Mesh;
+use crate::store::{Attribute, Value, ValueType};
 
 impl Mesh {
     /// [`Mesh::add_dynamic_attr`] with the arena chosen at run time (a file

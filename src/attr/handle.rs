@@ -4,8 +4,8 @@
 use std::fmt;
 use std::marker::PhantomData;
 
-use super::attribute::Attribute;
 use crate::keys::{AnyKey, EdgeKey, ElementKind, FaceKey, HalfedgeKey, VertexKey};
+use crate::store::Attribute;
 
 mod sealed {
     pub trait Sealed {}
@@ -32,7 +32,7 @@ pub trait Element: Copy + Eq + fmt::Debug + Send + Sync + sealed::Sealed + 'stat
 }
 
 macro_rules! element {
-    ($key:ident, $kind:ident, $shift:literal) => {
+    ($key:ident, $kind:ident, $shift:expr) => {
         impl sealed::Sealed for $key {}
         impl Element for $key {
             const KIND: ElementKind = ElementKind::$kind;
@@ -58,7 +58,7 @@ macro_rules! element {
 }
 
 element!(VertexKey, Vertex, 0);
-element!(HalfedgeKey, Halfedge, 1);
+element!(HalfedgeKey, Halfedge, crate::layout::Hid::EDGE_SHIFT);
 element!(EdgeKey, Edge, 0);
 element!(FaceKey, Face, 0);
 

@@ -1,12 +1,13 @@
 //! Inferring an absent value from neighbours, on demand (the halfedges
 //! package's `_infer_value`).
 
-use super::attribute::Attribute;
 use super::handle::{Attr, Element};
-use super::rule::Rule;
 use crate::error::Result;
 use crate::keys::ElementKind;
+use crate::layout::{Eid, Fid, Hid, Vid};
 use crate::mesh::Mesh;
+use crate::store::rule::Rule;
+use crate::store::Attribute;
 
 impl Mesh {
     /// The value of `key`'s element, or, if it has none, the value its
@@ -58,35 +59,38 @@ impl Mesh {
     fn neighbour_slots(&self, kind: ElementKind, s: u32) -> Vec<(u32, u32)> {
         match kind {
             ElementKind::Vertex => self
-                .outgoing_raw(s)
+                .outgoing(Vid::new(s))
                 .map(|h| {
-                    let d = self.dest_of(h);
-                    (d, self.vkey(d).generation)
+                    let d = self.dest(h);
+                    (d.raw(), self.vkey(d).generation)
                 })
                 .collect(),
             ElementKind::Face => self
-                .face_loop_raw(s)
+                .face_loop(Fid::new(s))
                 .map(|h| {
-                    let f = self.face_of(h ^ 1);
-                    (f, self.fkey(f).generation)
+                    let f = self.face_of(h.twin());
+                    (f.raw(), self.fkey(f).generation)
                 })
                 .collect(),
             ElementKind::Edge => {
+                let e = Eid::new(s);
                 let mut out = Vec::new();
-                for end in [2 * s, 2 * s + 1] {
-                    for h in self.outgoing_raw(self.origin_of(end)) {
-                        if h >> 1 != s {
-                            out.push((h >> 1, self.ekey(h >> 1).generation));
+                for end in e.halfedges() {
+                    for h in self.outgoing(self.origin(end)) {
+                        if h.edge() != e {
+                            out.push((h.edge().raw(), self.ekey(h.edge()).generation));
                         }
                     }
                 }
                 out
             }
-            ElementKind::Halfedge => self
-                .outgoing_raw(self.origin_of(s))
-                .filter(|&h| h != s)
-                .map(|h| (h, self.hkey(h).generation))
-                .collect(),
+            ElementKind::Halfedge => {
+                let s = Hid::new(s);
+                self.outgoing(self.origin(s))
+                    .filter(|&h| h != s)
+                    .map(|h| (h.raw(), self.hkey(h).generation))
+                    .collect()
+            }
         }
     }
 }

@@ -11,11 +11,9 @@
 use std::collections::HashMap;
 use std::sync::{OnceLock, RwLock};
 
-use super::attribute::Attribute;
-use super::column::{Column, ErasedColumn};
-use super::rule::Rule;
-use super::rules::{Conserved, Contagion, Discard, Incompatible, Interpolate, KeepFirst};
-use super::value::{Dynamic, Value};
+use crate::store::rule::Rule;
+use crate::store::rules::{Conserved, Contagion, Discard, Incompatible, Interpolate, KeepFirst};
+use crate::store::{Attribute, Column, Dynamic, ErasedColumn, Value};
 
 type Make = fn(usize) -> Box<dyn ErasedColumn>;
 
@@ -45,11 +43,17 @@ pub(crate) fn short_type_name(full: &str) -> String {
 
 /// The registry key of column type `Column<T, R>`.
 pub(crate) fn type_key<T, R>() -> String {
-    format!(
-        "{}/{}",
-        short_type_name(std::any::type_name::<T>()),
-        short_type_name(std::any::type_name::<R>())
-    )
+    key_of_names(std::any::type_name::<T>(), std::any::type_name::<R>())
+}
+
+/// The registry key of a stored column: `"value type/rule type"`.
+pub(crate) fn column_type_key(c: &dyn ErasedColumn) -> String {
+    let (value, rule) = c.type_names();
+    key_of_names(value, rule)
+}
+
+fn key_of_names(value: &str, rule: &str) -> String {
+    format!("{}/{}", short_type_name(value), short_type_name(rule))
 }
 
 fn registry() -> &'static RwLock<HashMap<String, Make>> {
@@ -126,7 +130,7 @@ mod tests {
     fn stock_columns_are_registered() {
         let c = make_column("f64/Conserved", 3).unwrap();
         assert_eq!(c.len(), 3);
-        assert_eq!(c.type_key(), "f64/Conserved");
+        assert_eq!(column_type_key(&*c), "f64/Conserved");
         assert!(make_column("Unknown/Rule", 1).is_none());
     }
 }

@@ -5,12 +5,11 @@
 use std::any::Any;
 use std::marker::PhantomData;
 
-use super::attribute::Attribute;
 use super::handle::Element;
-use super::value::{Value, ValueType};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::slots::Slots;
+use crate::store::{Attribute, Value, ValueType};
 use crate::view::{EdgeView, FaceView, HalfedgeView, VertexView};
 
 mod sealed {
@@ -35,7 +34,7 @@ macro_rules! element_view {
             type Key = $key;
             #[inline(always)]
             fn parts(self) -> (&'m Mesh, usize) {
-                (self.mesh, self.$field as usize)
+                (self.mesh, self.$field.index())
             }
         }
 
@@ -85,12 +84,16 @@ pub struct AttrView<'m, K, T> {
     pub(crate) present: Option<&'m [u64]>,
     /// The arena's generations (odd = live).
     pub(crate) generations: &'m [u32],
-    /// No slot of the arena was ever freed (every slot is live at
-    /// generation 1) and every slot has a value: a read by key is then a
-    /// bounds check and a compare of the key's generation with 1.
+    /// The arena's base generation.
+    pub(crate) base: u32,
+    /// No slot of the arena was freed since it was built or compacted
+    /// (every slot is live at the base generation) and every slot has a
+    /// value: a read by key is then a bounds check and a compare of the
+    /// key's generation with the base.
     pub(crate) dense_intact: bool,
-    /// No slot of the arena was ever freed: every slot is live at
-    /// generation 1, and a key check needs no load.
+    /// No slot of the arena was freed since it was built or compacted:
+    /// every slot is live at the base generation, and a key check needs no
+    /// load.
     pub(crate) intact: bool,
     pub(crate) marker: PhantomData<K>,
 }
@@ -112,16 +115,16 @@ impl<'m, K: Element, T> AttrView<'m, K, T> {
     pub fn get(&self, key: K) -> Option<&'m T> {
         let i = key.slot() as usize;
         if self.dense_intact {
-            // One value per slot, every slot live at generation 1, every
-            // value present.
+            // One value per slot, every slot live at the base generation,
+            // every value present.
             let value = self.values.get(i)?;
-            return (key.generation_of_key() == 1).then_some(value);
+            return (key.generation_of_key() == self.base).then_some(value);
         }
         // Both loads are issued before either is tested, so a random access
         // waits for one cache miss, not two in a row.
         let value = self.values.get(i);
         let live = if self.intact {
-            (key.generation_of_key() == 1) & ((i >> K::SHIFT) < self.generations.len())
+            (key.generation_of_key() == self.base) & ((i >> K::SHIFT) < self.generations.len())
         } else {
             current(self.generations, i >> K::SHIFT, key.generation_of_key())
         };

@@ -3,25 +3,47 @@
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::keys::{HalfedgeKey, VertexKey};
+use crate::layout::{Fid, Hid, Vid};
 use crate::mesh::Mesh;
 
 struct CollapsePlan {
-    h: u32,
-    a: u32,
-    b: u32,
-    f_left: u32,
-    f_right: u32,
+    h: Hid,
+    a: Vid,
+    b: Vid,
+    f_left: Fid,
+    f_right: Fid,
     /// The half-edges after `h` and after its twin.
-    nh: u32,
-    nt: u32,
+    nh: Hid,
+    nt: Hid,
     /// The half-edges before `h` and before its twin.
-    ph: u32,
-    pt: u32,
-    before_tph: Option<u32>,
+    ph: Hid,
+    pt: Hid,
+    before_tph: Option<Hid>,
     /// Whether the face of `h` (resp. its twin) is a triangle (or a
     /// triangular hole) that disappears.
     left_goes: bool,
     right_goes: bool,
+    /// Who may need another half-edge for rule 11 afterwards.
+    rule11: Rule11,
+}
+
+/// The vertices a collapse may leave naming a half-edge that no longer lies
+/// in a hole (rule 11), found while planning: `b` when a hole touched `a`
+/// or `b` (b gets a's ring), an apex `c` or `d` when its triangle is a hole
+/// that closes. Nothing on a closed mesh.
+#[derive(Copy, Clone)]
+struct Rule11 {
+    b: bool,
+    c: Vid,
+    d: Vid,
+}
+
+impl Rule11 {
+    const NOTHING: Rule11 = Rule11 {
+        b: false,
+        c: Vid::NONE,
+        d: Vid::NONE,
+    };
 }
 
 impl Mesh {
@@ -31,15 +53,15 @@ impl Mesh {
     fn plan_collapse(&self, hk: HalfedgeKey) -> Result<CollapsePlan> {
         const OP: &str = "collapse_edge";
         let h = self.check_halfedge(hk)?;
-        let t = h ^ 1;
-        let (rh, rt) = (self.he[h as usize], self.he[t as usize]);
+        let t = h.twin();
+        let (rh, rt) = (self.he[h], self.he[t]);
         let (a, b) = (rh.origin, rt.origin);
         let (f_left, f_right) = (rh.face, rt.face);
         let (nh, nt) = (rh.next, rt.next);
         // In a triangle the half-edge after `next` is the one before, and
         // leaves the apex.
-        let (left_prev, right_prev) = (self.he[nh as usize].next, self.he[nt as usize].next);
-        let (left, right) = (self.he[left_prev as usize], self.he[right_prev as usize]);
+        let (left_prev, right_prev) = (self.he[nh].next, self.he[nt].next);
+        let (left, right) = (self.he[left_prev], self.he[right_prev]);
         let left_goes = nh != h && left.next == h;
         let right_goes = nt != t && right.next == t;
         let (c, d) = (left.origin, right.origin);
@@ -50,8 +72,8 @@ impl Mesh {
         // apexes of the triangles that disappear. Gather a's neighbours
         // other than b and those apexes; when there are none (a poked
         // centre, a valence-3 vertex) b's ring need not be walked at all.
-        let is_apex = |w: u32| (left_goes && w == c) || (right_goes && w == d);
-        let mut small = [0u32; 16];
+        let is_apex = |w: Vid| (left_goes && w == c) || (right_goes && w == d);
+        let mut small = [Vid::NONE; 16];
         let mut large = Vec::new();
         let mut others = 0;
         let (mut degree, mut last_a) = (0usize, h);
@@ -61,7 +83,7 @@ impl Mesh {
         // end of the body: `for _ in 0..len` here measured 10% slower.)
         let mut budget = self.he.len();
         loop {
-            let twin = self.he[(o ^ 1) as usize];
+            let twin = self.he[o.twin()];
             let w = twin.origin;
             if w != b && !is_apex(w) {
                 if others < small.len() {
@@ -89,7 +111,7 @@ impl Mesh {
                 self.prev_fast(t)
             }
         } else {
-            let around_a: &[u32] = if others <= small.len() {
+            let around_a: &[Vid] = if others <= small.len() {
                 &small[..others]
             } else {
                 large.sort_unstable();
@@ -99,7 +121,7 @@ impl Mesh {
             let mut o = t;
             let mut budget = self.he.len();
             loop {
-                let twin = self.he[(o ^ 1) as usize];
+                let twin = self.he[o.twin()];
                 let w = twin.origin;
                 let common = if others > small.len() {
                     around_a.binary_search(&w).is_ok()
@@ -116,24 +138,26 @@ impl Mesh {
                     break;
                 }
             }
-            last_b ^ 1
+            last_b.twin()
         };
-        if self.holes > 0 {
-            self.check_collapse_boundary(hk, h, f_left, f_right, left_goes, right_goes)?;
-        }
+        let rule11 = if self.holes > 0 {
+            let apexes = [(left_goes, c), (right_goes, d)];
+            self.check_collapse_boundary(hk, h, f_left, f_right, apexes)?
+        } else {
+            Rule11::NOTHING
+        };
         // No other face may hold both a and b. Triangles around a cannot
         // (their third corner would be a common neighbour).
-        for o in self.outgoing_raw(a) {
+        for o in self.outgoing(a) {
             let f = self.face_of(o);
             if f == f_left || f == f_right {
                 continue;
             }
-            let n = self.next_of(o);
-            if self.next_of(self.next_of(n)) == o {
+            let n = self.next(o);
+            if self.next(self.next(n)) == o {
                 continue;
             }
-            if crate::circulate::FaceHalfedges::from_halfedge(self, n)
-                .any(|x| self.origin_of(x) == b)
+            if crate::circulate::FaceHalfedges::from_halfedge(self, n).any(|x| self.origin(x) == b)
             {
                 return Err(refuse(OP, hk, Refusal::NonManifold));
             }
@@ -146,13 +170,14 @@ impl Mesh {
             f_right,
             nh,
             nt,
-            ph: last_a ^ 1,
+            ph: last_a.twin(),
             // The half-edge before twin(ph) = last_a once h is gone: the
             // twin of the one before it in a's ring, unless that is h.
-            before_tph: (degree >= 3).then_some(before_last_a ^ 1),
+            before_tph: (degree >= 3).then_some(before_last_a.twin()),
             pt,
             left_goes,
             right_goes,
+            rule11,
         })
     }
 
@@ -160,49 +185,39 @@ impl Mesh {
     fn check_collapse_boundary(
         &self,
         hk: HalfedgeKey,
-        h: u32,
-        f_left: u32,
-        f_right: u32,
-        left_goes: bool,
-        right_goes: bool,
-    ) -> Result<()> {
+        h: Hid,
+        f_left: Fid,
+        f_right: Fid,
+        apexes: [(bool, Vid); 2],
+    ) -> Result<Rule11> {
         const OP: &str = "collapse_edge";
-        let t = h ^ 1;
+        let t = h.twin();
+        let (hole_left, hole_right) = (self.is_hole(f_left), self.is_hole(f_right));
         // An interior edge between two boundary vertices would pinch.
-        let on_boundary =
-            |v_ring_start: u32| self.ring_from(v_ring_start).any(|o| self.in_hole_raw(o));
-        if !self.is_hole_raw(f_left)
-            && !self.is_hole_raw(f_right)
-            && on_boundary(h)
-            && on_boundary(t)
-        {
+        // (Rule 11 makes each test one look-up.)
+        let (a_bnd, b_bnd) = (
+            self.on_boundary(self.origin(h)),
+            self.on_boundary(self.origin(t)),
+        );
+        if !hole_left && !hole_right && a_bnd && b_bnd {
             return Err(refuse(OP, hk, Refusal::NonManifold));
         }
         // A disappearing triangle must not leave an edge with holes on both
         // sides.
-        for (goes, x) in [(left_goes, h), (right_goes, t)] {
-            if goes && !self.in_hole_raw(x) {
-                let n = self.next_of(x);
-                let p = self.next_of(n);
-                if self.in_hole_raw(n ^ 1) && self.in_hole_raw(p ^ 1) {
+        for ((goes, _), x) in apexes.into_iter().zip([h, t]) {
+            if goes && !self.in_hole(x) {
+                let n = self.next(x);
+                let p = self.next(n);
+                if self.in_hole(n.twin()) && self.in_hole(p.twin()) {
                     return Err(refuse(OP, hk, Refusal::NonManifold));
                 }
             }
         }
-        Ok(())
-    }
-
-    /// The half-edges leaving `origin(h)`, starting at `h`, clockwise.
-    #[inline]
-    fn ring_from(&self, h: u32) -> impl Iterator<Item = u32> + '_ {
-        let mut cur = Some(h);
-        let mut budget = self.he.len();
-        std::iter::from_fn(move || {
-            let o = cur?;
-            budget = budget.checked_sub(1)?;
-            let n = self.next_of(o ^ 1);
-            cur = (n != h).then_some(n);
-            Some(o)
+        let apex = |(goes, v): (bool, Vid), hole: bool| if goes && hole { v } else { Vid::NONE };
+        Ok(Rule11 {
+            b: a_bnd || b_bnd,
+            c: apex(apexes[0], hole_left),
+            d: apex(apexes[1], hole_right),
         })
     }
 
@@ -231,12 +246,14 @@ impl Mesh {
     ///            d              d
     /// ```
     ///
-    /// Returns `b`, which keeps its key. Attributes: `b = merge(a: 0,
-    /// b: 1)` (positions: `b` stays where it was; see
-    /// [`collapse_edge_at`](Mesh::collapse_edge_at)); merging edges merge
-    /// with equal weights; a disappearing triangle's values merge (weight 0)
-    /// into the face that receives its kept edge. χ is unchanged, except that
-    /// it grows by 1 when a triangular hole closes.
+    /// Returns `b`, which keeps its key. Attributes (the surviving element
+    /// is always the first contributor): `b = merge(b: 1, a: 0)` (positions:
+    /// `b` stays where it was; see [`collapse_edge_at`](Mesh::collapse_edge_at));
+    /// where a triangle disappears, its side at `b` (`b–c`, resp. `b–d`) is
+    /// kept and `merge(kept: ½, other: ½)` with its side at `a`; the
+    /// triangle's values merge (weight 0) into the face that receives the
+    /// kept side, that face first. χ is unchanged, except that it grows by 1
+    /// when a triangular hole closes.
     ///
     /// # Errors
     /// [`Error::StaleKey`](crate::Error::StaleKey);
@@ -283,8 +300,8 @@ impl Mesh {
     }
 
     /// [`collapse_edge`](Mesh::collapse_edge) with the merged vertex at
-    /// parameter `t` from `a` to `b`: `b = merge(a: 1−t, b: t)` (t = 0.5
-    /// puts it at the midpoint).
+    /// parameter `t` from `a` to `b`: `b = merge(b: t, a: 1−t)`, the
+    /// surviving `b` first (t = 0.5 puts it at the midpoint).
     ///
     /// # Errors
     /// As `collapse_edge`, and [`Refusal::Parameter`] when `t` is not in
@@ -313,18 +330,21 @@ impl Mesh {
             before_tph,
             left_goes,
             right_goes,
+            rule11,
         } = self.plan_collapse(hk)?;
-        let tw = h ^ 1;
+        // Rule 11: which of b, c and d touched a hole before (a's holes
+        // become b's). Only they can need another half-edge afterwards.
+        // The surviving vertex first (the documented order KeepFirst reads).
         self.attrs
             .vertex
-            .merge(b as usize, &[(a as usize, 1.0 - t), (b as usize, t)]);
+            .merge(b.index(), &[(b.index(), t), (a.index(), 1.0 - t)]);
         // Every half-edge leaving a now leaves b (the ring of a is walked by
         // next/twin, which the origins do not affect).
         let mut o = h;
         let mut budget = self.he.len();
         loop {
-            self.he[o as usize].origin = b;
-            o = self.next_of(o ^ 1);
+            self.he[o].origin = b;
+            o = self.next(o.twin());
             budget -= 1;
             if o == h || budget == 0 {
                 break;
@@ -332,14 +352,14 @@ impl Mesh {
         }
         self.set_next(ph, nh);
         self.set_next(pt, nt);
-        if self.face_halfedge_raw(f_left) == h {
+        if self.face_halfedge(f_left) == h {
             self.set_face_link(f_left, nh);
         }
-        if self.face_halfedge_raw(f_right) == tw {
+        if self.face_halfedge(f_right) == h.twin() {
             self.set_face_link(f_right, nt);
         }
-        self.v_halfedge[b as usize] = nh;
-        self.free_edge(h >> 1);
+        self.v_halfedge[b] = nh;
+        self.free_edge(h.edge());
         self.free_vertex(a);
         if left_goes {
             // Two-sided loop (ph: c -> b, nh: b -> c): keep nh.
@@ -348,6 +368,16 @@ impl Mesh {
         if right_goes {
             // Two-sided loop (pt: d -> b, nt: b -> d): keep pt.
             self.dissolve_two_gon(nt, pt, None);
+        }
+        // Rule 11: b has a's holes now; a closed triangular hole may have
+        // held its apex's half-edge.
+        if rule11.b {
+            self.point_at_hole(b);
+        }
+        for v in [rule11.c, rule11.d] {
+            if !v.is_none() {
+                self.point_at_hole(v);
+            }
         }
         self.debug_validate();
         Ok(self.vkey(b))
@@ -358,44 +388,42 @@ impl Mesh {
     /// `twin(p)` in its face and `p`'s edge goes. The mesh must be consistent
     /// apart from this two-sided loop. `before_tp`, when known, is the
     /// half-edge before `twin(p)` (else it is found by turning).
-    fn dissolve_two_gon(&mut self, p: u32, n: u32, before_tp: Option<u32>) {
+    fn dissolve_two_gon(&mut self, p: Hid, n: Hid, before_tp: Option<Hid>) {
         let f = self.face_of(p);
-        let tp = p ^ 1;
+        let tp = p.twin();
         let g = self.face_of(tp);
         let q = before_tp.unwrap_or_else(|| self.prev_fast(tp));
-        debug_assert_eq!(q, self.prev_of(tp));
-        let r = self.next_of(tp);
+        debug_assert_eq!(q, self.prev(tp));
+        let r = self.next(tp);
         self.set_next(q, n);
         self.set_next(n, r);
-        self.he[n as usize].face = g;
-        if self.face_halfedge_raw(g) == tp {
+        self.he[n].face = g;
+        if self.face_halfedge(g) == tp {
             self.set_face_link(g, n);
         }
-        let u = self.origin_of(p);
-        let w = self.origin_of(tp);
-        if self.v_halfedge[u as usize] == p {
-            self.v_halfedge[u as usize] = n ^ 1;
+        let u = self.origin(p);
+        let w = self.origin(tp);
+        if self.v_halfedge[u] == p {
+            self.v_halfedge[u] = n.twin();
         }
-        if self.v_halfedge[w as usize] == tp {
-            self.v_halfedge[w as usize] = n;
+        if self.v_halfedge[w] == tp {
+            self.v_halfedge[w] = n;
         }
-        self.attrs.edge.merge(
-            (n >> 1) as usize,
-            &[((n >> 1) as usize, 0.5), ((p >> 1) as usize, 0.5)],
-        );
-        if !self.attrs.face.cols.is_empty() && !self.is_hole_raw(f) {
+        let (kept, gone) = (n.edge().index(), p.edge().index());
+        self.attrs.edge.merge(kept, &[(kept, 0.5), (gone, 0.5)]);
+        if !self.attrs.face.cols.is_empty() && !self.is_hole(f) {
             // The triangle's values go to a real face beside the kept edge.
-            let k = if self.is_hole_raw(g) {
-                self.face_of(n ^ 1)
+            let k = if self.is_hole(g) {
+                self.face_of(n.twin())
             } else {
                 g
             };
             self.attrs
                 .face
-                .merge(k as usize, &[(k as usize, 1.0), (f as usize, 0.0)]);
+                .merge(k.index(), &[(k.index(), 1.0), (f.index(), 0.0)]);
         }
-        self.attrs.halfedge.copy(tp as usize, n as usize);
+        self.attrs.halfedge.copy(tp.index(), n.index());
         self.free_face(f);
-        self.free_edge(p >> 1);
+        self.free_edge(p.edge());
     }
 }

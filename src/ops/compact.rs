@@ -1,60 +1,138 @@
 //! `compact`: dense storage after many edits.
 
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
-use crate::mesh::{HalfedgeRecord, Mesh, HOLE_BIT, NONE};
+use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, IdVec, Vid};
+use crate::mesh::Mesh;
 use crate::slots::Slots;
 
-/// Old → new key maps returned by [`Mesh::compact`]. Keys keep their
-/// generation and get a new index; a key that was stale before compacting
-/// maps to `None`.
+/// Old → new key maps returned by [`Mesh::compact`]. A key that named a
+/// live element before compacting maps to that element's new key (another
+/// index and, where the arena was compacted, another generation); a key
+/// that was stale before maps to `None`. The old keys themselves are all
+/// stale afterwards (except in an arena that had nothing to compact).
 #[derive(Clone, Debug, Default)]
 pub struct KeyMaps {
-    /// Per old vertex slot: (new index or `NONE`, generation).
-    vertices: Vec<(u32, u32)>,
-    /// Per old edge slot.
-    edges: Vec<(u32, u32)>,
-    /// Per old face slot.
-    faces: Vec<(u32, u32)>,
+    vertices: ArenaMap,
+    /// Edges, and half-edges through their edge.
+    edges: ArenaMap,
+    faces: ArenaMap,
 }
 
-fn lookup(map: &[(u32, u32)], index: usize, generation: u32) -> Option<u32> {
-    let &(new, g) = map.get(index)?;
-    (new != NONE && g == generation).then_some(new)
+/// One arena's map.
+#[derive(Clone, Debug, Default)]
+struct ArenaMap {
+    /// Per old slot: (new index or `GONE`, the generation it had).
+    slots: Vec<(u32, u32)>,
+    /// The generation of every element afterwards; `None` when the arena
+    /// was left as it was (keys keep their generation).
+    generation: Option<u32>,
+}
+
+/// A vacant slot's entry in a map.
+const GONE: u32 = u32::MAX;
+
+impl ArenaMap {
+    /// `(new index, new generation)` of the element `(index, generation)`
+    /// named before compacting.
+    fn get(&self, index: usize, generation: u32) -> Option<(u32, u32)> {
+        let &(new, g) = self.slots.get(index)?;
+        (new != GONE && g == generation).then(|| (new, self.generation.unwrap_or(g)))
+    }
 }
 
 impl KeyMaps {
     /// The new key of a vertex.
     pub fn vertex(&self, v: VertexKey) -> Option<VertexKey> {
-        lookup(&self.vertices, v.index(), v.generation()).map(|i| VertexKey::new(i, v.generation()))
+        let (i, g) = self.vertices.get(v.index(), v.generation())?;
+        Some(Vid::new(i).key(g))
     }
 
     /// The new key of an edge.
     pub fn edge(&self, e: EdgeKey) -> Option<EdgeKey> {
-        lookup(&self.edges, e.index(), e.generation()).map(|i| EdgeKey::new(i, e.generation()))
+        let (i, g) = self.edges.get(e.index(), e.generation())?;
+        Some(Eid::new(i).key(g))
     }
 
     /// The new key of a half-edge (it stays on the same side of its edge).
     pub fn halfedge(&self, h: HalfedgeKey) -> Option<HalfedgeKey> {
-        lookup(&self.edges, h.index() >> 1, h.generation())
-            .map(|e| HalfedgeKey::new(2 * e + (h.index() as u32 & 1), h.generation()))
+        let old = h.id();
+        let (e, g) = self.edges.get(old.edge().index(), h.generation())?;
+        Some(Eid::new(e).halfedge(old.side()).key(g))
     }
 
     /// The new key of a face or hole.
     pub fn face(&self, f: FaceKey) -> Option<FaceKey> {
-        lookup(&self.faces, f.index(), f.generation()).map(|i| FaceKey::new(i, f.generation()))
+        let (i, g) = self.faces.get(f.index(), f.generation())?;
+        Some(Fid::new(i).key(g))
     }
 }
 
-/// Live slots in order, and the old → new index map.
-fn order(slots: &Slots) -> (Vec<u32>, Vec<(u32, u32)>) {
-    let live: Vec<u32> = slots.live_indices().collect();
-    let mut map: Vec<(u32, u32)> = (0..slots.slot_count())
-        .map(|i| (NONE, slots.generation(i).unwrap_or(0)))
-        .collect();
-    for (new, &old) in live.iter().enumerate() {
-        map[old as usize].0 = new as u32;
+/// What compaction does to one arena.
+struct ArenaPlan {
+    /// Old slot of each new slot: the live slots in order, or every slot
+    /// when the arena stays as it was.
+    order: Vec<u32>,
+    /// New index of each old slot (`GONE` for vacant ones dropped).
+    new_index: Vec<u32>,
+    /// The arena's slots afterwards; `None`: it stays as it was.
+    slots: Option<Slots>,
+    map: ArenaMap,
+}
+
+impl ArenaPlan {
+    fn of(slots: &Slots) -> ArenaPlan {
+        let n = slots.slot_count();
+        let generation_at = |i: usize| slots.generation(i).unwrap_or(0);
+        let moved = if slots.live() == n {
+            // Nothing vacant: no element moves, every key stays valid.
+            None
+        } else {
+            // Elements move: a new base above every generation issued, so no
+            // old key names another element. When the generations are
+            // exhausted the arena stays as it was (still correct, only not
+            // dense).
+            slots.compacted(slots.live())
+        };
+        match moved {
+            None => ArenaPlan {
+                order: (0..n as u32).collect(),
+                new_index: (0..n as u32).collect(),
+                slots: None,
+                map: ArenaMap {
+                    slots: (0..n)
+                        .map(|i| {
+                            let live = slots.is_live(i);
+                            (if live { i as u32 } else { GONE }, generation_at(i))
+                        })
+                        .collect(),
+                    generation: None,
+                },
+            },
+            Some(new) => {
+                let order: Vec<u32> = slots.live_indices().collect();
+                let mut new_index = vec![GONE; n];
+                for (new, &old) in order.iter().enumerate() {
+                    new_index[old as usize] = new as u32;
+                }
+                let map = ArenaMap {
+                    slots: (0..n).map(|i| (new_index[i], generation_at(i))).collect(),
+                    generation: Some(new.base()),
+                };
+                ArenaPlan {
+                    order,
+                    new_index,
+                    slots: Some(new),
+                    map,
+                }
+            }
+        }
     }
-    (live, map)
+
+    /// The new index of old slot `raw` (`NONE` links stay `NONE`).
+    #[inline]
+    fn remap(&self, raw: u32) -> u32 {
+        self.new_index.get(raw as usize).copied().unwrap_or(raw)
+    }
 }
 
 impl Mesh {
@@ -62,10 +140,18 @@ impl Mesh {
     /// drop the vacant slots (and their free lists), so storage and
     /// iteration cost only what is live.
     ///
-    /// Returns old → new key maps. Every key held from before must be
-    /// translated through them: the same index may now name another element.
-    /// Attribute values move with their elements. The mesh is otherwise
-    /// unchanged (χ, counts, connectivity).
+    /// Returns old → new key maps. Every key held from before is stale
+    /// afterwards (elements that moved get a generation above any the arena
+    /// ever issued): translate it through the maps, which give the new key
+    /// of every element that was live. No old key ever names another
+    /// element. An arena with no vacant slot is left as it is, and its keys
+    /// stay valid. Attribute values move with their elements. The mesh is
+    /// otherwise unchanged (χ, counts, connectivity).
+    ///
+    /// An arena whose generations are exhausted (a generation within two of
+    /// 2^32, which only deserialized input can carry) cannot take a new
+    /// base; it is left as it is, not dense, rather than reissue a
+    /// generation.
     ///
     /// # Complexity
     /// O(slots + attribute columns · slots).
@@ -77,57 +163,79 @@ impl Mesh {
     /// let b = mesh.collapse_edge(h)?;
     /// let maps = mesh.compact();
     /// assert_eq!(mesh.slot_counts()[0], 11);
+    /// assert!(mesh.vertex(b).is_err(), "keys from before are stale");
     /// let b = maps.vertex(b).unwrap();
     /// assert_eq!(mesh.vertex(b)?.degree(), 6);
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn compact(&mut self) -> KeyMaps {
-        let (v_live, v_map) = order(&self.v_slots);
-        let (e_live, e_map) = order(&self.e_slots);
-        let (f_live, f_map) = order(&self.f_slots);
-        let hnew = |h: u32| 2 * e_map[(h >> 1) as usize].0 + (h & 1);
-        let mut he = Vec::with_capacity(2 * e_live.len());
-        let mut h_order = Vec::with_capacity(2 * e_live.len());
-        for &e in &e_live {
-            for h in [2 * e, 2 * e + 1] {
-                let r = self.he[h as usize];
+        let v = ArenaPlan::of(&self.v_slots);
+        let e = ArenaPlan::of(&self.e_slots);
+        let f = ArenaPlan::of(&self.f_slots);
+        let vnew = |x: Vid| Vid::new(v.remap(x.raw()));
+        let fnew = |x: Fid| Fid::new(f.remap(x.raw()));
+        let hnew = |h: Hid| {
+            if h.is_none() {
+                h
+            } else {
+                Eid::new(e.remap(h.edge().raw())).halfedge(h.side())
+            }
+        };
+        let nh = Eid::halfedge_slots(e.order.len());
+        let mut he = IdVec::from_vec(Vec::with_capacity(nh));
+        let mut h_order = Vec::with_capacity(nh);
+        for &old in &e.order {
+            for h in Eid::new(old).halfedges() {
+                let r = self.he[h];
                 he.push(HalfedgeRecord {
-                    origin: v_map[r.origin as usize].0,
+                    origin: vnew(r.origin),
                     next: hnew(r.next),
-                    face: f_map[r.face as usize].0,
+                    face: fnew(r.face),
                 });
-                h_order.push(h);
+                h_order.push(h.raw());
             }
         }
-        let v_halfedge: Vec<u32> = v_live
-            .iter()
-            .map(|&v| hnew(self.v_halfedge[v as usize]))
-            .collect();
-        let f_halfedge: Vec<u32> = f_live
-            .iter()
-            .map(|&f| {
-                let raw = self.f_halfedge[f as usize];
-                (raw & HOLE_BIT) | hnew(raw & !HOLE_BIT)
-            })
-            .collect();
-        let gens = |live: &[u32], s: &Slots| -> Vec<u32> {
-            live.iter().map(|&i| s.generation_of(i)).collect()
-        };
-        self.v_slots = Slots::from_generations(gens(&v_live, &self.v_slots));
-        self.e_slots = Slots::from_generations(gens(&e_live, &self.e_slots));
-        self.f_slots = Slots::from_generations(gens(&f_live, &self.f_slots));
+        let v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(
+            v.order
+                .iter()
+                .map(|&old| hnew(self.v_halfedge[Vid::new(old)]))
+                .collect(),
+        );
+        let f_halfedge = IdVec::from_vec(
+            f.order
+                .iter()
+                .map(|&old| {
+                    let link = self.f_halfedge[Fid::new(old)];
+                    let h = link.halfedge();
+                    if self.he.contains(h) {
+                        link.with_halfedge(hnew(h))
+                    } else {
+                        link
+                    }
+                })
+                .collect(),
+        );
         self.he = he;
         self.v_halfedge = v_halfedge;
         self.f_halfedge = f_halfedge;
-        self.attrs.vertex.permute(&v_live);
-        self.attrs.edge.permute(&e_live);
-        self.attrs.face.permute(&f_live);
-        self.attrs.halfedge.permute(&h_order);
+        if let Some(s) = v.slots {
+            self.v_slots = s;
+            self.attrs.vertex.permute(&v.order);
+        }
+        if let Some(s) = e.slots {
+            self.e_slots = s;
+            self.attrs.edge.permute(&e.order);
+            self.attrs.halfedge.permute(&h_order);
+        }
+        if let Some(s) = f.slots {
+            self.f_slots = s;
+            self.attrs.face.permute(&f.order);
+        }
         self.debug_validate();
         KeyMaps {
-            vertices: v_map,
-            edges: e_map,
-            faces: f_map,
+            vertices: v.map,
+            edges: e.map,
+            faces: f.map,
         }
     }
 }

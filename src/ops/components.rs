@@ -1,26 +1,28 @@
 //! `split_components`: one mesh per connected piece.
 
-use crate::mesh::{Mesh, NONE};
+use crate::layout::{IdVec, Vid};
+use crate::mesh::Mesh;
 
 impl Mesh {
-    /// The connected component of every vertex slot (`NONE` for vacant
+    /// The connected component of every vertex slot (`UNSEEN` for vacant
     /// slots), numbered from 0 in slot order of their first vertex, and the
     /// number of components.
-    fn component_labels(&self) -> (Vec<u32>, u32) {
-        let mut label = vec![NONE; self.v_halfedge.len()];
+    fn component_labels(&self) -> (IdVec<Vid, u32>, u32) {
+        const UNSEEN: u32 = u32::MAX;
+        let mut label = IdVec::filled(UNSEEN, self.v_halfedge.len());
         let mut count = 0;
         let mut stack = Vec::new();
-        for v in self.v_slots.live_indices() {
-            if label[v as usize] != NONE {
+        for v in self.vids() {
+            if label[v] != UNSEEN {
                 continue;
             }
-            label[v as usize] = count;
+            label[v] = count;
             stack.push(v);
             while let Some(x) = stack.pop() {
-                for o in self.outgoing_raw(x) {
-                    let y = self.dest_of(o);
-                    if label[y as usize] == NONE {
-                        label[y as usize] = count;
+                for o in self.outgoing(x) {
+                    let y = self.dest(o);
+                    if label[y] == UNSEEN {
+                        label[y] = count;
                         stack.push(y);
                     }
                 }
@@ -60,22 +62,22 @@ impl Mesh {
         let mut out = Vec::with_capacity(count as usize);
         for c in 0..count {
             let mut m = self.clone();
-            let edges: Vec<u32> = m.e_slots.live_indices().collect();
+            let edges: Vec<_> = m.eids().collect();
             for e in edges {
-                if label[m.origin_of(2 * e) as usize] != c {
+                if label[m.origin(e.halfedge(0))] != c {
                     m.free_edge(e);
                 }
             }
-            let faces: Vec<u32> = m.f_slots.live_indices().collect();
+            let faces: Vec<_> = m.fids().collect();
             for f in faces {
-                let h = self.face_halfedge_raw(f);
-                if label[self.origin_of(h) as usize] != c {
+                let h = self.face_halfedge(f);
+                if label[self.origin(h)] != c {
                     m.free_face(f);
                 }
             }
-            let vertices: Vec<u32> = m.v_slots.live_indices().collect();
+            let vertices: Vec<_> = m.vids().collect();
             for v in vertices {
-                if label[v as usize] != c {
+                if label[v] != c {
                     m.free_vertex(v);
                 }
             }

@@ -5,35 +5,33 @@ use std::collections::HashMap;
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::keys::{FaceKey, VertexKey};
-use crate::mesh::{HalfedgeRecord, Mesh, NONE};
-
-/// A face link to be set when the new loops are labelled.
-const NONE_FACE: u32 = NONE;
+use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, Vid};
+use crate::mesh::Mesh;
 
 struct CutPlan {
     /// Path half-edges `h_i = v_i -> v_i+1`.
-    hs: Vec<u32>,
+    hs: Vec<Hid>,
     closed: bool,
     /// For an open path: the hole half-edge leaving `v_0` (resp. `v_k`)
     /// when that end lies on a boundary.
-    hole_out: [Option<u32>; 2],
+    hole_out: [Option<Hid>; 2],
     /// Per path vertex index that splits: the outgoing half-edges right of
     /// the path, which move to its copy.
-    wedges: Vec<(usize, Vec<u32>)>,
+    wedges: Vec<(usize, Vec<Hid>)>,
 }
 
 impl Mesh {
     /// The half-edges leaving `origin(from)` clockwise after `from` up to
     /// `stop`, both excluded.
-    fn ring_between(&self, from: u32, stop: u32) -> Vec<u32> {
+    fn ring_between(&self, from: Hid, stop: Hid) -> Vec<Hid> {
         let mut wedge = Vec::new();
-        let mut o = self.next_of(from ^ 1);
+        let mut o = self.next(from.twin());
         for _ in 0..self.he.len() {
             if o == stop {
                 break;
             }
             wedge.push(o);
-            o = self.next_of(o ^ 1);
+            o = self.next(o.twin());
         }
         wedge
     }
@@ -51,10 +49,13 @@ impl Mesh {
         };
         let closed = vs.len() > 1 && vs[0] == vs[vs.len() - 1];
         let k = vs.len().saturating_sub(1);
-        let holes_at = |v: u32| -> Vec<u32> {
-            self.outgoing_raw(v)
-                .filter(|&o| self.in_hole_raw(o))
-                .collect()
+        // (O(1) for a vertex no hole touches, by rule 11.)
+        let holes_at = |v: Vid| -> Vec<Hid> {
+            if self.on_boundary(v) {
+                self.outgoing(v).filter(|&o| self.in_hole(o)).collect()
+            } else {
+                Vec::new()
+            }
         };
         let mut hole_out = [None, None];
         if !closed && k >= 1 {
@@ -92,20 +93,20 @@ impl Mesh {
             let Some(h) = self.find_halfedge_raw(vs[i], vs[i + 1]) else {
                 return Err(refuse(OP, path[i], Refusal::NotAdjacent));
             };
-            if self.in_hole_raw(h) || self.in_hole_raw(h ^ 1) {
-                return Err(refuse(OP, self.ekey(h >> 1), Refusal::Boundary));
+            if self.in_hole(h) || self.in_hole(h.twin()) {
+                return Err(refuse(OP, self.ekey(h.edge()), Refusal::Boundary));
             }
             hs.push(h);
         }
         let inner = if closed { 0..k } else { 1..k };
         for i in inner.clone() {
-            if !holes_at(vs[i]).is_empty() {
+            if self.on_boundary(vs[i]) {
                 return Err(refuse(OP, path[i], Refusal::Boundary));
             }
         }
         let mut wedges = Vec::with_capacity(k + 1);
         for i in inner {
-            let stop = hs[(i + k - 1) % k] ^ 1;
+            let stop = hs[(i + k - 1) % k].twin();
             wedges.push((i, self.ring_between(hs[i], stop)));
         }
         if let Some(ho) = hole_out[0] {
@@ -114,7 +115,7 @@ impl Mesh {
         if let Some(ho) = hole_out[1] {
             // From the hole's half-edge (included) round to twin(h_k-1).
             let mut wedge = vec![ho];
-            wedge.extend(self.ring_between(ho, hs[k - 1] ^ 1));
+            wedge.extend(self.ring_between(ho, hs[k - 1].twin()));
             wedges.push((k, wedge));
         }
         Ok(CutPlan {
@@ -195,37 +196,39 @@ impl Mesh {
             wedges,
         } = self.plan_cut(path)?;
         let k = hs.len();
-        let ts: Vec<u32> = hs.iter().map(|&h| h ^ 1).collect();
-        let index_of_t: HashMap<u32, usize> = ts.iter().enumerate().map(|(i, &t)| (t, i)).collect();
-        let prevs: Vec<u32> = ts.iter().map(|&t| self.prev_of(t)).collect();
-        let nexts: Vec<u32> = ts.iter().map(|&t| self.next_of(t)).collect();
-        let rights: Vec<u32> = ts.iter().map(|&t| self.face_of(t)).collect();
+        let ts: Vec<Hid> = hs.iter().map(|&h| h.twin()).collect();
+        let index_of_t: HashMap<Hid, usize> = ts.iter().enumerate().map(|(i, &t)| (t, i)).collect();
+        let prevs: Vec<Hid> = ts.iter().map(|&t| self.prev(t)).collect();
+        let nexts: Vec<Hid> = ts.iter().map(|&t| self.next(t)).collect();
+        let rights: Vec<Fid> = ts.iter().map(|&t| self.face_of(t)).collect();
         // The hole half-edges entering the boundary ends, and their holes.
-        let hole_in = hole_out.map(|o| o.map(|o| self.prev_of(o)));
+        let hole_in = hole_out.map(|o| o.map(|o| self.prev(o)));
         let old_holes = hole_out.map(|o| o.map(|o| self.face_of(o)));
         // Vertices: v_i and their right-side copies.
-        let vs: Vec<u32> = (0..=k)
+        let vs: Vec<Vid> = (0..=k)
             .map(|i| {
                 if i < k {
-                    self.origin_of(hs[i])
+                    self.origin(hs[i])
                 } else {
-                    self.dest_of(hs[k - 1])
+                    self.dest(hs[k - 1])
                 }
             })
             .collect();
-        let mut copy: Vec<u32> = vs.clone();
+        let mut copy: Vec<Vid> = vs.clone();
         for (i, _) in &wedges {
             copy[*i] = self.alloc_vertex();
         }
         if closed {
             copy[k] = copy[0];
         }
-        let new_edges: Vec<u32> = (0..k).map(|_| self.alloc_edge()).collect();
-        let g = |i: usize| 2 * new_edges[i];
-        let map = |x: u32| index_of_t.get(&x).map_or(x, |&j| g(j));
-        // g_i = v'_i+1 -> v'_i takes t_i's place in its right face.
+        let new_edges: Vec<Eid> = (0..k).map(|_| self.alloc_edge()).collect();
+        // g_i = v'_i+1 -> v'_i takes t_i's place in its right face; gt_i is
+        // its twin, on the new boundary.
+        let g = |i: usize| new_edges[i].halfedge(0);
+        let gt = |i: usize| new_edges[i].halfedge(1);
+        let map = |x: Hid| index_of_t.get(&x).map_or(x, |&j| g(j));
         for i in 0..k {
-            self.he[g(i) as usize] = HalfedgeRecord {
+            self.he[g(i)] = HalfedgeRecord {
                 origin: copy[i + 1],
                 next: map(nexts[i]),
                 face: rights[i],
@@ -234,7 +237,7 @@ impl Mesh {
         for i in 0..k {
             let p = map(prevs[i]);
             self.set_next(p, g(i));
-            if self.face_halfedge_raw(rights[i]) == ts[i] {
+            if self.face_halfedge(rights[i]) == ts[i] {
                 self.set_face_link(rights[i], g(i));
             }
         }
@@ -247,60 +250,61 @@ impl Mesh {
             } else if closed {
                 ts[k - 1]
             } else {
-                hole_out[0].unwrap_or(g(0) + 1)
+                hole_out[0].unwrap_or(gt(0))
             };
-            self.he[ts[i] as usize].next = next_t;
+            self.he[ts[i]].next = next_t;
             let next_gt = if i + 1 < k {
-                g(i + 1) + 1
+                gt(i + 1)
             } else if closed {
-                g(0) + 1
+                gt(0)
             } else {
                 hole_out[1].unwrap_or(ts[k - 1])
             };
-            self.he[g(i) as usize + 1] = HalfedgeRecord {
+            // The face is set when the new loops are labelled.
+            self.he[gt(i)] = HalfedgeRecord {
                 origin: copy[i],
                 next: next_gt,
-                face: NONE_FACE,
+                face: Fid::NONE,
             };
         }
         if let Some(hi) = hole_in[0] {
-            self.set_next(hi, g(0) + 1);
+            self.set_next(hi, gt(0));
         }
         if let Some(hi) = hole_in[1] {
             self.set_next(hi, ts[k - 1]);
         }
         for (i, wedge) in &wedges {
             for &o in wedge {
-                self.he[o as usize].origin = copy[*i];
+                self.he[o].origin = copy[*i];
             }
-            let out = if *i < k { g(*i) + 1 } else { wedge[0] };
-            self.v_halfedge[copy[*i] as usize] = out;
+            let out = if *i < k { gt(*i) } else { wedge[0] };
+            self.v_halfedge[copy[*i]] = out;
         }
         for i in 0..k {
-            self.v_halfedge[vs[i] as usize] = hs[i];
+            self.v_halfedge[vs[i]] = hs[i];
         }
         if !closed {
-            self.v_halfedge[vs[k] as usize] = ts[k - 1];
+            self.v_halfedge[vs[k]] = ts[k - 1];
         }
         // Hole faces: the loop through t_0, then the one through gt_0 if it
         // is another loop. Old holes are reused, one left over is freed.
-        let mut spare: Vec<u32> = old_holes.iter().flatten().copied().collect();
+        let mut spare: Vec<Fid> = old_holes.iter().flatten().copied().collect();
         spare.dedup();
         let mut made = Vec::new();
         let first = spare
             .first()
             .copied()
             .unwrap_or_else(|| self.alloc_face(true));
-        self.he[ts[0] as usize].face = NONE_FACE;
+        self.he[ts[0]].face = Fid::NONE;
         self.relabel_loop(ts[0], first);
         made.push(first);
-        if self.face_of(g(0) + 1) != first {
+        if self.face_of(gt(0)) != first {
             let second = if spare.len() > 1 {
                 spare[1]
             } else {
                 self.alloc_face(true)
             };
-            self.relabel_loop(g(0) + 1, second);
+            self.relabel_loop(gt(0), second);
             made.push(second);
         } else if spare.len() > 1 {
             self.free_face(spare[1]);
@@ -309,19 +313,19 @@ impl Mesh {
         for (i, _) in &wedges {
             self.attrs
                 .vertex
-                .interpolate(copy[*i] as usize, &[(vs[*i] as usize, 1.0)]);
+                .interpolate(copy[*i].index(), &[(vs[*i].index(), 1.0)]);
         }
         for i in 0..k {
-            let e = (hs[i] >> 1) as usize;
+            let e = hs[i].edge().index();
             self.attrs
                 .edge
-                .split(e, &[(e, 0.5), (new_edges[i] as usize, 0.5)]);
-            self.attrs.halfedge.copy(ts[i] as usize, g(i) as usize);
-            self.attrs.halfedge.interpolate(g(i) as usize + 1, &[]);
+                .split(e, &[(e, 0.5), (new_edges[i].index(), 0.5)]);
+            self.attrs.halfedge.copy(ts[i].index(), g(i).index());
+            self.attrs.halfedge.interpolate(gt(i).index(), &[]);
         }
         for &h in &made {
             if !spare.contains(&h) {
-                self.attrs.face.interpolate(h as usize, &[]);
+                self.attrs.face.interpolate(h.index(), &[]);
             }
         }
         self.debug_validate();

@@ -3,14 +3,15 @@
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::keys::FaceKey;
-use crate::mesh::{HalfedgeRecord, Mesh};
+use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, Vid};
+use crate::mesh::Mesh;
 
 impl Mesh {
     /// The unit normal to move along (`None` without positions).
-    fn plan_extrude(&self, fk: FaceKey, distance: f64) -> Result<(u32, Option<[f64; 3]>)> {
+    fn plan_extrude(&self, fk: FaceKey, distance: f64) -> Result<(Fid, Option<[f64; 3]>)> {
         const OP: &str = "extrude_face";
         let f = self.check_face(fk)?;
-        if self.is_hole_raw(f) {
+        if self.is_hole(f) {
             return Err(refuse(OP, fk, Refusal::Hole));
         }
         if !distance.is_finite() {
@@ -20,7 +21,7 @@ impl Mesh {
                 Refusal::Parameter("distance must be finite"),
             ));
         }
-        let normal = match self.loop_normal(self.face_halfedge_raw(f)) {
+        let normal = match self.loop_normal(self.face_halfedge(f)) {
             None => None,
             Some(n) => {
                 let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
@@ -81,63 +82,60 @@ impl Mesh {
     /// ```
     pub fn extrude_face(&mut self, fk: FaceKey, distance: f64) -> Result<Vec<FaceKey>> {
         let (f, normal) = self.plan_extrude(fk, distance)?;
-        let ring: Vec<u32> = self.face_loop_raw(f).collect();
+        let ring: Vec<Hid> = self.face_loop(f).collect();
         let n = ring.len();
-        let w: Vec<u32> = (0..n).map(|_| self.alloc_vertex()).collect();
-        let cap: Vec<u32> = (0..n).map(|_| self.alloc_edge()).collect();
-        let up: Vec<u32> = (0..n).map(|_| self.alloc_edge()).collect();
-        let sides: Vec<u32> = (0..n).map(|_| self.alloc_face(false)).collect();
+        let w: Vec<Vid> = (0..n).map(|_| self.alloc_vertex()).collect();
+        let cap: Vec<Eid> = (0..n).map(|_| self.alloc_edge()).collect();
+        let up: Vec<Eid> = (0..n).map(|_| self.alloc_edge()).collect();
+        let sides: Vec<Fid> = (0..n).map(|_| self.alloc_face(false)).collect();
         for i in 0..n {
             let j = (i + 1) % n;
             let h = ring[i];
-            let (c, ct) = (2 * cap[i], 2 * cap[i] + 1); // w_i -> w_j, w_j -> w_i
-            let up_j = 2 * up[j]; // v_j -> w_j
-            let down_i = 2 * up[i] + 1; // w_i -> v_i
+            let [c, ct] = cap[i].halfedges(); // w_i -> w_j, w_j -> w_i
+            let up_j = up[j].halfedge(0); // v_j -> w_j
+            let down_i = up[i].halfedge(1); // w_i -> v_i
             let s = sides[i];
-            self.he[c as usize] = HalfedgeRecord {
+            self.he[c] = HalfedgeRecord {
                 origin: w[i],
-                next: 2 * cap[j],
+                next: cap[j].halfedge(0),
                 face: f,
             };
-            self.he[ct as usize] = HalfedgeRecord {
+            self.he[ct] = HalfedgeRecord {
                 origin: w[j],
                 next: down_i,
                 face: s,
             };
-            self.he[up_j as usize] = HalfedgeRecord {
-                origin: self.origin_of(ring[j]),
+            self.he[up_j] = HalfedgeRecord {
+                origin: self.origin(ring[j]),
                 next: ct,
                 face: s,
             };
-            self.he[down_i as usize] = HalfedgeRecord {
+            self.he[down_i] = HalfedgeRecord {
                 origin: w[i],
                 next: h,
                 face: s,
             };
-            self.he[h as usize].next = up_j;
-            self.he[h as usize].face = s;
+            self.he[h].next = up_j;
+            self.he[h].face = s;
             self.set_face_link(s, h);
-            self.v_halfedge[w[i] as usize] = c;
+            self.v_halfedge[w[i]] = c;
         }
-        self.set_face_link(f, 2 * cap[0]);
+        self.set_face_link(f, cap[0].halfedge(0));
         for i in 0..n {
-            let v = self.origin_of(ring[i]) as usize;
-            self.attrs.vertex.interpolate(w[i] as usize, &[(v, 1.0)]);
-            self.attrs
-                .edge
-                .copy((ring[i] >> 1) as usize, cap[i] as usize);
-            self.attrs.edge.interpolate(up[i] as usize, &[]);
-            self.attrs
-                .halfedge
-                .copy(ring[i] as usize, 2 * cap[i] as usize);
-            for x in [2 * cap[i] + 1, 2 * up[i], 2 * up[i] + 1] {
-                self.attrs.halfedge.interpolate(x as usize, &[]);
+            let v = self.origin(ring[i]).index();
+            self.attrs.vertex.interpolate(w[i].index(), &[(v, 1.0)]);
+            self.attrs.edge.copy(ring[i].edge().index(), cap[i].index());
+            self.attrs.edge.interpolate(up[i].index(), &[]);
+            let [c, ct] = cap[i].halfedges();
+            self.attrs.halfedge.copy(ring[i].index(), c.index());
+            for x in [ct, up[i].halfedge(0), up[i].halfedge(1)] {
+                self.attrs.halfedge.interpolate(x.index(), &[]);
             }
-            self.attrs.face.interpolate(sides[i] as usize, &[]);
+            self.attrs.face.interpolate(sides[i].index(), &[]);
         }
         if let (Some(nrm), Some(p)) = (normal, self.position_slots_mut()) {
             for &x in &w {
-                let q = &mut p[x as usize];
+                let q = &mut p[x.index()];
                 for k in 0..3 {
                     q[k] += distance * nrm[k];
                 }

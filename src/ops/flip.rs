@@ -3,19 +3,20 @@
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::keys::EdgeKey;
+use crate::layout::{Eid, FaceLink, Hid, Vid};
 use crate::mesh::Mesh;
 
 /// The elements of a flip, named after the diagram on
 /// [`Mesh::flip_edge`]: `h = a → b`, `t = b → a`, `h1 = b → c`,
 /// `h2 = c → a`, `t1 = a → d`, `t2 = d → b`.
 struct FlipPlan {
-    e: u32,
-    h1: u32,
-    h2: u32,
-    t1: u32,
-    t2: u32,
-    c: u32,
-    d: u32,
+    e: Eid,
+    h1: Hid,
+    h2: Hid,
+    t1: Hid,
+    t2: Hid,
+    c: Vid,
+    d: Vid,
 }
 
 impl Mesh {
@@ -25,21 +26,21 @@ impl Mesh {
     fn plan_flip(&self, ek: EdgeKey) -> Result<FlipPlan> {
         const OP: &str = "flip_edge";
         let e = self.check_edge(ek)?;
-        let (h, t) = (2 * e, 2 * e + 1);
-        let h1 = self.next_of(h);
-        let t1 = self.next_of(t);
-        let h2 = self.next_of(h1);
-        let t2 = self.next_of(t1);
+        let [h, t] = e.halfedges();
+        let h1 = self.next(h);
+        let t1 = self.next(t);
+        let h2 = self.next(h1);
+        let t2 = self.next(t1);
         // (A closed mesh has no holes: skip two random reads.)
-        if self.holes > 0 && (self.in_hole_raw(h) || self.in_hole_raw(t)) {
+        if self.holes > 0 && (self.in_hole(h) || self.in_hole(t)) {
             return Err(refuse(OP, ek, Refusal::Boundary));
         }
-        let (r2, s2) = (self.he[h2 as usize], self.he[t2 as usize]);
+        let (r2, s2) = (self.he[h2], self.he[t2]);
         if r2.next != h || s2.next != t {
             return Err(refuse(OP, ek, Refusal::NotTriangles));
         }
         let (c, d) = (r2.origin, s2.origin);
-        if c == d || self.joined_between(h2, h1 ^ 1, d) {
+        if c == d || self.joined_between(h2, h1.twin(), d) {
             return Err(refuse(OP, ek, Refusal::EdgeExists));
         }
         Ok(FlipPlan {
@@ -57,15 +58,15 @@ impl Mesh {
     /// the half-edges strictly between `first` and `last` in `c`'s ring
     /// (the two ends lead to `a` and `b`, which are not `d`).
     #[inline]
-    fn joined_between(&self, first: u32, last: u32, d: u32) -> bool {
-        let mut o = self.next_of(first ^ 1);
+    fn joined_between(&self, first: Hid, last: Hid, d: Vid) -> bool {
+        let mut o = self.next(first.twin());
         // Bounded: a ring has fewer than 2E half-edges.
         let mut budget = self.he.len();
         loop {
             if o == last {
                 return false;
             }
-            let twin = self.he[(o ^ 1) as usize];
+            let twin = self.he[o.twin()];
             if twin.origin == d {
                 return true;
             }
@@ -129,34 +130,40 @@ impl Mesh {
             c,
             d,
         } = self.plan_flip(ek)?;
-        let (h, t) = (2 * e, 2 * e + 1);
-        let (a, b) = (self.origin_of(h), self.origin_of(t));
+        let [h, t] = e.halfedges();
+        let (a, b) = (self.origin(h), self.origin(t));
         let (f0, f1) = (self.face_of(h), self.face_of(t));
         // f0 = (h: c -> d, t2: d -> b, h1: b -> c);
         // f1 = (t: d -> c, h2: c -> a, t1: a -> d).
-        self.he[h as usize].origin = c;
-        self.he[t as usize].origin = d;
+        self.he[h].origin = c;
+        self.he[t].origin = d;
         self.set_next(h, t2);
         self.set_next(t2, h1);
         self.set_next(h1, h);
         self.set_next(t, h2);
         self.set_next(h2, t1);
         self.set_next(t1, t);
-        self.he[t2 as usize].face = f0;
-        self.he[h2 as usize].face = f1;
+        self.he[t2].face = f0;
+        self.he[h2].face = f1;
         // Neither face is a hole (refused above): no flag to keep.
-        self.f_halfedge[f0 as usize] = h;
-        self.f_halfedge[f1 as usize] = t;
-        // a and b may have named h and t; t1 and h1 surely leave them.
-        self.v_halfedge[a as usize] = t1;
-        self.v_halfedge[b as usize] = h1;
-        if !self.attrs.face.cols.is_empty() {
-            let pair = [(f0 as usize, 0.5), (f1 as usize, 0.5)];
-            self.attrs.face.merge(f0 as usize, &pair);
-            self.attrs.face.split(f0 as usize, &pair);
+        self.f_halfedge[f0] = FaceLink::new(h, false);
+        self.f_halfedge[f1] = FaceLink::new(t, false);
+        // a and b may have named h and t; t1 and h1 surely leave them. A
+        // vertex that named another half-edge keeps it: a boundary vertex
+        // names one in a hole (rule 11), which h and t are not.
+        if self.v_halfedge[a] == h {
+            self.v_halfedge[a] = t1;
         }
-        self.attrs.halfedge.copy(h2 as usize, h as usize);
-        self.attrs.halfedge.copy(t2 as usize, t as usize);
+        if self.v_halfedge[b] == t {
+            self.v_halfedge[b] = h1;
+        }
+        if !self.attrs.face.cols.is_empty() {
+            let pair = [(f0.index(), 0.5), (f1.index(), 0.5)];
+            self.attrs.face.merge(f0.index(), &pair);
+            self.attrs.face.split(f0.index(), &pair);
+        }
+        self.attrs.halfedge.copy(h2.index(), h.index());
+        self.attrs.halfedge.copy(t2.index(), t.index());
         self.debug_validate();
         Ok(ek)
     }

@@ -3,12 +3,13 @@
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::keys::FaceKey;
+use crate::layout::{Fid, Hid, Vid};
 use crate::mesh::Mesh;
 
 impl Mesh {
-    fn plan_remove_face(&self, fk: FaceKey) -> Result<u32> {
+    fn plan_remove_face(&self, fk: FaceKey) -> Result<Fid> {
         let f = self.check_face(fk)?;
-        if self.is_hole_raw(f) {
+        if self.is_hole(f) {
             return Err(refuse("remove_face", fk, Refusal::Hole));
         }
         Ok(f)
@@ -59,36 +60,41 @@ impl Mesh {
     /// ```
     pub fn remove_face(&mut self, fk: FaceKey) -> Result<Vec<FaceKey>> {
         let f = self.plan_remove_face(fk)?;
-        let sides: Vec<u32> = self.face_loop_raw(f).collect();
-        self.set_hole_raw(f, true);
-        self.attrs.face.interpolate(f as usize, &[]);
+        let sides: Vec<Hid> = self.face_loop(f).collect();
+        self.set_hole(f, true);
+        self.attrs.face.interpolate(f.index(), &[]);
+        // Rule 11: every corner is now on the boundary.
+        for &x in &sides {
+            let v = self.origin(x);
+            self.v_halfedge[v] = x;
+        }
         let mut kept = Vec::new();
         let mut dangling = Vec::new();
         for &x in &sides {
-            if self.in_hole_raw(x ^ 1) {
+            if self.in_hole(x.twin()) {
                 dangling.push(x);
             } else {
                 kept.push(x);
             }
         }
         for x in dangling {
-            let survivor = self.face_of(x ^ 1);
-            self.remove_edge_raw(x >> 1, survivor);
+            let survivor = self.face_of(x.twin());
+            self.remove_edge_raw(x.edge(), survivor);
         }
-        let mut holes: Vec<u32> = kept.iter().map(|&x| self.face_of(x)).collect();
+        let mut holes: Vec<Fid> = kept.iter().map(|&x| self.face_of(x)).collect();
         holes.sort_unstable();
         holes.dedup();
         self.debug_validate();
         Ok(holes.into_iter().map(|h| self.fkey(h)).collect())
     }
 
-    fn plan_fill_hole(&self, hk: FaceKey) -> Result<u32> {
+    fn plan_fill_hole(&self, hk: FaceKey) -> Result<Fid> {
         const OP: &str = "fill_hole";
         let h = self.check_face(hk)?;
-        if !self.is_hole_raw(h) {
+        if !self.is_hole(h) {
             return Err(refuse(OP, hk, Refusal::NotHole));
         }
-        let mut corners: Vec<u32> = self.face_loop_raw(h).map(|x| self.origin_of(x)).collect();
+        let mut corners: Vec<Vid> = self.face_loop(h).map(|x| self.origin(x)).collect();
         if corners.len() < 3 {
             return Err(refuse(OP, hk, Refusal::Degenerate));
         }
@@ -141,8 +147,14 @@ impl Mesh {
     /// ```
     pub fn fill_hole(&mut self, hole: FaceKey) -> Result<FaceKey> {
         let h = self.plan_fill_hole(hole)?;
-        self.set_hole_raw(h, false);
-        self.attrs.face.interpolate(h as usize, &[]);
+        self.set_hole(h, false);
+        self.attrs.face.interpolate(h.index(), &[]);
+        // Rule 11: a corner that named a half-edge of the hole names another
+        // hole's, if one still touches it.
+        let corners: Vec<Vid> = self.face_loop(h).map(|x| self.origin(x)).collect();
+        for v in corners {
+            self.point_at_hole(v);
+        }
         self.debug_validate();
         Ok(hole)
     }

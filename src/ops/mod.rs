@@ -37,7 +37,10 @@
 //!
 //! # Attribute rules per operator
 //!
-//! Every column of every arena runs its rule ([`attr::Rule`](crate::attr::Rule)):
+//! Every column of every arena runs its rule ([`attr::Rule`](crate::attr::Rule)).
+//! Where elements merge, **the surviving element is always the first
+//! contributor**, then the others in the order listed below, so
+//! [`KeepFirst`](crate::attr::KeepFirst) keeps the survivor's value:
 //!
 //! - **split_edge** at `t`: new vertex = `interpolate(a: 1−t, b: t)`; the old
 //!   edge splits into its two halves with shares `1−t` (the half at `b`) and
@@ -50,17 +53,20 @@
 //!   [`Interpolate`](crate::attr::Interpolate)). A new corner copies the
 //!   corner of the same vertex in the old face; the centre of `poke_face`
 //!   interpolates all corners with equal weights (positions: the centroid).
-//! - **collapse_edge** (`a` into `b`): `b = merge(a: 0, b: 1)`
-//!   (`collapse_edge_at` takes `t`: `merge(a: 1−t, b: t)`); where a triangle
-//!   disappears its two merging edges `merge` with equal weights and the
-//!   triangle's values merge into the face that receives the kept edge with
-//!   weight 0 (conserved totals are kept, interpolated values unchanged).
-//! - **flip_edge**: both faces merge (equal weights) and split again (equal
-//!   shares); the edge keeps its values; the two new corners copy the
-//!   corners they replace at the same vertex.
-//! - **remove_edge**, **merge_faces**, **remove_vertex**: the kept face =
-//!   `merge` of all merged faces, equal weights; removed edges and vertices
-//!   lose their values.
+//! - **collapse_edge** (`a` into `b`): `b = merge(b: 1, a: 0)`
+//!   (`collapse_edge_at` takes `t`: `merge(b: t, a: 1−t)`); where a triangle
+//!   disappears its side at `b` is kept and merges with its side at `a`
+//!   (`merge(kept: ½, removed: ½)`), and the triangle's values merge into
+//!   the face that receives the kept side (`merge(that face: 1, triangle:
+//!   0)`: conserved totals are kept, interpolated values unchanged).
+//! - **flip_edge**: both faces merge (`merge(face of h: ½, face of twin: ½)`)
+//!   and split again (equal shares); the edge keeps its values; the two new
+//!   corners copy the corners they replace at the same vertex.
+//! - **remove_edge**: `merge(face of the first half-edge: ½, other face: ½)`,
+//!   kept in the first; **merge_faces** `(f, g)`: `merge(f: ½, g: ½)`;
+//!   **remove_vertex**: `merge` of the faces around the vertex, equal
+//!   weights, in ring order from the face of its first outgoing half-edge
+//!   (the kept one). Removed edges and vertices lose their values.
 //! - **remove_face**: the face's values are dropped (it becomes a hole).
 //!   **fill_hole**: the new face gets `interpolate` of nothing.
 //!
@@ -102,7 +108,8 @@ pub use compact::KeyMaps;
 
 use crate::error::{Error, Refusal};
 use crate::keys::AnyKey;
-use crate::mesh::{Mesh, HOLE_BIT};
+use crate::layout::{Eid, Fid, HalfedgeRecord, Hid};
+use crate::mesh::Mesh;
 
 /// A refusal error.
 #[inline]
@@ -117,37 +124,43 @@ pub(crate) fn refuse(op: &'static str, key: impl Into<AnyKey>, reason: Refusal) 
 /// What [`Mesh::remove_edge_raw`] did to the faces.
 pub(crate) struct EdgeRemoval {
     /// A face that was freed (merged into the survivor, or emptied).
-    pub(crate) freed_face: Option<u32>,
+    pub(crate) freed_face: Option<Fid>,
     /// A face made for the second loop when one loop split in two.
-    pub(crate) new_face: Option<u32>,
+    pub(crate) new_face: Option<Fid>,
 }
 
 impl Mesh {
     #[inline]
-    pub(crate) fn set_next(&mut self, h: u32, n: u32) {
-        self.he[h as usize].next = n;
+    pub(crate) fn set_next(&mut self, h: Hid, n: Hid) {
+        self.he[h].next = n;
     }
 
     /// Point face `f` at half-edge `h`, keeping its hole flag.
     #[inline]
-    pub(crate) fn set_face_link(&mut self, f: u32, h: u32) {
-        let bit = self.f_halfedge[f as usize] & HOLE_BIT;
-        self.f_halfedge[f as usize] = bit | h;
+    pub(crate) fn set_face_link(&mut self, f: Fid, h: Hid) {
+        self.f_halfedge[f] = self.f_halfedge[f].with_halfedge(h);
     }
 
     /// Number of half-edges in the loop of face `f`.
     #[inline]
-    pub(crate) fn face_degree_raw(&self, f: u32) -> usize {
-        self.face_loop_raw(f).count()
+    pub(crate) fn face_degree(&self, f: Fid) -> usize {
+        self.face_loop(f).count()
     }
 
     /// Give every half-edge of the `next` cycle through `start` the face `f`
-    /// and point `f` at `start`.
-    pub(crate) fn relabel_loop(&mut self, start: u32, f: u32) {
+    /// and point `f` at `start`. When `f` is a hole, every vertex on the
+    /// cycle is pointed at its half-edge there (rule 11: its corners are
+    /// now on the boundary).
+    pub(crate) fn relabel_loop(&mut self, start: Hid, f: Fid) {
+        let hole = self.is_hole(f);
         let mut h = start;
         for _ in 0..self.he.len() {
-            self.he[h as usize].face = f;
-            h = self.he[h as usize].next;
+            self.he[h].face = f;
+            if hole {
+                let o = self.he[h].origin;
+                self.v_halfedge[o] = h;
+            }
+            h = self.he[h].next;
             if h == start {
                 break;
             }
@@ -156,12 +169,12 @@ impl Mesh {
     }
 
     /// Twice the vector area (Newell) of the `next` cycle through `start`.
-    pub(crate) fn loop_normal(&self, start: u32) -> Option<[f64; 3]> {
+    pub(crate) fn loop_normal(&self, start: Hid) -> Option<[f64; 3]> {
         let p = self.position_slots()?;
         let mut n = [0.0; 3];
         for h in crate::circulate::FaceHalfedges::from_halfedge(self, start) {
-            let a = p[self.origin_of(h) as usize];
-            let b = p[self.dest_of(h) as usize];
+            let a = p[self.origin(h).index()];
+            let b = p[self.dest(h).index()];
             n[0] += (a[1] - b[1]) * (a[2] + b[2]);
             n[1] += (a[2] - b[2]) * (a[0] + b[0]);
             n[2] += (a[0] - b[0]) * (a[1] + b[1]);
@@ -170,7 +183,7 @@ impl Mesh {
     }
 
     /// Area of the `next` cycle through `start`, if positions exist.
-    pub(crate) fn loop_area(&self, start: u32) -> Option<f64> {
+    pub(crate) fn loop_area(&self, start: Hid) -> Option<f64> {
         self.loop_normal(start)
             .map(|n| 0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt())
     }
@@ -178,27 +191,27 @@ impl Mesh {
     /// Split face `src`'s attribute values over `pieces` (faces, `src` among
     /// them or not), by area when positions give a positive total, else in
     /// equal shares.
-    pub(crate) fn split_face_values(&mut self, src: u32, pieces: &[u32]) {
+    pub(crate) fn split_face_values(&mut self, src: Fid, pieces: &[Fid]) {
         if self.attrs.face.cols.is_empty() || pieces.is_empty() {
             return;
         }
         let areas: Option<Vec<f64>> = pieces
             .iter()
-            .map(|&f| self.loop_area(self.face_halfedge_raw(f)))
+            .map(|&f| self.loop_area(self.face_halfedge(f)))
             .collect();
         let total: f64 = areas.as_ref().map_or(0.0, |a| a.iter().sum());
         let shares: Vec<(usize, f64)> = match areas {
             Some(a) if total > 0.0 && total.is_finite() => pieces
                 .iter()
                 .zip(a)
-                .map(|(&f, x)| (f as usize, x / total))
+                .map(|(&f, x)| (f.index(), x / total))
                 .collect(),
             _ => pieces
                 .iter()
-                .map(|&f| (f as usize, 1.0 / pieces.len() as f64))
+                .map(|&f| (f.index(), 1.0 / pieces.len() as f64))
                 .collect(),
         };
-        self.attrs.face.split(src as usize, &shares);
+        self.attrs.face.split(src.index(), &shares);
     }
 
     /// Cut face `f` with a new edge from `a = origin(ha)` to `b = origin(hb)`,
@@ -206,19 +219,19 @@ impl Mesh {
     /// The new half-edge `a → b` (returned first) lies in a new face (returned
     /// second) with `hb .. pa`; its twin stays in `f` with `ha .. pb`. Corner
     /// and edge rules run; the face rule is the caller's.
-    pub(crate) fn split_face_raw(&mut self, pa: u32, ha: u32, pb: u32, hb: u32) -> (u32, u32) {
+    pub(crate) fn split_face_raw(&mut self, pa: Hid, ha: Hid, pb: Hid, hb: Hid) -> (Hid, Fid) {
         let f = self.face_of(ha);
-        let a = self.origin_of(ha);
-        let b = self.origin_of(hb);
+        let a = self.origin(ha);
+        let b = self.origin(hb);
         let e = self.alloc_edge();
         let g = self.alloc_face(false);
-        let (n0, n1) = (2 * e, 2 * e + 1);
-        self.he[n0 as usize] = crate::mesh::HalfedgeRecord {
+        let [n0, n1] = e.halfedges();
+        self.he[n0] = HalfedgeRecord {
             origin: a,
             next: hb,
             face: g,
         };
-        self.he[n1 as usize] = crate::mesh::HalfedgeRecord {
+        self.he[n1] = HalfedgeRecord {
             origin: b,
             next: ha,
             face: f,
@@ -227,9 +240,9 @@ impl Mesh {
         self.set_next(pb, n1);
         self.relabel_loop(n0, g);
         self.set_face_link(f, n1);
-        self.attrs.edge.interpolate(e as usize, &[]);
-        self.attrs.halfedge.copy(ha as usize, n0 as usize);
-        self.attrs.halfedge.copy(hb as usize, n1 as usize);
+        self.attrs.edge.interpolate(e.index(), &[]);
+        self.attrs.halfedge.copy(ha.index(), n0.index());
+        self.attrs.halfedge.copy(hb.index(), n1.index());
         (n0, g)
     }
 
@@ -239,11 +252,11 @@ impl Mesh {
     /// same hole flag takes the second), and vertices left without edges are
     /// removed. Attribute values of the freed elements are dropped: run the
     /// merge rules before. Must be called on a consistent mesh.
-    pub(crate) fn remove_edge_raw(&mut self, e: u32, survivor: u32) -> EdgeRemoval {
-        let (x, y) = (2 * e, 2 * e + 1);
+    pub(crate) fn remove_edge_raw(&mut self, e: Eid, survivor: Fid) -> EdgeRemoval {
+        let [x, y] = e.halfedges();
         let (fx, fy) = (self.face_of(x), self.face_of(y));
-        let (a, b) = (self.origin_of(x), self.origin_of(y));
-        let (nx, ny) = (self.next_of(x), self.next_of(y));
+        let (a, b) = (self.origin(x), self.origin(y));
+        let (nx, ny) = (self.next(x), self.next(y));
         let mut out = EdgeRemoval {
             freed_face: None,
             new_face: None,
@@ -262,10 +275,10 @@ impl Mesh {
             let px = self.prev_fast(x);
             self.set_next(px, ny);
             self.free_vertex(b);
-            if self.v_halfedge[a as usize] == x {
-                self.v_halfedge[a as usize] = ny;
+            if self.v_halfedge[a] == x {
+                self.v_halfedge[a] = ny;
             }
-            let fl = self.face_halfedge_raw(fx);
+            let fl = self.face_halfedge(fx);
             if fl == x || fl == y {
                 self.set_face_link(fx, ny);
             }
@@ -276,10 +289,10 @@ impl Mesh {
             let py = self.prev_fast(y);
             self.set_next(py, nx);
             self.free_vertex(a);
-            if self.v_halfedge[b as usize] == y {
-                self.v_halfedge[b as usize] = nx;
+            if self.v_halfedge[b] == y {
+                self.v_halfedge[b] = nx;
             }
-            let fl = self.face_halfedge_raw(fy);
+            let fl = self.face_halfedge(fy);
             if fl == x || fl == y {
                 self.set_face_link(fy, nx);
             }
@@ -290,11 +303,11 @@ impl Mesh {
         let py = self.prev_fast(y);
         self.set_next(px, ny);
         self.set_next(py, nx);
-        if self.v_halfedge[a as usize] == x {
-            self.v_halfedge[a as usize] = ny;
+        if self.v_halfedge[a] == x {
+            self.v_halfedge[a] = ny;
         }
-        if self.v_halfedge[b as usize] == y {
-            self.v_halfedge[b as usize] = nx;
+        if self.v_halfedge[b] == y {
+            self.v_halfedge[b] = nx;
         }
         if fx != fy {
             let gone = if survivor == fx { fy } else { fx };
@@ -303,9 +316,9 @@ impl Mesh {
             out.freed_face = Some(gone);
         } else {
             self.set_face_link(fx, nx);
-            let g = self.alloc_face(self.is_hole_raw(fx));
+            let g = self.alloc_face(self.is_hole(fx));
             self.relabel_loop(ny, g);
-            self.attrs.face.copy(fx as usize, g as usize);
+            self.attrs.face.copy(fx.index(), g.index());
             out.new_face = Some(g);
         }
         self.free_edge(e);
@@ -314,18 +327,18 @@ impl Mesh {
 
     /// The half-edge before `h` in its face: a few steps along the face
     /// when it is small (triangles, quads), else by turning around
-    /// `origin(h)` (`prev_of`).
+    /// `origin(h)` ([`prev`](Mesh::prev)).
     #[inline]
-    pub(crate) fn prev_fast(&self, h: u32) -> u32 {
-        let mut x = self.next_of(h);
+    pub(crate) fn prev_fast(&self, h: Hid) -> Hid {
+        let mut x = self.next(h);
         for _ in 0..6 {
-            let n = self.next_of(x);
+            let n = self.next(x);
             if n == h {
                 return x;
             }
             x = n;
         }
-        self.prev_of(h)
+        self.prev(h)
     }
 
     /// Debug check after every operator.

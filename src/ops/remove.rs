@@ -4,25 +4,24 @@
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::keys::{EdgeKey, FaceKey, VertexKey};
+use crate::layout::{Eid, Hid, Vid};
 use crate::mesh::Mesh;
 
 impl Mesh {
-    fn plan_remove_edge(&self, ek: EdgeKey) -> Result<u32> {
+    fn plan_remove_edge(&self, ek: EdgeKey) -> Result<Eid> {
         const OP: &str = "remove_edge";
         let e = self.check_edge(ek)?;
-        let (h, t) = (2 * e, 2 * e + 1);
+        let [h, t] = e.halfedges();
         let (f_left, f_right) = (self.face_of(h), self.face_of(t));
-        match (self.is_hole_raw(f_left), self.is_hole_raw(f_right)) {
+        match (self.is_hole(f_left), self.is_hole(f_right)) {
             (false, false) => {
                 // The merged face must not meet a vertex twice.
-                let (a, b) = (self.origin_of(h), self.origin_of(t));
-                let mut corners: Vec<u32> = self
-                    .face_loop_raw(f_left)
-                    .map(|x| self.origin_of(x))
-                    .collect();
+                let (a, b) = (self.origin(h), self.origin(t));
+                let mut corners: Vec<Vid> =
+                    self.face_loop(f_left).map(|x| self.origin(x)).collect();
                 corners.sort_unstable();
-                for x in self.face_loop_raw(f_right) {
-                    let v = self.origin_of(x);
+                for x in self.face_loop(f_right) {
+                    let v = self.origin(x);
                     if v != a && v != b && corners.binary_search(&v).is_ok() {
                         return Err(refuse(OP, ek, Refusal::NonManifold));
                     }
@@ -33,7 +32,7 @@ impl Mesh {
                 // edges may be on a boundary too (they would dangle).
                 let x = if hole_left { t } else { h };
                 if crate::circulate::FaceHalfedges::from_halfedge(self, x)
-                    .any(|y| y != x && self.in_hole_raw(y ^ 1))
+                    .any(|y| y != x && self.in_hole(y.twin()))
                 {
                     return Err(refuse(OP, ek, Refusal::Bridge));
                 }
@@ -90,15 +89,15 @@ impl Mesh {
     /// ```
     pub fn remove_edge(&mut self, ek: EdgeKey) -> Result<FaceKey> {
         let e = self.plan_remove_edge(ek)?;
-        let (h, t) = (2 * e, 2 * e + 1);
+        let [h, t] = e.halfedges();
         let (f_left, f_right) = (self.face_of(h), self.face_of(t));
-        let survivor = if self.is_hole_raw(f_right) {
+        let survivor = if self.is_hole(f_right) {
             f_right
-        } else if self.is_hole_raw(f_left) {
+        } else if self.is_hole(f_left) {
             f_left
         } else {
-            let pair = [(f_left as usize, 0.5), (f_right as usize, 0.5)];
-            self.attrs.face.merge(f_left as usize, &pair);
+            let pair = [(f_left.index(), 0.5), (f_right.index(), 0.5)];
+            self.attrs.face.merge(f_left.index(), &pair);
             f_left
         };
         self.remove_edge_raw(e, survivor);
@@ -112,8 +111,8 @@ impl Mesh {
     /// # Errors
     /// As [`remove_edge_allowing_bridge`](Mesh::remove_edge_allowing_bridge).
     pub fn check_remove_edge_allowing_bridge(&self, ek: EdgeKey) -> Result<()> {
-        let e = self.check_edge(ek)?;
-        if self.in_hole_raw(2 * e) || self.in_hole_raw(2 * e + 1) {
+        let [h, t] = self.check_edge(ek)?.halfedges();
+        if self.in_hole(h) || self.in_hole(t) {
             Ok(())
         } else {
             self.check_remove_edge(ek)
@@ -151,12 +150,11 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn remove_edge_allowing_bridge(&mut self, ek: EdgeKey) -> Result<Vec<FaceKey>> {
-        let e = self.check_edge(ek)?;
-        let (h, t) = (2 * e, 2 * e + 1);
-        if self.in_hole_raw(t) {
+        let [h, t] = self.check_edge(ek)?.halfedges();
+        if self.in_hole(t) {
             let f = self.fkey(self.face_of(h));
             self.remove_face(f)
-        } else if self.in_hole_raw(h) {
+        } else if self.in_hole(h) {
             let f = self.fkey(self.face_of(t));
             self.remove_face(f)
         } else {
@@ -164,29 +162,27 @@ impl Mesh {
         }
     }
 
-    fn plan_merge_faces(&self, f: FaceKey, g: FaceKey) -> Result<u32> {
+    fn plan_merge_faces(&self, f: FaceKey, g: FaceKey) -> Result<Hid> {
         const OP: &str = "merge_faces";
         let fi = self.check_face(f)?;
         let gi = self.check_face(g)?;
-        if self.is_hole_raw(fi) {
+        if self.is_hole(fi) {
             return Err(refuse(OP, f, Refusal::Hole));
         }
-        if self.is_hole_raw(gi) {
+        if self.is_hole(gi) {
             return Err(refuse(OP, g, Refusal::Hole));
         }
         if fi == gi {
             return Err(refuse(OP, f, Refusal::Adjacent));
         }
-        let mut shared = self
-            .face_loop_raw(fi)
-            .filter(|&x| self.face_of(x ^ 1) == gi);
+        let mut shared = self.face_loop(fi).filter(|&x| self.face_of(x.twin()) == gi);
         let Some(x) = shared.next() else {
             return Err(refuse(OP, f, Refusal::NotAdjacent));
         };
         if shared.next().is_some() {
             return Err(refuse(OP, f, Refusal::NonManifold));
         }
-        let e = self.ekey(x >> 1);
+        let e = self.ekey(x.edge());
         self.plan_remove_edge(e)
             .map_err(|_| refuse(OP, f, Refusal::NonManifold))?;
         Ok(x)
@@ -227,36 +223,36 @@ impl Mesh {
     /// ```
     pub fn merge_faces(&mut self, f: FaceKey, g: FaceKey) -> Result<FaceKey> {
         let x = self.plan_merge_faces(f, g)?;
-        let (fi, gi) = (self.face_of(x), self.face_of(x ^ 1));
-        let pair = [(fi as usize, 0.5), (gi as usize, 0.5)];
-        self.attrs.face.merge(fi as usize, &pair);
-        self.remove_edge_raw(x >> 1, fi);
+        let (fi, gi) = (self.face_of(x), self.face_of(x.twin()));
+        let pair = [(fi.index(), 0.5), (gi.index(), 0.5)];
+        self.attrs.face.merge(fi.index(), &pair);
+        self.remove_edge_raw(x.edge(), fi);
         self.debug_validate();
         Ok(f)
     }
 
     /// The ring of an interior vertex and the last half-edge of each face's
     /// segment, checked for `remove_vertex`.
-    fn plan_remove_vertex(&self, vk: VertexKey) -> Result<(Vec<u32>, Vec<u32>)> {
+    fn plan_remove_vertex(&self, vk: VertexKey) -> Result<(Vec<Hid>, Vec<Hid>)> {
         const OP: &str = "remove_vertex";
         let v = self.check_vertex(vk)?;
-        let outs: Vec<u32> = self.outgoing_raw(v).collect();
-        if outs.iter().any(|&o| self.in_hole_raw(o)) {
+        if self.on_boundary(v) {
             return Err(refuse(OP, vk, Refusal::Boundary));
         }
+        let outs: Vec<Hid> = self.outgoing(v).collect();
         let k = outs.len();
         let mut lasts = Vec::with_capacity(k);
         let mut corners = Vec::new();
         for i in 0..k {
-            let stop = outs[(i + k - 1) % k] ^ 1;
+            let stop = outs[(i + k - 1) % k].twin();
             let mut x = outs[i];
             for _ in 0..self.he.len() {
-                let n = self.next_of(x);
+                let n = self.next(x);
                 if n == stop {
                     break;
                 }
                 x = n;
-                corners.push(self.origin_of(x));
+                corners.push(self.origin(x));
             }
             lasts.push(x);
         }
@@ -315,19 +311,19 @@ impl Mesh {
     /// ```
     pub fn remove_vertex(&mut self, vk: VertexKey) -> Result<FaceKey> {
         let (outs, lasts) = self.plan_remove_vertex(vk)?;
-        let v = self.origin_of(outs[0]);
+        let v = self.origin(outs[0]);
         let k = outs.len();
-        let faces: Vec<u32> = outs.iter().map(|&o| self.face_of(o)).collect();
-        let firsts: Vec<u32> = outs.iter().map(|&o| self.next_of(o)).collect();
+        let faces: Vec<_> = outs.iter().map(|&o| self.face_of(o)).collect();
+        let firsts: Vec<Hid> = outs.iter().map(|&o| self.next(o)).collect();
         let keep = faces[0];
         let w = 1.0 / k as f64;
-        let inputs: Vec<(usize, f64)> = faces.iter().map(|&f| (f as usize, w)).collect();
-        self.attrs.face.merge(keep as usize, &inputs);
+        let inputs: Vec<(usize, f64)> = faces.iter().map(|&f| (f.index(), w)).collect();
+        self.attrs.face.merge(keep.index(), &inputs);
         for i in 0..k {
             self.set_next(lasts[i], firsts[(i + k - 1) % k]);
-            let u = self.dest_of(outs[i]);
-            if self.v_halfedge[u as usize] == outs[i] ^ 1 {
-                self.v_halfedge[u as usize] = firsts[i];
+            let u = self.dest(outs[i]);
+            if self.v_halfedge[u] == outs[i].twin() {
+                self.v_halfedge[u] = firsts[i];
             }
         }
         self.relabel_loop(firsts[0], keep);
@@ -335,7 +331,7 @@ impl Mesh {
             self.free_face(f);
         }
         for &o in &outs {
-            self.free_edge(o >> 1);
+            self.free_edge(o.edge());
         }
         self.free_vertex(v);
         self.debug_validate();

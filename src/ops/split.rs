@@ -4,23 +4,41 @@
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
-use crate::mesh::{HalfedgeRecord, Mesh};
+use crate::layout::{Eid, Fid, HalfedgeRecord, Hid};
+use crate::mesh::Mesh;
 
 /// Faces up to this degree are handled without heap allocation.
 const SMALL: usize = 8;
 
 struct SplitEdgePlan {
-    h: u32,
-    t: u32,
+    h: Hid,
+    t: Hid,
     /// The half-edge before `h` in its face.
-    ph: u32,
+    ph: Hid,
+}
+
+/// One corner of a poked face: its old side, the spoke to the centre and
+/// the triangle on that side.
+#[derive(Copy, Clone)]
+struct Spoke {
+    ring: Hid,
+    spoke: Eid,
+    face: Fid,
+}
+
+impl Spoke {
+    const NONE: Spoke = Spoke {
+        ring: Hid::NONE,
+        spoke: Eid::NONE,
+        face: Fid::NONE,
+    };
 }
 
 struct SplitFacePlan {
-    pa: u32,
-    ha: u32,
-    pb: u32,
-    hb: u32,
+    pa: Hid,
+    ha: Hid,
+    pb: Hid,
+    hb: Hid,
 }
 
 impl Mesh {
@@ -33,10 +51,10 @@ impl Mesh {
                 Refusal::Parameter("t must lie in 0..=1"),
             ));
         }
-        let h = 2 * e;
+        let [h, t] = e.halfedges();
         Ok(SplitEdgePlan {
             h,
-            t: h ^ 1,
+            t,
             ph: self.prev_fast(h),
         })
     }
@@ -86,43 +104,50 @@ impl Mesh {
     /// ```
     pub fn split_edge(&mut self, e: EdgeKey, t: f64) -> Result<VertexKey> {
         let SplitEdgePlan { h, t: tw, ph } = self.plan_split_edge(e, t)?;
-        let a = self.origin_of(h);
-        let b = self.origin_of(tw);
-        let nh = self.next_of(h);
-        let nt = self.next_of(tw);
+        let a = self.origin(h);
+        let b = self.origin(tw);
+        let nh = self.next(h);
+        let nt = self.next(tw);
+        let f_tw = self.face_of(tw);
         let m = self.alloc_vertex();
         let ne = self.alloc_edge();
         // n0: a -> m (in h's face), n1: m -> a (in tw's face).
-        let (n0, n1) = (2 * ne, 2 * ne + 1);
-        self.he[n0 as usize] = HalfedgeRecord {
+        let [n0, n1] = ne.halfedges();
+        self.he[n0] = HalfedgeRecord {
             origin: a,
             next: h,
             face: self.face_of(h),
         };
-        self.he[n1 as usize] = HalfedgeRecord {
+        self.he[n1] = HalfedgeRecord {
             origin: m,
             next: nt,
-            face: self.face_of(tw),
+            face: f_tw,
         };
-        self.he[h as usize].origin = m;
+        self.he[h].origin = m;
         self.set_next(ph, n0);
         self.set_next(tw, n1);
-        self.v_halfedge[m as usize] = h;
-        if self.v_halfedge[a as usize] == h {
-            self.v_halfedge[a as usize] = n0;
+        // Rule 11: on a boundary edge m leaves into the hole (h and n1
+        // lie in the faces of h and tw); n0 lies in h's face, like h.
+        self.v_halfedge[m] = if self.holes > 0 && self.is_hole(f_tw) {
+            n1
+        } else {
+            h
+        };
+        if self.v_halfedge[a] == h {
+            self.v_halfedge[a] = n0;
         }
         // Attributes.
         self.attrs
             .vertex
-            .interpolate(m as usize, &[(a as usize, 1.0 - t), (b as usize, t)]);
-        self.attrs.edge.split(
-            (h >> 1) as usize,
-            &[(ne as usize, t), ((h >> 1) as usize, 1.0 - t)],
-        );
+            .interpolate(m.index(), &[(a.index(), 1.0 - t), (b.index(), t)]);
+        let old = h.edge().index();
+        self.attrs
+            .edge
+            .split(old, &[(ne.index(), t), (old, 1.0 - t)]);
         let hc = &mut self.attrs.halfedge;
-        hc.copy(h as usize, n0 as usize);
-        hc.interpolate(h as usize, &[(n0 as usize, 1.0 - t), (nh as usize, t)]);
-        hc.interpolate(n1 as usize, &[(nt as usize, 1.0 - t), (tw as usize, t)]);
+        hc.copy(h.index(), n0.index());
+        hc.interpolate(h.index(), &[(n0.index(), 1.0 - t), (nh.index(), t)]);
+        hc.interpolate(n1.index(), &[(nt.index(), 1.0 - t), (tw.index(), t)]);
         self.debug_validate();
         Ok(self.vkey(m))
     }
@@ -132,17 +157,17 @@ impl Mesh {
         let va = self.check_vertex(a)?;
         let vb = self.check_vertex(b)?;
         let fk = self.fkey(f);
-        if self.is_hole_raw(f) {
+        if self.is_hole(f) {
             return Err(refuse("split_face", fk, Refusal::Hole));
         }
         if va == vb {
             return Err(refuse("split_face", fk, Refusal::Adjacent));
         }
         let (mut ha, mut hb, mut pa, mut pb) = (None, None, None, None);
-        let start = self.face_halfedge_raw(f);
-        let mut prev = self.prev_of(start);
-        for h in self.face_loop_raw(f) {
-            let o = self.origin_of(h);
+        let start = self.face_halfedge(f);
+        let mut prev = self.prev(start);
+        for h in self.face_loop(f) {
+            let o = self.origin(h);
             if o == va {
                 ha = Some(h);
                 pa = Some(prev);
@@ -155,7 +180,7 @@ impl Mesh {
         let (Some(ha), Some(hb), Some(pa), Some(pb)) = (ha, hb, pa, pb) else {
             return Err(refuse("split_face", fk, Refusal::NotInFace));
         };
-        if self.next_of(ha) == hb || self.next_of(hb) == ha {
+        if self.next(ha) == hb || self.next(hb) == ha {
             return Err(refuse("split_face", fk, Refusal::Adjacent));
         }
         if self.find_halfedge_raw(va, vb).is_some() {
@@ -220,9 +245,9 @@ impl Mesh {
     fn common_face(&self, a: VertexKey, b: VertexKey) -> Result<FaceKey> {
         let va = self.check_vertex(a)?;
         let vb = self.check_vertex(b)?;
-        for o in self.outgoing_raw(va) {
+        for o in self.outgoing(va) {
             let f = self.face_of(o);
-            if !self.is_hole_raw(f) && self.face_loop_raw(f).any(|h| self.origin_of(h) == vb) {
+            if !self.is_hole(f) && self.face_loop(f).any(|h| self.origin(h) == vb) {
                 return Ok(self.fkey(f));
             }
         }
@@ -253,9 +278,9 @@ impl Mesh {
         self.split_face(f, a, b)
     }
 
-    fn plan_poke_face(&self, f: FaceKey) -> Result<u32> {
+    fn plan_poke_face(&self, f: FaceKey) -> Result<Fid> {
         let f = self.check_face(f)?;
-        if self.is_hole_raw(f) {
+        if self.is_hole(f) {
             return Err(refuse("poke_face", self.fkey(f), Refusal::Hole));
         }
         Ok(f)
@@ -302,52 +327,50 @@ impl Mesh {
     /// ```
     pub fn poke_face(&mut self, f: FaceKey) -> Result<VertexKey> {
         let f = self.plan_poke_face(f)?;
-        // Small faces stay on the stack.
-        let mut stack = [0u32; 3 * SMALL];
+        // Small faces stay on the stack. Per corner i: the old side
+        // `ring[i]`, the new spoke edge and the triangle `faces[i]`.
+        let n = self.face_degree(f);
+        let mut stack = [Spoke::NONE; SMALL];
         let mut heap = Vec::new();
-        let n = self.face_degree_raw(f);
-        let buf: &mut [u32] = if n <= SMALL {
-            &mut stack[..3 * n]
+        let buf: &mut [Spoke] = if n <= SMALL {
+            &mut stack[..n]
         } else {
-            heap.resize(3 * n, 0);
+            heap.resize(n, Spoke::NONE);
             &mut heap
         };
-        let (ring, rest) = buf.split_at_mut(n);
-        let (spokes, faces) = rest.split_at_mut(n);
-        for (slot, h) in ring.iter_mut().zip(self.face_loop_raw(f)) {
-            *slot = h;
+        for (slot, h) in buf.iter_mut().zip(self.face_loop(f)) {
+            slot.ring = h;
         }
         let c = self.alloc_vertex();
         // Spoke i joins c and corner v_i = origin(ring[i]):
-        // out_i = c -> v_i (even), in_i = v_i -> c (odd).
-        for s in spokes.iter_mut() {
-            *s = self.alloc_edge();
+        // out_i = c -> v_i (side 0), in_i = v_i -> c (side 1).
+        for s in buf.iter_mut() {
+            s.spoke = self.alloc_edge();
         }
-        faces[0] = f;
-        for g in faces[1..].iter_mut() {
-            *g = self.alloc_face(false);
+        buf[0].face = f;
+        for s in buf[1..].iter_mut() {
+            s.face = self.alloc_face(false);
         }
         for i in 0..n {
             let j = (i + 1) % n;
-            let h = ring[i];
-            let face = faces[i];
-            let out_i = 2 * spokes[i];
-            let in_j = 2 * spokes[j] + 1;
-            self.he[h as usize].next = in_j;
-            self.he[h as usize].face = face;
-            self.he[in_j as usize] = HalfedgeRecord {
-                origin: self.origin_of(ring[j]),
+            let Spoke { ring: h, face, .. } = buf[i];
+            let out_i = buf[i].spoke.halfedge(0);
+            let in_j = buf[j].spoke.halfedge(1);
+            self.he[h].next = in_j;
+            self.he[h].face = face;
+            self.he[in_j] = HalfedgeRecord {
+                origin: self.origin(buf[j].ring),
                 next: out_i,
                 face,
             };
-            self.he[out_i as usize] = HalfedgeRecord {
+            self.he[out_i] = HalfedgeRecord {
                 origin: c,
                 next: h,
                 face,
             };
             self.set_face_link(face, h);
         }
-        self.v_halfedge[c as usize] = 2 * spokes[0];
+        self.v_halfedge[c] = buf[0].spoke.halfedge(0);
         // Attributes.
         let w = 1.0 / n as f64;
         if !self.attrs.vertex.cols.is_empty() {
@@ -359,28 +382,28 @@ impl Mesh {
                 corners_heap.resize(n, (0, 0.0));
                 &mut corners_heap
             };
-            for (slot, &h) in corners.iter_mut().zip(ring.iter()) {
-                *slot = (self.origin_of(h) as usize, w);
+            for (slot, s) in corners.iter_mut().zip(buf.iter()) {
+                *slot = (self.origin(s.ring).index(), w);
             }
-            self.attrs.vertex.interpolate(c as usize, corners);
+            self.attrs.vertex.interpolate(c.index(), corners);
         }
         if !self.attrs.edge.cols.is_empty() {
-            for &s in spokes.iter() {
-                self.attrs.edge.interpolate(s as usize, &[]);
+            for s in buf.iter() {
+                self.attrs.edge.interpolate(s.spoke.index(), &[]);
             }
         }
         if !self.attrs.halfedge.cols.is_empty() {
-            let old_corners: Vec<(usize, f64)> = ring.iter().map(|&h| (h as usize, w)).collect();
-            for (i, &s) in spokes.iter().enumerate() {
-                self.attrs
-                    .halfedge
-                    .interpolate(2 * s as usize, &old_corners);
-                self.attrs
-                    .halfedge
-                    .copy(ring[i] as usize, 2 * s as usize + 1);
+            let old_corners: Vec<(usize, f64)> = buf.iter().map(|s| (s.ring.index(), w)).collect();
+            for s in buf.iter() {
+                let [out, into] = s.spoke.halfedges();
+                self.attrs.halfedge.interpolate(out.index(), &old_corners);
+                self.attrs.halfedge.copy(s.ring.index(), into.index());
             }
         }
-        self.split_face_values(f, faces);
+        if !self.attrs.face.cols.is_empty() {
+            let faces: Vec<Fid> = buf.iter().map(|s| s.face).collect();
+            self.split_face_values(f, &faces);
+        }
         self.debug_validate();
         Ok(self.vkey(c))
     }

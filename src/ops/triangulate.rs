@@ -4,6 +4,7 @@
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::keys::FaceKey;
+use crate::layout::{Fid, Hid};
 use crate::mesh::Mesh;
 
 /// One ear: corners `l, m, r` (indices into the face's corner list) and the
@@ -21,7 +22,7 @@ impl Mesh {
     fn plan_triangulate(
         &self,
         fk: FaceKey,
-        sides: &mut Vec<u32>,
+        sides: &mut Vec<Hid>,
         ears: &mut Vec<Ear>,
     ) -> Result<()> {
         self.plan_triangulate_loop(fk, sides, ears, false)
@@ -32,38 +33,38 @@ impl Mesh {
     fn plan_triangulate_loop(
         &self,
         fk: FaceKey,
-        sides: &mut Vec<u32>,
+        sides: &mut Vec<Hid>,
         ears: &mut Vec<Ear>,
         hole_ok: bool,
     ) -> Result<()> {
         const OP: &str = "triangulate";
         let f = self.check_face(fk)?;
-        if self.is_hole_raw(f) && !hole_ok {
+        if self.is_hole(f) && !hole_ok {
             return Err(refuse(OP, fk, Refusal::Hole));
         }
         sides.clear();
         ears.clear();
-        sides.extend(self.face_loop_raw(f));
+        sides.extend(self.face_loop(f));
         let n = sides.len();
         if n <= 3 {
             return Ok(());
         }
-        let corner = |i: u32| self.origin_of(sides[i as usize]);
+        let corner = |i: u32| self.origin(sides[i as usize]);
         let joined = |i: u32, j: u32| self.find_halfedge_raw(corner(i), corner(j)).is_some();
         match self.position_slots() {
             Some(p) if n == 4 => {
                 // The diagonal from the reflex corner (if any) is the only
                 // valid one; for a convex quad take the shorter.
                 let q: [[f64; 2]; 4] = {
-                    let pts: Vec<[f64; 3]> = (0..4).map(|i| p[corner(i) as usize]).collect();
+                    let pts: Vec<[f64; 3]> = (0..4).map(|i| p[corner(i).index()]).collect();
                     let proj = projector(&pts);
                     [proj(pts[0]), proj(pts[1]), proj(pts[2]), proj(pts[3])]
                 };
                 let turn = |i: usize| cross(q[(i + 3) % 4], q[i], q[(i + 1) % 4]);
                 let reflex_13 = turn(1) < 0.0 || turn(3) < 0.0;
                 let reflex_02 = turn(0) < 0.0 || turn(2) < 0.0;
-                let d02 = dist2(p[corner(0) as usize], p[corner(2) as usize]);
-                let d13 = dist2(p[corner(1) as usize], p[corner(3) as usize]);
+                let d02 = dist2(p[corner(0).index()], p[corner(2).index()]);
+                let d13 = dist2(p[corner(1).index()], p[corner(3).index()]);
                 let mut prefer_02 = if reflex_02 != reflex_13 {
                     reflex_02
                 } else {
@@ -94,7 +95,7 @@ impl Mesh {
                 Ok(())
             }
             Some(p) => {
-                let pts: Vec<[f64; 3]> = (0..n as u32).map(|i| p[corner(i) as usize]).collect();
+                let pts: Vec<[f64; 3]> = (0..n as u32).map(|i| p[corner(i).index()]).collect();
                 let proj = projector(&pts);
                 let q: Vec<[f64; 2]> = pts.iter().map(|&x| proj(x)).collect();
                 let mut rest: Vec<u32> = (0..n as u32).collect();
@@ -218,7 +219,7 @@ impl Mesh {
 
     /// Apply planned ears; `sides[i]` is the half-edge leaving corner `i` in
     /// what remains of the face. `pieces` receives the triangles.
-    fn cut_ears(&mut self, sides: &mut [u32], ears: &[Ear], pieces: &mut Vec<u32>) {
+    fn cut_ears(&mut self, sides: &mut [Hid], ears: &[Ear], pieces: &mut Vec<Fid>) {
         let f = self.face_of(sides[0]);
         pieces.clear();
         pieces.push(f);
@@ -226,7 +227,7 @@ impl Mesh {
             let (pa, ha) = (sides[ear.m as usize], sides[ear.r as usize]);
             let (pb, hb) = (sides[ear.pl as usize], sides[ear.l as usize]);
             let (n0, g) = self.split_face_raw(pa, ha, pb, hb);
-            sides[ear.l as usize] = n0 ^ 1;
+            sides[ear.l as usize] = n0.twin();
             pieces.push(g);
         }
         if ears.is_empty() {
@@ -253,7 +254,7 @@ impl Mesh {
     pub fn triangulate_all(&mut self) -> Vec<FaceKey> {
         let faces: Vec<FaceKey> = self
             .faces()
-            .filter(|&f| self.face_degree_raw(f.index) > 3)
+            .filter(|&f| self.face_degree(f.id()) > 3)
             .collect();
         let mut left = Vec::new();
         let (mut sides, mut ears, mut pieces) = (Vec::new(), Vec::new(), Vec::new());

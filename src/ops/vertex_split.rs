@@ -3,16 +3,17 @@
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::keys::HalfedgeKey;
-use crate::mesh::{HalfedgeRecord, Mesh};
+use crate::layout::{HalfedgeRecord, Hid};
+use crate::mesh::Mesh;
 
 struct VertexSplitPlan {
-    hc: u32,
-    hd: u32,
+    hc: Hid,
+    hd: Hid,
     /// The half-edges strictly between `hd` and `hc` turning around `b`:
     /// they move to the new vertex.
-    moved: Vec<u32>,
+    moved: Vec<Hid>,
     /// The half-edge before `twin(hd)` in its face.
-    pd: u32,
+    pd: Hid,
 }
 
 impl Mesh {
@@ -20,27 +21,27 @@ impl Mesh {
         const OP: &str = "split_vertex";
         let hc = self.check_halfedge(hck)?;
         let hd = self.check_halfedge(hdk)?;
-        let b = self.origin_of(hc);
-        if self.origin_of(hd) != b {
+        let b = self.origin(hc);
+        if self.origin(hd) != b {
             return Err(refuse(OP, hdk, Refusal::NotAdjacent));
         }
-        if hc == hd || self.dest_of(hc) == self.dest_of(hd) {
+        if hc == hd || self.dest(hc) == self.dest(hd) {
             return Err(refuse(OP, hdk, Refusal::Adjacent));
         }
         let mut moved = Vec::new();
-        let mut o = self.next_of(hd ^ 1);
+        let mut o = self.next(hd.twin());
         for _ in 0..self.he.len() {
             if o == hc {
                 break;
             }
             moved.push(o);
-            o = self.next_of(o ^ 1);
+            o = self.next(o.twin());
         }
         Ok(VertexSplitPlan {
             hc,
             hd,
             moved,
-            pd: self.prev_of(hd ^ 1),
+            pd: self.prev(hd.twin()),
         })
     }
 
@@ -102,87 +103,98 @@ impl Mesh {
     /// ```
     pub fn split_vertex(&mut self, hck: HalfedgeKey, hdk: HalfedgeKey) -> Result<HalfedgeKey> {
         let VertexSplitPlan { hc, hd, moved, pd } = self.plan_split_vertex(hck, hdk)?;
-        let b = self.origin_of(hc);
-        let c = self.dest_of(hc);
-        let d = self.dest_of(hd);
-        let tdb = hd ^ 1; // d -> b
+        let b = self.origin(hc);
+        let c = self.dest(hc);
+        let d = self.dest(hd);
+        let tdb = hd.twin(); // d -> b
         let f_c = self.face_of(hc);
         let f_d = self.face_of(tdb);
-        let after_hc = self.next_of(hc);
+        let after_hc = self.next(hc);
+        // Rule 11: only a boundary b can leave holes at b or at a.
+        let b_on_boundary = self.holes > 0 && self.on_boundary(b);
         let a = self.alloc_vertex();
         let (e_ab, e_ac, e_ad) = (self.alloc_edge(), self.alloc_edge(), self.alloc_edge());
-        let (h, t) = (2 * e_ab, 2 * e_ab + 1); // a -> b, b -> a
-        let (ac, ca) = (2 * e_ac, 2 * e_ac + 1);
-        let (ad, da) = (2 * e_ad, 2 * e_ad + 1);
+        let [h, t] = e_ab.halfedges(); // a -> b, b -> a
+        let [ac, ca] = e_ac.halfedges();
+        let [ad, da] = e_ad.halfedges();
         let left = self.alloc_face(false);
         let right = self.alloc_face(false);
-        let prev_c = moved.last().map_or(da, |&o| o ^ 1);
+        let prev_c = moved.last().map_or(da, |&o| o.twin());
         let next_d = moved.first().copied().unwrap_or(ac);
         for &o in &moved {
-            self.he[o as usize].origin = a;
+            self.he[o].origin = a;
         }
         // The faces beside the wedge: ac takes hc's place, da takes d -> b's.
-        self.he[ac as usize] = HalfedgeRecord {
+        self.he[ac] = HalfedgeRecord {
             origin: a,
             next: after_hc,
             face: f_c,
         };
-        self.he[da as usize] = HalfedgeRecord {
+        self.he[da] = HalfedgeRecord {
             origin: d,
             next: next_d,
             face: f_d,
         };
         self.set_next(prev_c, ac);
         self.set_next(pd, da);
-        if self.face_halfedge_raw(f_c) == hc {
+        if self.face_halfedge(f_c) == hc {
             self.set_face_link(f_c, ac);
         }
-        if self.face_halfedge_raw(f_d) == tdb {
+        if self.face_halfedge(f_d) == tdb {
             self.set_face_link(f_d, da);
         }
         // Triangles (a, b, c) and (b, a, d).
-        self.he[h as usize] = HalfedgeRecord {
+        self.he[h] = HalfedgeRecord {
             origin: a,
             next: hc,
             face: left,
         };
-        self.he[hc as usize].next = ca;
-        self.he[hc as usize].face = left;
-        self.he[ca as usize] = HalfedgeRecord {
+        self.he[hc].next = ca;
+        self.he[hc].face = left;
+        self.he[ca] = HalfedgeRecord {
             origin: c,
             next: h,
             face: left,
         };
-        self.he[t as usize] = HalfedgeRecord {
+        self.he[t] = HalfedgeRecord {
             origin: b,
             next: ad,
             face: right,
         };
-        self.he[ad as usize] = HalfedgeRecord {
+        self.he[ad] = HalfedgeRecord {
             origin: a,
             next: tdb,
             face: right,
         };
-        self.he[tdb as usize].next = t;
-        self.he[tdb as usize].face = right;
+        self.he[tdb].next = t;
+        self.he[tdb].face = right;
         self.set_face_link(left, h);
         self.set_face_link(right, t);
-        self.v_halfedge[a as usize] = h;
-        self.v_halfedge[b as usize] = hc;
+        self.v_halfedge[a] = h;
+        self.v_halfedge[b] = hc;
+        // da took d -> b's place in f_d (a hole, maybe): d keeps a half-edge
+        // in that face.
+        if self.v_halfedge[d] == tdb {
+            self.v_halfedge[d] = da;
+        }
+        if b_on_boundary {
+            self.point_at_hole(a);
+            self.point_at_hole(b);
+        }
         // Attributes.
         self.attrs
             .vertex
-            .interpolate(a as usize, &[(b as usize, 1.0)]);
+            .interpolate(a.index(), &[(b.index(), 1.0)]);
         for e in [e_ab, e_ac, e_ad] {
-            self.attrs.edge.interpolate(e as usize, &[]);
+            self.attrs.edge.interpolate(e.index(), &[]);
         }
-        self.attrs.halfedge.copy(hc as usize, ac as usize);
-        self.attrs.halfedge.copy(tdb as usize, da as usize);
+        self.attrs.halfedge.copy(hc.index(), ac.index());
+        self.attrs.halfedge.copy(tdb.index(), da.index());
         for x in [h, ca, t, ad] {
-            self.attrs.halfedge.interpolate(x as usize, &[]);
+            self.attrs.halfedge.interpolate(x.index(), &[]);
         }
-        self.attrs.face.interpolate(left as usize, &[]);
-        self.attrs.face.interpolate(right as usize, &[]);
+        self.attrs.face.interpolate(left.index(), &[]);
+        self.attrs.face.interpolate(right.index(), &[]);
         self.debug_validate();
         Ok(self.hkey(h))
     }

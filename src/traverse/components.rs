@@ -1,7 +1,10 @@
 //! Connected components.
 
 use crate::keys::{FaceKey, VertexKey};
-use crate::mesh::{Mesh, NONE};
+use crate::mesh::Mesh;
+
+/// A vacant slot's component.
+const NONE: u32 = u32::MAX; // not a link: a component number
 
 /// The connected components of a mesh: which vertices, faces and holes
 /// hang together through edges. Two pieces touching at one (bowtie) vertex
@@ -50,20 +53,20 @@ pub fn components(mesh: &Mesh) -> Components {
     let mut vertex = vec![(0, NONE); nv];
     let mut sizes = Vec::new();
     let mut stack = Vec::new();
-    for v in mesh.v_slots.live_indices() {
-        if vertex[v as usize].1 != NONE {
+    for v in mesh.vids() {
+        if vertex[v.index()].1 != NONE {
             continue;
         }
         let id = sizes.len() as u32;
         let mut size = 0;
-        vertex[v as usize] = (mesh.v_slots.generation_of(v), id);
+        vertex[v.index()] = (mesh.vkey(v).generation(), id);
         stack.push(v);
         while let Some(u) = stack.pop() {
             size += 1;
-            for h in mesh.outgoing_raw(u) {
-                let w = mesh.dest_of(h);
-                if vertex[w as usize].1 == NONE {
-                    vertex[w as usize] = (mesh.v_slots.generation_of(w), id);
+            for h in mesh.outgoing(u) {
+                let w = mesh.dest(h);
+                if vertex[w.index()].1 == NONE {
+                    vertex[w.index()] = (mesh.vkey(w).generation(), id);
                     stack.push(w);
                 }
             }
@@ -71,9 +74,9 @@ pub fn components(mesh: &Mesh) -> Components {
         sizes.push(size);
     }
     let mut face = vec![(0, NONE); mesh.f_slots.slot_count()];
-    for f in mesh.f_slots.live_indices() {
-        let a = mesh.origin_of(mesh.face_halfedge_raw(f));
-        face[f as usize] = (mesh.f_slots.generation_of(f), vertex[a as usize].1);
+    for f in mesh.fids() {
+        let a = mesh.origin(mesh.face_halfedge(f));
+        face[f.index()] = (mesh.fkey(f).generation(), vertex[a.index()].1);
     }
     Components {
         vertex,

@@ -5,7 +5,8 @@ use std::collections::BinaryHeap;
 
 use crate::error::{Error, Refusal, Result};
 use crate::keys::{AnyKey, HalfedgeKey, VertexKey};
-use crate::mesh::{Mesh, NONE};
+use crate::layout::{Hid, IdVec, Vid};
+use crate::mesh::Mesh;
 
 /// A path along edges: the vertices passed, the half-edges taken and the
 /// total cost.
@@ -24,7 +25,7 @@ pub struct Path {
 #[derive(Copy, Clone, Debug)]
 struct Entry {
     cost: f64,
-    v: u32,
+    v: Vid,
 }
 
 impl PartialEq for Entry {
@@ -102,24 +103,24 @@ pub fn shortest_path(
     let s = mesh.check_vertex(from)?;
     let t = mesh.check_vertex(to)?;
     let n = mesh.v_slots.slot_count();
-    let mut dist = vec![f64::INFINITY; n];
+    let mut dist = IdVec::filled(f64::INFINITY, n);
     // The half-edge by which each vertex was reached.
-    let mut via = vec![NONE; n];
-    let mut settled = vec![false; n];
+    let mut via = IdVec::filled(Hid::NONE, n);
+    let mut settled = IdVec::filled(false, n);
     let mut heap = BinaryHeap::new();
-    dist[s as usize] = 0.0;
+    dist[s] = 0.0;
     heap.push(Entry { cost: 0.0, v: s });
     while let Some(Entry { cost: d, v: u }) = heap.pop() {
-        if settled[u as usize] {
+        if settled[u] {
             continue;
         }
-        settled[u as usize] = true;
+        settled[u] = true;
         if u == t {
             break;
         }
-        for h in mesh.outgoing_raw(u) {
-            let w = mesh.dest_of(h);
-            if settled[w as usize] {
+        for h in mesh.outgoing(u) {
+            let w = mesh.dest(h);
+            if settled[w] {
                 continue;
             }
             let c = cost(mesh.hkey(h));
@@ -131,23 +132,23 @@ pub fn shortest_path(
                 });
             }
             let nd = d + c;
-            if nd < dist[w as usize] {
-                dist[w as usize] = nd;
-                via[w as usize] = h;
+            if nd < dist[w] {
+                dist[w] = nd;
+                via[w] = h;
                 heap.push(Entry { cost: nd, v: w });
             }
         }
     }
-    if !settled[t as usize] {
+    if !settled[t] {
         return Ok(None);
     }
     let mut halfedges = Vec::new();
     let mut vertices = vec![mesh.vkey(t)];
     let mut v = t;
     while v != s {
-        let h = via[v as usize];
+        let h = via[v];
         halfedges.push(mesh.hkey(h));
-        v = mesh.origin_of(h);
+        v = mesh.origin(h);
         vertices.push(mesh.vkey(v));
     }
     halfedges.reverse();
@@ -155,7 +156,7 @@ pub fn shortest_path(
     Ok(Some(Path {
         vertices,
         halfedges,
-        cost: dist[t as usize],
+        cost: dist[t],
     }))
 }
 

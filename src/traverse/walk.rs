@@ -5,6 +5,7 @@ use std::marker::PhantomData;
 
 use crate::error::{Error, Refusal, Result};
 use crate::keys::{AnyKey, FaceKey, VertexKey};
+use crate::layout::{Fid, Vid};
 use crate::mesh::Mesh;
 
 mod sealed {
@@ -36,18 +37,18 @@ pub trait Node: Copy + sealed::Sealed {
 
 impl Node for VertexKey {
     fn start_slot(mesh: &Mesh, key: Self, _op: &'static str) -> Result<usize> {
-        Ok(mesh.check_vertex(key)? as usize)
+        Ok(mesh.check_vertex(key)?.index())
     }
     fn visitable(mesh: &Mesh, i: usize) -> bool {
         mesh.v_slots.is_live(i)
     }
     fn key_of(mesh: &Mesh, i: usize) -> Self {
-        mesh.vkey(i as u32)
+        mesh.vkey(Vid::new(i as u32))
     }
     fn neighbors(mesh: &Mesh, i: usize, out: &mut Vec<usize>) {
         out.extend(
-            mesh.outgoing_raw(i as u32)
-                .map(|h| mesh.dest_of(h) as usize),
+            mesh.outgoing(Vid::new(i as u32))
+                .map(|h| mesh.dest(h).index()),
         );
     }
 }
@@ -55,27 +56,27 @@ impl Node for VertexKey {
 impl Node for FaceKey {
     fn start_slot(mesh: &Mesh, key: Self, op: &'static str) -> Result<usize> {
         let f = mesh.check_face(key)?;
-        if mesh.is_hole_raw(f) {
+        if mesh.is_hole(f) {
             return Err(Error::Refused {
                 op,
                 key: AnyKey::Face(key),
                 reason: Refusal::Hole,
             });
         }
-        Ok(f as usize)
+        Ok(f.index())
     }
     fn visitable(mesh: &Mesh, i: usize) -> bool {
-        mesh.f_slots.is_live(i) && !mesh.is_hole_raw(i as u32)
+        mesh.f_slots.is_live(i) && !mesh.is_hole(Fid::new(i as u32))
     }
     fn key_of(mesh: &Mesh, i: usize) -> Self {
-        mesh.fkey(i as u32)
+        mesh.fkey(Fid::new(i as u32))
     }
     fn neighbors(mesh: &Mesh, i: usize, out: &mut Vec<usize>) {
         out.extend(
-            mesh.face_loop_raw(i as u32)
-                .map(|h| mesh.face_of(h ^ 1))
-                .filter(|&g| !mesh.is_hole_raw(g))
-                .map(|g| g as usize),
+            mesh.face_loop(Fid::new(i as u32))
+                .map(|h| mesh.face_of(h.twin()))
+                .filter(|&g| !mesh.is_hole(g))
+                .map(|g| g.index()),
         );
     }
 }

@@ -168,10 +168,11 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     /// The [`ValueType`](super::ValueType) values convert to (for serde
     /// and file formats); `None` if they do not convert.
     fn portable_type(&self) -> Option<super::ValueType>;
-    /// `"value type/rule type"`: the key typed columns are registered under
-    /// for deserialization.
+    /// The full names of the value type and the rule type, from which the
+    /// registry makes the key typed columns are registered under for
+    /// deserialization.
     #[cfg(feature = "serde")]
-    fn type_key(&self) -> String;
+    fn type_names(&self) -> (&'static str, &'static str);
     /// A boxed deep copy.
     fn clone_box(&self) -> Box<dyn ErasedColumn>;
     /// The value type's name, for errors and listings.
@@ -291,8 +292,8 @@ where
     }
 
     #[cfg(feature = "serde")]
-    fn type_key(&self) -> String {
-        super::registry::type_key::<T, R>()
+    fn type_names(&self) -> (&'static str, &'static str) {
+        (std::any::type_name::<T>(), std::any::type_name::<R>())
     }
 
     fn clone_box(&self) -> Box<dyn ErasedColumn> {
@@ -315,7 +316,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::attr::rule::Interpolate;
+    use crate::store::rule::Interpolate;
 
     #[test]
     fn presence_is_lazy() {

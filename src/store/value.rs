@@ -187,8 +187,8 @@ impl Value {
 }
 
 /// The rule of dynamic columns: floats (and lists of floats of one length)
-/// interpolate like [`Interpolate`](super::Interpolate); every other value
-/// is [`Incompatible`](super::Incompatible) (kept only when all
+/// interpolate like [`Interpolate`](super::rules::Interpolate); every other value
+/// is [`Incompatible`](super::rules::Incompatible) (kept only when all
 /// contributors agree). Split pieces keep the source value.
 ///
 /// ```

@@ -7,19 +7,23 @@ pub use super::rules::Interpolate;
 ///
 /// Every topological operation runs the rules of every column itself; user
 /// code never calls them by hand. Contributors always arrive in a
-/// deterministic order fixed by the operation (its docs say which), and an
-/// absent value is passed as `None` so a rule can tell "no value" from any
-/// value.
+/// deterministic order fixed by the operation (its docs, and the table in
+/// [`ops`](crate::ops), say which): in a merge **the surviving element
+/// comes first** (the vertex a collapse keeps, the face a face merge keeps,
+/// the side of a disappearing triangle that stays), then the elements that
+/// disappear. An absent value is passed as `None` so a rule can tell "no
+/// value" from any value.
 ///
 /// Implement this on a zero-sized type to write a new rule, then name it in
 /// [`Attribute::Rule`](crate::attr::Attribute) or pass it when adding a
 /// column.
 pub trait Rule<T>: 'static {
-    /// Several elements become one (collapse: two vertices; remove edge or
-    /// merge faces: two faces; remove vertex: a ring of faces). `inputs` are
-    /// `(value, weight)` pairs; the weights are non-negative and sum to 1
-    /// (collapse passes the position parameter, merges of faces pass equal
-    /// weights).
+    /// Several elements become one (collapse: two vertices, and two edges
+    /// where a triangle disappears; remove edge or merge faces: two faces;
+    /// remove vertex: a ring of faces). `inputs` are `(value, weight)`
+    /// pairs, the surviving element's first; the weights are non-negative
+    /// and sum to 1 (collapse passes the position parameter, merges of faces
+    /// pass equal weights).
     fn merge(inputs: &[(Option<&T>, f64)]) -> Option<T>;
 
     /// A new element is made from existing ones that remain (the vertex of

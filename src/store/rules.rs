@@ -11,8 +11,10 @@
 //! | [`Discard`] | absent | absent | absent | caches that must be recomputed |
 //!
 //! "First" is the first contributor in the order the operation passes them,
-//! which each operator documents (a collapse passes the surviving vertex
-//! first), so every result is deterministic.
+//! which each operator documents: every merge passes the surviving element
+//! first (a collapse the vertex it keeps, a face merge the face it keeps),
+//! so every result is deterministic and [`KeepFirst`] keeps the survivor's
+//! value.
 
 use super::rule::{Linear, Rule};
 
@@ -33,6 +35,10 @@ use super::rule::{Linear, Rule};
 pub struct Interpolate;
 
 impl<T: Linear> Rule<T> for Interpolate {
+    // Inlined into the column's merge and interpolate: left to the
+    // compiler's heuristics it was not, after an unrelated change moved it
+    // to another codegen unit (+8% instructions in `ErasedColumn::merge`).
+    #[inline]
     fn merge(inputs: &[(Option<&T>, f64)]) -> Option<T> {
         let mut total = 0.0;
         let mut present = 0usize;
