@@ -71,6 +71,26 @@ pub enum Error {
         /// Why.
         reason: Refusal,
     },
+    /// Occurs when a long-running algorithm's progress callback asked it
+    /// to stop. The mesh is exactly as it was before the call.
+    #[error("{algorithm} was cancelled; the mesh is unchanged")]
+    Cancelled {
+        /// The algorithm that stopped.
+        algorithm: &'static str,
+    },
+    /// Occurs when a mesh does not meet what an algorithm needs (a face
+    /// that is not a triangle for Loop subdivision, a region mask that
+    /// selects nothing, options that contradict each other). The mesh is
+    /// unchanged.
+    #[error("{algorithm} cannot run{}: {reason}", .key.map(|k| format!(" at {k}")).unwrap_or_default())]
+    Unsuitable {
+        /// The algorithm.
+        algorithm: &'static str,
+        /// The element where the need was not met, when one can be named.
+        key: Option<AnyKey>,
+        /// What was needed and not found.
+        reason: String,
+    },
     /// Occurs when input polygons cannot form a half-edge mesh.
     #[error(transparent)]
     Build(#[from] BuildError),

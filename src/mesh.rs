@@ -599,4 +599,18 @@ impl Mesh {
             self.f_slots.slot_count(),
         ]
     }
+
+    /// Replace the whole mesh by `result`, an algorithm's output built
+    /// wholesale (subdivision, remeshing, ...) instead of through the
+    /// operators.
+    ///
+    /// This is the one door for such rebuilds, so that whatever watches
+    /// edits (the journal for undo and change tracking) sees them as one
+    /// step. `result` must carry the caller's attribute columns with the
+    /// same ids (build it from a clone of `self`, or move the column sets
+    /// over), so handles taken before the rebuild keep working.
+    #[allow(dead_code)]
+    pub(crate) fn replace_with(&mut self, result: Mesh) {
+        *self = result;
+    }
 }

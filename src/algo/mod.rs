@@ -3,6 +3,7 @@
 //!
 //! | module | what | results |
 //! |---|---|---|
+//! | [`progress`] | the progress-and-cancel callback every long algorithm takes | [`Progress`], [`Error::Cancelled`](crate::Error::Cancelled) |
 //! | [`normals`] | face normals; vertex normals weighted by angle, area or uniformly; corner (half-edge) normals split at creases and hard edges | plain `Vec`s indexed by slot, or attribute columns named [`normals::NORMAL`] |
 //!
 //! Each algorithm reads the mesh through its public API (views, keys,
@@ -16,8 +17,10 @@
 //! the order of floating-point sums (see each function).
 
 pub mod normals;
+pub mod progress;
 
 pub use normals::{
     add_corner_normals, add_face_normals, add_vertex_normals, corner_normals, face_normals,
     vertex_normals, CornerNormalOptions, NormalWeight, VertexNormalOptions, NORMAL,
 };
+pub use progress::{Flow, Progress, ProgressInfo};
