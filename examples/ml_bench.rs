@@ -226,19 +226,27 @@ const WORKLOADS: &[(&str, Workload)] = &[
     ("read_lib", read_lib),
     ("circulate", circulate),
     ("smooth_10", smooth_10),
+    // meshloom only: smooth_10 through keys instead of views.
+    ("smooth_10_keys", smooth_10_keys),
     ("split_collapse_checked", split_collapse_checked),
+    // meshloom only: the same followed by compact() (the peers' time
+    // includes their garbage collection).
+    ("split_collapse_compact", split_collapse_compact),
     ("flip_back", flip_back),
     ("vertex_normals", vertex_normals),
+    ("loop_subdiv", loop_subdiv),
+    ("catmull_clark", catmull_clark),
+    ("sqrt3", sqrt3),
+    ("curvature", curvature),
+    ("implicit_smoothing", implicit_smoothing),
+    ("decimate_10pct", decimate_10pct),
     // meshloom only (no peer row): engine buffers.
     ("triangle_buffers", triangle_buffers),
+    // meshloom only: the journal (issue 15).
+    ("journal", journal),
+    ("transaction_vs_clone", transaction_vs_clone),
     // not in meshloom yet (C++ names and count notes, see README.md):
     // ("normals_lib", ...)           "angle-weighted"
-    // ("loop_subdiv", ...)           "-> V V, F F"
-    // ("decimate_10pct", ...)        "-> V V, F F"
-    // ("catmull_clark", ...)         "-> V V, F F"
-    // ("sqrt3", ...)                 "-> V V, F F"
-    // ("curvature", ...)             "V V; mean, average H x"
-    // ("implicit_smoothing", ...)    "V V; 1 step, cotan, dt 0.001, rescale"
     // ("uniform_remeshing", ...)     "-> V V, F F; target length L, 10 iterations"   (mean_edge_length)
     // ("fill_holes", ...)            "8 holes filled -> V V, F F; holed input V V, F F"   (holes)
 ];
@@ -270,13 +278,61 @@ fn circulate(input: &Input) -> (Elapsed, String) {
 }
 
 /// 10 Jacobi iterations of uniform barycentre smoothing through the attribute
-/// API, boundary vertices fixed (as the C++ smooth_10).
+/// API, boundary vertices fixed (as the C++ smooth_10): vertex views, their
+/// neighbours as views (`neighbor_views`) and `AttrView::at`, the read the
+/// attribute docs name as the fastest in a loop that navigates.
+///
+/// Same work as the peers: they add their scratch property (`np`) before
+/// the timer starts and iterate the vertices inside it; here the scratch
+/// buffer is allocated before the timer and the vertex keys are collected
+/// inside it.
 fn smooth_10(input: &Input) -> (Elapsed, String) {
     let mut mesh = input.mesh.clone();
-    let t0 = stamp();
     let pos = mesh.position_attr().expect("positions");
+    let mut next = vec![[0.0f64; 3]; mesh.vertex_count()];
+    let t0 = stamp();
     let vertices: Vec<_> = mesh.vertices().collect();
-    let mut next = vec![[0.0f64; 3]; vertices.len()];
+    for _ in 0..10 {
+        let view = mesh.attr_view(&pos).unwrap();
+        for (out, &v) in next.iter_mut().zip(&vertices) {
+            let vv = mesh.vertex(v).unwrap();
+            if vv.is_boundary() {
+                *out = *view.at(vv).unwrap();
+                continue;
+            }
+            let mut sum = [0.0; 3];
+            let mut n = 0.0;
+            for u in vv.neighbor_views() {
+                if let Some(p) = view.at(u) {
+                    sum[0] += p[0];
+                    sum[1] += p[1];
+                    sum[2] += p[2];
+                    n += 1.0;
+                }
+            }
+            *out = sum.map(|c| c / n);
+        }
+        let mut view = mesh.attr_view_mut(&pos).unwrap();
+        for (p, &v) in next.iter().zip(&vertices) {
+            if let Some(slot) = view.get_mut(v) {
+                *slot = *p;
+            }
+        }
+    }
+    let e = since(t0);
+    let p = mesh.position_slots().unwrap();
+    let chk: f64 = p.iter().map(|q| q[2]).sum();
+    (e, format!("10 iterations, sum z {chk:.6}"))
+}
+
+/// meshloom only: smooth_10 through keys (`neighbors` and `AttrView::get`,
+/// a generation check on every read) instead of views.
+fn smooth_10_keys(input: &Input) -> (Elapsed, String) {
+    let mut mesh = input.mesh.clone();
+    let pos = mesh.position_attr().expect("positions");
+    let mut next = vec![[0.0f64; 3]; mesh.vertex_count()];
+    let t0 = stamp();
+    let vertices: Vec<_> = mesh.vertices().collect();
     for _ in 0..10 {
         let view = mesh.attr_view(&pos).unwrap();
         for (out, &v) in next.iter_mut().zip(&vertices) {
@@ -342,6 +398,146 @@ fn split_collapse_checked(input: &Input) -> (Elapsed, String) {
         t_all.wall - t_split.wall
     );
     (t_all, note)
+}
+
+/// meshloom only: split_collapse_checked followed by `compact()`, the
+/// counterpart of the peers' garbage collection, which their
+/// split_collapse_checked time includes (README caveat 2).
+fn split_collapse_compact(input: &Input) -> (Elapsed, String) {
+    let mut m = input.mesh.clone();
+    let mut refused = 0usize;
+    let t0 = stamp();
+    let [first_new, _, _, faces] = m.slot_counts();
+    for i in 0..faces {
+        if let Some(f) = m.face_at(i) {
+            m.poke_face(f).expect("poke");
+        }
+    }
+    let t_split = since(t0);
+    for i in first_new..m.slot_counts()[0] {
+        if let Some(c) = m.vertex_at(i) {
+            let h = m.vertex(c).expect("live").halfedge().key();
+            if m.collapse_edge(h).is_err() {
+                refused += 1;
+            }
+        }
+    }
+    let t_coll = since(t0);
+    let maps = m.compact();
+    std::hint::black_box(&maps);
+    let t_all = since(t0);
+    let note = format!(
+        "back to {} V, {} F, {} refused; wall split {:.4} + collapse {:.4} + compact {:.4} s",
+        m.vertex_count(),
+        m.face_count(),
+        refused,
+        t_split.wall,
+        t_coll.wall - t_split.wall,
+        t_all.wall - t_coll.wall
+    );
+    (t_all, note)
+}
+
+/// The poke/collapse run of split_collapse_checked, on a fresh clone;
+/// returns (thread CPU seconds, operators that succeeded).
+fn poke_collapse(m: &mut Mesh) -> (f64, usize) {
+    let t0 = stamp();
+    let mut ops = 0usize;
+    let [first_new, _, _, faces] = m.slot_counts();
+    for i in 0..faces {
+        if let Some(f) = m.face_at(i) {
+            m.poke_face(f).expect("poke");
+            ops += 1;
+        }
+    }
+    for i in first_new..m.slot_counts()[0] {
+        if let Some(c) = m.vertex_at(i) {
+            let h = m.vertex(c).expect("live").halfedge().key();
+            if m.collapse_edge(h).is_ok() {
+                ops += 1;
+            }
+        }
+    }
+    (since(t0).cpu, ops)
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// split_collapse_checked with the undo journal off and on, alternating,
+/// `reps` rounds each (medians of thread CPU time, with min..max); the
+/// journal's bytes per operator; undoing the whole run as one unit.
+fn journal(input: &Input) -> (Elapsed, String) {
+    let rounds = input.reps.max(3);
+    let (mut off, mut on, mut undo) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut bytes, mut ops) = (0usize, 0usize);
+    let t_all = stamp();
+    for _ in 0..rounds {
+        let mut m = input.mesh.clone();
+        off.push(poke_collapse(&mut m).0);
+        drop(m);
+        let mut m = input.mesh.clone();
+        m.enable_history(Default::default());
+        m.begin_step("run");
+        let (t, n) = poke_collapse(&mut m);
+        m.end_step();
+        on.push(t);
+        bytes = m.history_bytes();
+        ops = n;
+        let t0 = stamp();
+        assert!(m.undo());
+        undo.push(since(t0).cpu);
+        assert_eq!(m.vertex_count(), input.mesh.vertex_count());
+    }
+    let spread = |v: &[f64]| {
+        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = v.iter().copied().fold(0.0, f64::max);
+        format!("{lo:.3}..{hi:.3}")
+    };
+    let (s_off, s_on, s_undo) = (spread(&off), spread(&on), spread(&undo));
+    let (m_off, m_on, m_undo) = (median(&mut off), median(&mut on), median(&mut undo));
+    let note = format!(
+        "{rounds} rounds, median cpu s: off {m_off:.3} [{s_off}], on {m_on:.3} [{s_on}] = {:.2}x; \
+         {ops} ops, journal {bytes} B = {:.1} B/op; undo all {m_undo:.3} [{s_undo}] = {:.2}x of do",
+        m_on / m_off,
+        bytes as f64 / ops.max(1) as f64,
+        m_undo / m_on
+    );
+    (since(t_all), note)
+}
+
+/// A small failed edit on the whole mesh: a transaction that pokes one
+/// face and fails (rollback = undo to the mark) against the copy-and-
+/// restore it replaces. Medians of 21 rounds each.
+fn transaction_vs_clone(input: &Input) -> (Elapsed, String) {
+    let mut m = input.mesh.clone();
+    let f = m.faces().next().expect("a face");
+    let t_all = stamp();
+    let (mut tx, mut cl) = (Vec::new(), Vec::new());
+    for _ in 0..21 {
+        let t0 = stamp();
+        let r: meshloom::Result<()> = m.transaction(|m| {
+            m.poke_face(f)?;
+            Err(meshloom::Error::Cancelled { algorithm: "bench" })
+        });
+        assert!(r.is_err());
+        tx.push(since(t0).cpu);
+        let t0 = stamp();
+        let copy = m.clone();
+        m.poke_face(f).expect("poke");
+        m = copy;
+        cl.push(since(t0).cpu);
+    }
+    let (t, c) = (median(&mut tx), median(&mut cl));
+    let note = format!(
+        "median cpu: transaction {:.1} us, clone+restore {:.1} us ({:.0}x)",
+        t * 1e6,
+        c * 1e6,
+        c / t
+    );
+    (since(t_all), note)
 }
 
 /// Every edge index in order: if flippable, flip and flip straight back
@@ -412,6 +608,89 @@ fn vertex_normals(input: &Input) -> (Elapsed, String) {
     (e, note)
 }
 
+/// One level of a subdivision scheme, once on a fresh clone (clone untimed).
+fn subdivide(
+    input: &Input,
+    run: fn(
+        &mut Mesh,
+        &meshloom::algo::SubdivisionOptions,
+        meshloom::algo::Progress<'_>,
+    ) -> meshloom::Result<meshloom::algo::SubdivisionReport>,
+) -> (Elapsed, String) {
+    let mut m = input.mesh.clone();
+    let opts = meshloom::algo::SubdivisionOptions::default();
+    let t0 = stamp();
+    run(&mut m, &opts, meshloom::algo::Progress::none()).expect("subdivide");
+    let e = since(t0);
+    (
+        e,
+        format!("-> {} V, {} F", m.vertex_count(), m.face_count()),
+    )
+}
+
+/// Loop subdivision, one level (as pmp's loop_subdivision, CGAL's
+/// Loop_subdivision).
+fn loop_subdiv(input: &Input) -> (Elapsed, String) {
+    subdivide(input, meshloom::algo::loop_subdivide)
+}
+
+/// Catmull-Clark subdivision, one level, of the triangle mesh.
+fn catmull_clark(input: &Input) -> (Elapsed, String) {
+    subdivide(input, meshloom::algo::catmull_clark)
+}
+
+/// √3 subdivision, one level (as OpenMesh's Sqrt3T, CGAL's
+/// Sqrt3_subdivision).
+fn sqrt3(input: &Input) -> (Elapsed, String) {
+    subdivide(input, meshloom::algo::sqrt3_subdivide)
+}
+
+/// Mean curvature (meshloom::algo::curvature, as pmp's
+/// `curvature(mesh, Curvature::Mean)`: cotangent Laplacian over the mixed
+/// Voronoi area, boundary vertices from their interior neighbours); best of
+/// reps. meshloom's function also gives Gaussian and principal curvatures
+/// in the same pass (pmp's Mean does not compute them).
+fn curvature(input: &Input) -> (Elapsed, String) {
+    let m = &input.mesh;
+    let opts = meshloom::algo::curvature::CurvatureOptions::default();
+    let (e, c) = best_of(input.reps, || {
+        meshloom::algo::curvature::curvature(m, &opts).expect("positions")
+    });
+    let sum: f64 = m.vertices().map(|v| c.mean[v.index()]).sum();
+    let note = format!(
+        "{} V; mean, average H {:.4}",
+        m.vertex_count(),
+        sum / m.vertex_count() as f64
+    );
+    (e, note)
+}
+
+/// One implicit smoothing step (meshloom::algo::smooth, Implicit: cotan
+/// Laplacian clamped at zero, mixed-Voronoi mass, (M - 0.001 L) X' = M X by
+/// faer's sparse Cholesky, boundary fixed, then rescaled to the input's
+/// area and centroid), as pmp's `implicit_smoothing(m, 0.001, 1, false,
+/// true)`; once on a copy.
+fn implicit_smoothing(input: &Input) -> (Elapsed, String) {
+    use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
+    let mut m = input.mesh.clone();
+    let opts = SmoothOptions {
+        iterations: 1,
+        step: Some(0.001),
+        rescale: true,
+        ..SmoothOptions::with_method(SmoothMethod::Implicit)
+    };
+    let t0 = stamp();
+    let r = smooth(&mut m, &opts, meshloom::algo::Progress::none()).expect("smooth");
+    let e = since(t0);
+    let note = format!(
+        "{} V; 1 step, cotan, dt 0.001, rescale; moved {}, max displacement {:.3e}",
+        m.vertex_count(),
+        r.moved,
+        r.max_displacement
+    );
+    (e, note)
+}
+
 /// meshloom only: engine buffers with the default options (f32 positions,
 /// angle-weighted corner normals split at 30 degrees, u32/u16 indices);
 /// best of reps.
@@ -433,6 +712,101 @@ fn triangle_buffers(input: &Input) -> (Elapsed, String) {
 }
 
 // ---------------------------------------------------------------------------
+
+/// Quadric decimation to 10 % of the vertices (as pmp's `decimate` to
+/// n/10, OpenMesh's `decimate_to`, CGAL's `Count_ratio_stop_predicate(0.1)`),
+/// on a clone; defaults (optimal placement, flips refused, boundary kept
+/// as a line). In place (no progress callback, so nothing to undo). The
+/// note adds the decimator's peak heap beyond the mesh, per input vertex.
+fn decimate_10pct(input: &Input) -> (Elapsed, String) {
+    use meshloom::algo::decimate::{decimate, DecimateOptions, Target};
+    let mut m = input.mesh.clone();
+    let nv = m.vertex_count().max(1);
+    let before = counting::reset_peak();
+    let t0 = stamp();
+    let r = decimate(
+        &mut m,
+        &DecimateOptions::to(Target::Ratio(0.1)),
+        meshloom::algo::Progress::none(),
+    )
+    .expect("decimate");
+    let e = since(t0);
+    let peak = counting::peak();
+    // What the mesh itself keeps afterwards (free lists of the vacated
+    // slots), the decimator's buffers being gone.
+    let kept = counting::in_use().saturating_sub(before);
+    (
+        e,
+        format!(
+            "-> {} V, {} F; error {:.3e}, {} passes, {} collapses, refused {:?}; heap peak {:.1} B/vertex beyond the input mesh, of which the mesh keeps {:.1} (free lists)",
+            m.vertex_count(),
+            m.face_count(),
+            r.error,
+            r.passes,
+            r.collapses,
+            r.refused,
+            (peak - before) as f64 / nv as f64,
+            kept as f64 / nv as f64
+        ),
+    )
+}
+
+/// A counting allocator: bytes in use and the peak since the last reset.
+mod counting {
+    use std::alloc::{GlobalAlloc, Layout, System};
+    use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+
+    struct Counting;
+    static IN_USE: AtomicUsize = AtomicUsize::new(0);
+    static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+    unsafe impl GlobalAlloc for Counting {
+        unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+            let p = unsafe { System.alloc(l) };
+            if !p.is_null() {
+                let now = IN_USE.fetch_add(l.size(), Relaxed) + l.size();
+                PEAK.fetch_max(now, Relaxed);
+            }
+            p
+        }
+        unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+            unsafe { System.dealloc(p, l) };
+            IN_USE.fetch_sub(l.size(), Relaxed);
+        }
+        unsafe fn realloc(&self, p: *mut u8, l: Layout, new: usize) -> *mut u8 {
+            let q = unsafe { System.realloc(p, l, new) };
+            if !q.is_null() {
+                if new >= l.size() {
+                    let now = IN_USE.fetch_add(new - l.size(), Relaxed) + new - l.size();
+                    PEAK.fetch_max(now, Relaxed);
+                } else {
+                    IN_USE.fetch_sub(l.size() - new, Relaxed);
+                }
+            }
+            q
+        }
+    }
+
+    #[global_allocator]
+    static GLOBAL: Counting = Counting;
+
+    /// Start a new peak at the bytes in use now; returns them.
+    pub fn reset_peak() -> usize {
+        let now = IN_USE.load(Relaxed);
+        PEAK.store(now, Relaxed);
+        now
+    }
+
+    /// Bytes in use now.
+    pub fn in_use() -> usize {
+        IN_USE.load(Relaxed)
+    }
+
+    /// The peak since the last reset.
+    pub fn peak() -> usize {
+        PEAK.load(Relaxed)
+    }
+}
 
 /// The BENCH_ONLY filter (same rule as bench::wanted in bench_common.h):
 /// None = run everything.

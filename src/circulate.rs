@@ -112,6 +112,12 @@ impl Mesh {
     pub(crate) fn face_loop(&self, f: Fid) -> FaceHalfedges<'_> {
         FaceHalfedges::new(self, f)
     }
+
+    /// The face loop through half-edge `h`, starting at `h` (crate-internal).
+    #[inline]
+    pub(crate) fn face_loop_from(&self, h: Hid) -> FaceHalfedges<'_> {
+        FaceHalfedges::from_halfedge(self, h)
+    }
 }
 
 /// Neighbours of a vertex, clockwise: the twin record read for the step

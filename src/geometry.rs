@@ -10,6 +10,50 @@
 //! [`Interpolate`](crate::attr::Interpolate) rule); with `mint`, mint's
 //! types read and write as points (they have no `Default`, so they cannot
 //! be columns themselves).
+//!
+//! # Your own point types
+//!
+//! The builders take a slice of any [`Point`] type as it is, with no copy
+//! loop in the caller: [`Mesh::from_polygons`](crate::Mesh::from_polygons)
+//! borrows `&[[f64; 3]]` and converts other types to `f64` once, inside.
+//!
+//! | type | feature | versions |
+//! |---|---|---|
+//! | `[f64; 3]`, `[f32; 3]` | none | |
+//! | `glam::Vec3`, `glam::DVec3` | `glam` | glam 0.29 to 0.34 |
+//! | `nalgebra::Point3<f32/f64>`, `nalgebra::Vector3<f32/f64>` | `nalgebra` | nalgebra 0.33 to 0.35 |
+//! | `mint::Point3<f32/f64>`, `mint::Vector3<f32/f64>` | `mint` | mint 0.5 |
+//!
+//! mint is the route that does not depend on versions: glam, nalgebra,
+//! cgmath and most other math crates convert to and from mint's types
+//! (their own `mint` feature), so a math crate outside the ranges above
+//! still reaches meshloom through `mint::Point3`.
+//!
+//! ```
+//! use meshloom::Mesh;
+//! let faces = [[0u32, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]];
+//! let f32s: Vec<[f32; 3]> = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+//! let tet = Mesh::from_polygons(&f32s, &faces)?;
+//! assert!(tet.is_closed());
+//! #[cfg(feature = "glam")]
+//! {
+//!     let v: Vec<glam::Vec3> = f32s.iter().map(|&p| glam::Vec3::from(p)).collect();
+//!     assert_eq!(Mesh::from_polygons(&v, &faces)?.to_polygons(), tet.to_polygons());
+//! }
+//! #[cfg(feature = "nalgebra")]
+//! {
+//!     let n: Vec<nalgebra::Point3<f32>> = f32s.iter().map(|&p| p.into()).collect();
+//!     assert_eq!(Mesh::from_polygons(&n, &faces)?.to_polygons(), tet.to_polygons());
+//! }
+//! #[cfg(feature = "mint")]
+//! {
+//!     let m: Vec<mint::Point3<f32>> = f32s.iter().map(|&p| p.into()).collect();
+//!     assert_eq!(Mesh::from_polygons(&m, &faces)?.to_polygons(), tet.to_polygons());
+//! }
+//! # Ok::<(), meshloom::Error>(())
+//! ```
+
+use std::borrow::Cow;
 
 use crate::attr::{Attr, Attribute, Rule};
 use crate::error::{Error, Result};
@@ -30,6 +74,25 @@ pub trait Point: Copy {
     fn xyz(&self) -> [f64; 3];
     /// A point from coordinates (rounded to the type's precision).
     fn from_xyz(p: [f64; 3]) -> Self;
+
+    /// The coordinates of every point of a slice: borrowed where `Self` is
+    /// `[f64; 3]` (the builders' own type), converted once otherwise. The
+    /// builders ([`Mesh::from_polygons`](crate::Mesh::from_polygons)) take
+    /// `&[P]` through this, so a caller passes its own points as they are.
+    ///
+    /// ```
+    /// use meshloom::geometry::Point;
+    /// let p = [[1.0f32, 2.0, 3.0]];
+    /// assert_eq!(&*Point::slice_xyz(&p[..]), &[[1.0, 2.0, 3.0]]);
+    /// let q = [[1.0f64, 2.0, 3.0]];
+    /// assert!(matches!(Point::slice_xyz(&q[..]), std::borrow::Cow::Borrowed(_)));
+    /// ```
+    fn slice_xyz(points: &[Self]) -> Cow<'_, [[f64; 3]]>
+    where
+        Self: Sized,
+    {
+        Cow::Owned(points.iter().map(Point::xyz).collect())
+    }
 }
 
 impl Point for [f64; 3] {
@@ -40,6 +103,10 @@ impl Point for [f64; 3] {
     #[inline]
     fn from_xyz(p: [f64; 3]) -> Self {
         p
+    }
+    #[inline]
+    fn slice_xyz(points: &[Self]) -> Cow<'_, [[f64; 3]]> {
+        Cow::Borrowed(points)
     }
 }
 
@@ -123,6 +190,9 @@ mod glam_points {
                 fn from_value(value: &Value) -> Option<Self> {
                     <[$s; 3]>::from_value(value).map(<$t>::from_array)
                 }
+                fn same_as(&self, other: &Self) -> bool {
+                    self.to_array().same_as(&other.to_array())
+                }
             }
         };
     }
@@ -172,6 +242,9 @@ mod nalgebra_points {
                 }
                 fn from_value(value: &Value) -> Option<Self> {
                     <[$s; 3]>::from_value(value).map(|[x, y, z]| <$t>::new(x, y, z))
+                }
+                fn same_as(&self, other: &Self) -> bool {
+                    [self.x, self.y, self.z].same_as(&[other.x, other.y, other.z])
                 }
             }
         };

@@ -12,6 +12,24 @@
 
 use std::fmt;
 
+mod sealed {
+    /// Only this crate's keys are element keys.
+    pub trait Sealed {}
+}
+
+/// What the four key types have in common: a slot index and the
+/// generation it was issued for. Implemented by [`VertexKey`],
+/// [`HalfedgeKey`], [`EdgeKey`] and [`FaceKey`] only (sealed); generic code
+/// such as [`SecondaryMap`](crate::map::SecondaryMap) is written over it.
+pub trait ElementKey: Copy + Eq + fmt::Debug + sealed::Sealed {
+    /// The slot index.
+    fn index(self) -> usize;
+    /// The slot generation.
+    fn generation(self) -> u32;
+    #[doc(hidden)]
+    fn from_parts(index: u32, generation: u32) -> Self;
+}
+
 macro_rules! key_type {
     ($(#[$doc:meta])* $name:ident, $prefix:literal) => {
         $(#[$doc])*
@@ -36,6 +54,23 @@ macro_rules! key_type {
             /// The slot generation this key was issued for.
             pub const fn generation(self) -> u32 {
                 self.generation
+            }
+        }
+
+        impl sealed::Sealed for $name {}
+
+        impl ElementKey for $name {
+            #[inline]
+            fn index(self) -> usize {
+                self.index as usize
+            }
+            #[inline]
+            fn generation(self) -> u32 {
+                self.generation
+            }
+            #[inline]
+            fn from_parts(index: u32, generation: u32) -> Self {
+                Self::new(index, generation)
             }
         }
 

@@ -22,7 +22,11 @@
 //!
 //! The conversions to the public keys (which add a generation) live here
 //! too. [`IdVec`] is a `Vec` indexed by one id type, so a vertex id cannot
-//! index the half-edge records by mistake.
+//! index the half-edge records by mistake. [`LinkVec`] is the same without
+//! `IndexMut`: the mesh keeps its links in it, so every write goes through
+//! the mutators of [`journal`](crate::journal) (which record the old value
+//! while a journal is on) or through the explicitly named
+//! [`LinkVec::unlogged_mut`].
 //!
 //! Every method is a one-line `#[inline]` function over the `u32`; the
 //! types compile to the bare arithmetic they replace (instruction counts of
@@ -344,6 +348,15 @@ impl<I, T> IdVec<I, T> {
         self.raw.push(value);
     }
 
+    /// Append copies of `values`.
+    #[inline]
+    pub(crate) fn extend_from(&mut self, values: &[T])
+    where
+        T: Clone,
+    {
+        self.raw.extend_from_slice(values);
+    }
+
     /// The entries, in slot order.
     #[cfg(feature = "serde")]
     #[inline(always)]
@@ -369,6 +382,67 @@ impl<I: Id, T> IdVec<I, T> {
     #[inline]
     pub(crate) fn ids(&self) -> impl Iterator<Item = I> {
         (0..self.raw.len()).map(I::from_index)
+    }
+}
+
+/// The mesh's link arrays: an [`IdVec`] that can be read like one (it
+/// derefs to it) but not written through indexing. Writes go through the
+/// mesh's journaled mutators (`set_he`, `he_mut`, `set_vertex_halfedge`,
+/// `set_face_link_raw` in `journal/hooks.rs`), which call
+/// [`unlogged_mut`](LinkVec::unlogged_mut) after recording the old value; a
+/// stray `mesh.he[h] = ..` does not compile.
+#[derive(Clone, PartialEq, Eq)]
+#[repr(transparent)]
+pub(crate) struct LinkVec<I, T>(IdVec<I, T>);
+
+impl<I, T: fmt::Debug> fmt::Debug for LinkVec<I, T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl<I, T> Default for LinkVec<I, T> {
+    fn default() -> Self {
+        LinkVec(IdVec::from_vec(Vec::new()))
+    }
+}
+
+impl<I, T> From<IdVec<I, T>> for LinkVec<I, T> {
+    #[inline]
+    fn from(v: IdVec<I, T>) -> Self {
+        LinkVec(v)
+    }
+}
+
+impl<I, T> std::ops::Deref for LinkVec<I, T> {
+    type Target = IdVec<I, T>;
+    #[inline(always)]
+    fn deref(&self) -> &IdVec<I, T> {
+        &self.0
+    }
+}
+
+impl<I: Id, T> Index<I> for LinkVec<I, T> {
+    type Output = T;
+
+    #[inline(always)]
+    fn index(&self, i: I) -> &T {
+        &self.0[i]
+    }
+}
+
+impl<I: Id, T> LinkVec<I, T> {
+    /// Entry `i`, mutably, with nothing recorded: only for the journal's own
+    /// mutators (which record first) and for arrays no journal can see.
+    #[inline(always)]
+    pub(crate) fn unlogged_mut(&mut self, i: I) -> &mut T {
+        &mut self.0[i]
+    }
+
+    /// Append an entry (a new slot: the journal records births as ranges).
+    #[inline]
+    pub(crate) fn push(&mut self, value: T) {
+        self.0.push(value);
     }
 }
 

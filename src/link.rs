@@ -106,8 +106,8 @@ impl RawEdit<'_> {
     pub fn set_origin(&mut self, h: HalfedgeKey, v: VertexKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let v = self.mesh.check_vertex(v)?;
-        self.mesh.he[h].origin = v;
-        self.mesh.v_halfedge[v] = h;
+        self.mesh.he_mut(h).origin = v;
+        *self.mesh.v_halfedge_mut(v) = h;
         Ok(())
     }
 
@@ -119,7 +119,7 @@ impl RawEdit<'_> {
     pub fn set_face(&mut self, h: HalfedgeKey, f: FaceKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let f = self.mesh.check_face(f)?;
-        self.mesh.he[h].face = f;
+        self.mesh.he_mut(h).face = f;
         self.mesh.set_face_link(f, h);
         Ok(())
     }
@@ -143,7 +143,7 @@ impl RawEdit<'_> {
     pub fn set_vertex_halfedge(&mut self, v: VertexKey, h: HalfedgeKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let v = self.mesh.check_vertex(v)?;
-        self.mesh.v_halfedge[v] = h;
+        *self.mesh.v_halfedge_mut(v) = h;
         Ok(())
     }
 
@@ -237,6 +237,9 @@ impl RawEdit<'_> {
     /// O(half-edges) for rule 11, plus `validate`.
     pub fn finish(self) -> Result<()> {
         self.mesh.point_all_at_holes();
-        self.validate()
+        let out = self.validate();
+        // One journal step for the whole session (see [`journal`](crate::journal)).
+        self.mesh.end_edit();
+        out
     }
 }

@@ -17,9 +17,11 @@
 //! generations are checked once, at the public door.
 
 use crate::error::{Error, Result};
+use crate::iter::{Edges, Faces, Halfedges, Vertices};
+use crate::journal::Recorder;
 use crate::keys::{AnyKey, EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 pub(crate) use crate::layout::HalfedgeRecord;
-use crate::layout::{Eid, FaceLink, Fid, Hid, IdVec, Vid};
+use crate::layout::{Eid, FaceLink, Fid, Hid, LinkVec, Vid};
 use crate::slots::Slots;
 use crate::store::rules::Interpolate;
 use crate::store::{AttrStore, Column, POSITION};
@@ -41,19 +43,46 @@ use crate::store::{AttrStore, Column, POSITION};
 /// assert_eq!(square.hole_count(), 1); // the outside of the boundary
 /// # Ok::<(), meshloom::Error>(())
 /// ```
-#[derive(Clone, Debug, Default)]
+#[derive(Debug, Default)]
 pub struct Mesh {
     /// Per vertex slot: an outgoing half-edge.
-    pub(crate) v_halfedge: IdVec<Vid, Hid>,
+    pub(crate) v_halfedge: LinkVec<Vid, Hid>,
     pub(crate) v_slots: Slots,
     /// Per half-edge slot: its links (edge `e` owns `2e` and `2e + 1`).
-    pub(crate) he: IdVec<Hid, HalfedgeRecord>,
+    pub(crate) he: LinkVec<Hid, HalfedgeRecord>,
     pub(crate) e_slots: Slots,
     /// Per face slot: a half-edge and the hole flag.
-    pub(crate) f_halfedge: IdVec<Fid, FaceLink>,
+    pub(crate) f_halfedge: LinkVec<Fid, FaceLink>,
     pub(crate) f_slots: Slots,
     pub(crate) holes: usize,
     pub(crate) attrs: AttrStore,
+    /// The journal's recorder while undo history, a transaction or change
+    /// tracking is on ([`journal`](crate::journal)); `None` otherwise, and
+    /// then every mutator's journal check is one test of this pointer.
+    pub(crate) rec: Option<Box<Recorder>>,
+}
+
+impl Clone for Mesh {
+    /// A copy of the mesh without its journal: no undo history, no open
+    /// transaction, no change tracking. Slots an undo left vacant for a
+    /// redo are free again in the copy.
+    fn clone(&self) -> Mesh {
+        let mut m = Mesh {
+            v_halfedge: self.v_halfedge.clone(),
+            v_slots: self.v_slots.clone(),
+            he: self.he.clone(),
+            e_slots: self.e_slots.clone(),
+            f_halfedge: self.f_halfedge.clone(),
+            f_slots: self.f_slots.clone(),
+            holes: self.holes,
+            attrs: self.attrs.clone(),
+            rec: None,
+        };
+        if let Some(r) = &self.rec {
+            r.release_held_into(&mut m);
+        }
+        m
+    }
 }
 
 impl Mesh {
@@ -129,47 +158,47 @@ impl Mesh {
 
     // ----- element iterators (keys, in slot order) -------------------------
 
-    /// Every vertex key, in slot order.
+    /// Every vertex key, in slot order; `len()` is exact.
     #[inline]
-    pub fn vertices(&self) -> impl Iterator<Item = VertexKey> + '_ {
-        self.vids().map(|v| self.vkey(v))
+    pub fn vertices(&self) -> Vertices<'_> {
+        Vertices::new(self)
     }
 
-    /// Every half-edge key, in slot order (twins adjacent).
+    /// Every half-edge key, in slot order (twins adjacent); `len()` is
+    /// exact.
     #[inline]
-    pub fn halfedges(&self) -> impl Iterator<Item = HalfedgeKey> + '_ {
-        self.eids().flat_map(|e| {
-            let g = self.e_slots.generation_of(e.raw());
-            e.halfedges().map(|h| h.key(g))
-        })
+    pub fn halfedges(&self) -> Halfedges<'_> {
+        Halfedges::new(self)
     }
 
-    /// Every edge key, in slot order.
+    /// Every edge key, in slot order; `len()` is exact.
     #[inline]
-    pub fn edges(&self) -> impl Iterator<Item = EdgeKey> + '_ {
-        self.eids().map(|e| self.ekey(e))
+    pub fn edges(&self) -> Edges<'_> {
+        Edges::new(self)
     }
 
-    /// Every face key, holes excluded, in slot order.
+    /// Every face key, holes excluded, in slot order; `len()` is exact.
+    ///
+    /// ```
+    /// let cube = meshloom::shapes::cube();
+    /// let faces = cube.faces();
+    /// assert_eq!(faces.len(), cube.face_count());
+    /// ```
     #[inline]
-    pub fn faces(&self) -> impl Iterator<Item = FaceKey> + '_ {
-        self.fids()
-            .filter(|&f| !self.is_hole(f))
-            .map(|f| self.fkey(f))
+    pub fn faces(&self) -> Faces<'_> {
+        Faces::not_holes(self)
     }
 
-    /// Every hole face key, in slot order.
+    /// Every hole face key, in slot order; `len()` is exact.
     #[inline]
-    pub fn holes(&self) -> impl Iterator<Item = FaceKey> + '_ {
-        self.fids()
-            .filter(|&f| self.is_hole(f))
-            .map(|f| self.fkey(f))
+    pub fn holes(&self) -> Faces<'_> {
+        Faces::holes(self)
     }
 
-    /// Every face key, holes included, in slot order.
+    /// Every face key, holes included, in slot order; `len()` is exact.
     #[inline]
-    pub fn faces_and_holes(&self) -> impl Iterator<Item = FaceKey> + '_ {
-        self.fids().map(|f| self.fkey(f))
+    pub fn faces_and_holes(&self) -> Faces<'_> {
+        Faces::both(self)
     }
 
     // ----- keys by slot (for walking while editing) --------------------------
@@ -412,7 +441,7 @@ impl Mesh {
             return;
         }
         if let Some(h) = self.outgoing(v).find(|&h| self.in_hole(h)) {
-            self.v_halfedge[v] = h;
+            self.set_vertex_halfedge(v, h);
         }
     }
 
@@ -439,7 +468,7 @@ impl Mesh {
                     && !self.f_halfedge.get(c.face).is_some_and(|l| l.is_hole())
             });
             if cur_ok {
-                self.v_halfedge[r.origin] = h;
+                self.set_vertex_halfedge(r.origin, h);
             }
         }
     }
@@ -451,12 +480,16 @@ impl Mesh {
     // Inlined: measured (instruction counts of poke_face) to matter.
     #[inline(always)]
     pub(crate) fn alloc_vertex(&mut self) -> Vid {
-        let (i, _, is_new) = self.v_slots.alloc();
+        let (i, g, is_new) = self.v_slots.alloc();
         let v = Vid::new(i);
         if is_new {
             self.v_halfedge.push(Hid::NONE);
         } else {
-            self.v_halfedge[v] = Hid::NONE;
+            self.set_vertex_halfedge(v, Hid::NONE);
+            if let Some(r) = self.rec.as_deref_mut() {
+                r.reused(0, i, g);
+                self.attrs.vertex.reset(v.index());
+            }
         }
         self.attrs.vertex.ensure_len(self.v_slots.slot_count());
         v
@@ -464,14 +497,21 @@ impl Mesh {
 
     /// A new edge slot (two half-edges) with no links yet.
     pub(crate) fn alloc_edge(&mut self) -> Eid {
-        let (i, _, is_new) = self.e_slots.alloc();
+        let (i, g, is_new) = self.e_slots.alloc();
         let e = Eid::new(i);
         if is_new {
             self.he.push(HalfedgeRecord::VACANT);
             self.he.push(HalfedgeRecord::VACANT);
         } else {
             for h in e.halfedges() {
-                self.he[h] = HalfedgeRecord::VACANT;
+                self.set_he(h, HalfedgeRecord::VACANT);
+            }
+            if let Some(r) = self.rec.as_deref_mut() {
+                r.reused(1, i, g);
+                self.attrs.edge.reset(e.index());
+                for h in e.halfedges() {
+                    self.attrs.halfedge.reset(h.index());
+                }
             }
         }
         let slots = self.e_slots.slot_count();
@@ -484,13 +524,17 @@ impl Mesh {
     // Inlined: measured (instruction counts of poke_face) to matter.
     #[inline(always)]
     pub(crate) fn alloc_face(&mut self, hole: bool) -> Fid {
-        let (i, _, is_new) = self.f_slots.alloc();
+        let (i, g, is_new) = self.f_slots.alloc();
         let f = Fid::new(i);
         let link = FaceLink::unset(hole);
         if is_new {
             self.f_halfedge.push(link);
         } else {
-            self.f_halfedge[f] = link;
+            self.set_face_link_raw(f, link);
+            if let Some(r) = self.rec.as_deref_mut() {
+                r.reused(2, i, g);
+                self.attrs.face.reset(f.index());
+            }
         }
         if hole {
             self.holes += 1;
@@ -499,30 +543,46 @@ impl Mesh {
         f
     }
 
-    /// Remove a vertex slot and its attribute values.
+    /// Remove a vertex slot and its attribute values. While a journal
+    /// records, the slot keeps its links and values (undoing the removal
+    /// then only revives the slot; a reuse clears them, recorded).
     pub(crate) fn free_vertex(&mut self, v: Vid) {
-        self.attrs.vertex.clear(v.index());
-        self.v_halfedge[v] = Hid::NONE;
+        if let Some(r) = self.rec.as_deref_mut() {
+            r.died(0, v.raw(), self.v_slots.generation_of(v.raw()));
+        } else {
+            self.attrs.vertex.clear(v.index());
+            *self.v_halfedge.unlogged_mut(v) = Hid::NONE;
+        }
         self.v_slots.free(v.raw());
     }
 
-    /// Remove an edge slot, both half-edges and their attribute values.
+    /// Remove an edge slot, both half-edges and their attribute values
+    /// (kept while a journal records, as in [`free_vertex`](Mesh::free_vertex)).
     pub(crate) fn free_edge(&mut self, e: Eid) {
-        self.attrs.edge.clear(e.index());
-        for h in e.halfedges() {
-            self.attrs.halfedge.clear(h.index());
-            self.he[h] = HalfedgeRecord::VACANT;
+        if let Some(r) = self.rec.as_deref_mut() {
+            r.died(1, e.raw(), self.e_slots.generation_of(e.raw()));
+        } else {
+            self.attrs.edge.clear(e.index());
+            for h in e.halfedges() {
+                self.attrs.halfedge.clear(h.index());
+                *self.he.unlogged_mut(h) = HalfedgeRecord::VACANT;
+            }
         }
         self.e_slots.free(e.raw());
     }
 
-    /// Remove a face slot and its attribute values.
+    /// Remove a face slot and its attribute values (kept while a journal
+    /// records, as in [`free_vertex`](Mesh::free_vertex)).
     pub(crate) fn free_face(&mut self, f: Fid) {
         if self.is_hole(f) {
             self.holes -= 1;
         }
-        self.attrs.face.clear(f.index());
-        self.f_halfedge[f] = FaceLink::unset(false);
+        if let Some(r) = self.rec.as_deref_mut() {
+            r.died(2, f.raw(), self.f_slots.generation_of(f.raw()));
+        } else {
+            self.attrs.face.clear(f.index());
+            *self.f_halfedge.unlogged_mut(f) = FaceLink::unset(false);
+        }
         self.f_slots.free(f.raw());
     }
 
@@ -530,7 +590,7 @@ impl Mesh {
     pub(crate) fn set_hole(&mut self, f: Fid, hole: bool) {
         let link = self.f_halfedge[f];
         if link.is_hole() != hole {
-            self.f_halfedge[f] = link.with_hole(hole);
+            self.set_face_link_raw(f, link.with_hole(hole));
             if hole {
                 self.holes += 1;
             } else {
@@ -572,21 +632,31 @@ impl Mesh {
                 position: p,
             });
         }
+        let p_col = self.attrs.position.ok_or(Error::NoPositions)?;
+        self.attrs.vertex.save_one(p_col, i.index());
         let col = self.attrs.positions_mut().ok_or(Error::NoPositions)?;
         col.set(i.index(), Some(p));
+        self.end_edit();
         Ok(())
     }
 
     /// The position column indexed by vertex slot ([`VertexKey::index`]);
-    /// vacant slots hold zeros. For fast whole-mesh geometry passes.
+    /// vacant slots hold zeros (while a [journal](crate::journal) records,
+    /// the last position of the vertex that lived there). For fast
+    /// whole-mesh geometry passes.
     pub fn position_slots(&self) -> Option<&[[f64; 3]]> {
         self.attrs.positions().map(|c| c.raw())
     }
 
     /// The position column indexed by vertex slot, mutably. Callers must
     /// keep coordinates finite.
+    ///
+    /// While a [journal](crate::journal) records, this saves the whole
+    /// column first (O(slots)), and the writes become one undo step of
+    /// their own, holding only the positions that changed.
     pub fn position_slots_mut(&mut self) -> Option<&mut [[f64; 3]]> {
-        self.attrs.positions_mut().map(|c| c.raw_mut())
+        let n = self.v_slots.slot_count();
+        self.bulk_positions_mut(0..n)
     }
 
     /// Slots allocated in each arena (live or vacant): the length of the
@@ -606,11 +676,20 @@ impl Mesh {
     ///
     /// This is the one door for such rebuilds, so that whatever watches
     /// edits (the journal for undo and change tracking) sees them as one
-    /// step. `result` must carry the caller's attribute columns with the
-    /// same ids (build it from a clone of `self`, or move the column sets
-    /// over), so handles taken before the rebuild keep working.
+    /// step: while a [journal](crate::journal) records, the whole prior
+    /// mesh is kept as that step (memory: one copy of the mesh), undo
+    /// brings it back, and every key the result issued stays stale after
+    /// that undo. `result` must carry the caller's attribute columns with
+    /// the same ids (build it from a clone of `self`, or move the column
+    /// sets over), so handles taken before the rebuild keep working.
     #[allow(dead_code)]
     pub(crate) fn replace_with(&mut self, result: Mesh) {
-        *self = result;
+        let mut result = result;
+        result.rec = None;
+        self.wholesale(move |m| {
+            let rec = m.rec.take();
+            *m = result;
+            m.rec = rec;
+        });
     }
 }

@@ -7,8 +7,13 @@
 //! the chosen policies on [`Polygons`] in this order and reports what each
 //! did ([`RepairReport`]):
 //!
-//! 1. **Weld** vertices whose positions are bit-identical (`-0.0` and `0.0`
-//!    are different bits and stay apart).
+//! 1. **Weld** (only when asked: [`RepairOptions::all`] leaves it off)
+//!    vertices whose positions are bit-identical (`-0.0` and `0.0` are
+//!    different bits and stay apart), where the welded result stays
+//!    manifold: a group of coincident vertices whose merge would make an
+//!    edge used by more than two faces or twice in one direction, a face
+//!    with a repeated corner, or a vertex with more than one fan of faces,
+//!    stays apart and is counted in [`RepairReport::weld_refused`].
 //! 2. **Degenerate faces.** Runs of one vertex in a face (`a b b c`) are
 //!    collapsed to one corner; a face left with fewer than three corners, or
 //!    with a vertex at two separate corners, is dropped.
@@ -31,6 +36,23 @@
 //!    fan after the first.
 //! 7. **Unreferenced vertices** are dropped.
 //!
+//! # Repair never harms
+//!
+//! - Input that already builds into a valid mesh (every vertex referenced,
+//!   or the unreferenced ones dropped by step 7) is returned as it is:
+//!   steps 2 to 6 run only when the builder would refuse the polygons, so a
+//!   valid mesh keeps its counts, genus and components.
+//! - Welding joins only where the result stays manifold, and only when
+//!   asked: parts that touch at coincident vertices may be separate on
+//!   purpose (seams of texture charts, parts of an assembly).
+//! - Repair is idempotent: the policies run in passes until a pass changes
+//!   nothing (at most 8, each O(C log C)), so repairing the output again
+//!   changes nothing; with [`RepairOptions::all`] the output builds.
+//! - Malformed input (offsets that do not cut the indices, an index past
+//!   the positions, a non-finite position of a used vertex) is refused with
+//!   the error [`Mesh::from_buffers`](crate::Mesh::from_buffers) gives, and
+//!   the polygons are left untouched.
+//!
 //! Every step keeps track of where each output vertex, face and corner came
 //! from ([`Provenance`]), so the attributes read with the polygons follow.
 //!
@@ -44,7 +66,7 @@
 //!     indices: vec![0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 2, 3, 3, 2, 0],
 //! };
 //! assert!(Mesh::from_buffers(&p).is_err());
-//! let (report, _) = repair(&mut p, &RepairOptions::all());
+//! let (report, _) = repair(&mut p, &RepairOptions::all())?;
 //! assert_eq!((report.duplicate_faces, report.flipped_faces), (1, 1));
 //! let tet = Mesh::from_buffers(&p)?;
 //! assert!(tet.is_closed());
@@ -54,17 +76,21 @@
 use std::fmt;
 
 use crate::build::Polygons;
+use crate::error::{BuildError, Error, Result};
 
 mod policies;
 
 use policies::Soup;
 
-/// Which repairs to run. [`RepairOptions::all`] turns every one on,
+/// Which repairs to run. [`RepairOptions::all`] turns on every repair of a
+/// defect (welding is not one: add it with `weld_vertices: true`),
 /// [`RepairOptions::none`] (the default) none.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RepairOptions {
-    /// Weld vertices with bit-identical positions.
+    /// Weld vertices with bit-identical positions, where the result stays
+    /// manifold. Off in [`RepairOptions::all`]: coincident vertices may
+    /// keep parts apart on purpose.
     pub weld_vertices: bool,
     /// Collapse repeated corners; drop faces left degenerate.
     pub drop_degenerate_faces: bool,
@@ -81,10 +107,17 @@ pub struct RepairOptions {
 }
 
 impl RepairOptions {
-    /// Every policy on.
+    /// Every repair of a defect on; welding off (see
+    /// [`RepairOptions::weld_vertices`]).
+    ///
+    /// ```
+    /// use meshloom::repair::RepairOptions;
+    /// let weld_too = RepairOptions { weld_vertices: true, ..RepairOptions::all() };
+    /// assert!(!RepairOptions::all().weld_vertices && weld_too.any());
+    /// ```
     pub fn all() -> RepairOptions {
         RepairOptions {
-            weld_vertices: true,
+            weld_vertices: false,
             drop_degenerate_faces: true,
             drop_duplicate_faces: true,
             orient_faces: true,
@@ -105,12 +138,17 @@ impl RepairOptions {
     }
 }
 
-/// What the repairs did, in counts.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// What the repairs did, in counts, and what a reader accepted with a
+/// warning.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct RepairReport {
     /// Vertices merged into an earlier vertex at the same position.
     pub welded_vertices: usize,
+    /// Vertices left apart from a coincident vertex because welding them
+    /// would have made an edge or vertex non-manifold (or a face repeat a
+    /// corner).
+    pub weld_refused: usize,
     /// Repeated corners removed from faces that were kept.
     pub collapsed_corners: usize,
     /// Faces dropped as degenerate.
@@ -130,17 +168,61 @@ pub struct RepairReport {
     pub added_vertices: usize,
     /// Vertices dropped because no face used them.
     pub unreferenced_vertices: usize,
+    /// What a reader accepted though its format does not allow it, each
+    /// with its place (a PLY header line that is not a keyword, say). The
+    /// repairs themselves add none.
+    pub warnings: Vec<String>,
 }
 
 impl RepairReport {
-    /// Whether nothing was changed.
+    /// Whether nothing was changed and nothing was warned about
+    /// ([`weld_refused`](Self::weld_refused) counts what was left as it
+    /// was, so it may be non-zero on a clean report).
     pub fn is_clean(&self) -> bool {
-        *self == RepairReport::default()
+        *self
+            == RepairReport {
+                weld_refused: self.weld_refused,
+                ..RepairReport::default()
+            }
     }
 
-    fn rows(&self) -> [(&'static str, usize); 10] {
+    /// Whether the polygons were changed (what was left as it was, the
+    /// vertices left apart and the orientation conflicts, is no change).
+    fn changed(&self) -> bool {
+        let unchanged = RepairReport {
+            weld_refused: 0,
+            orientation_conflicts: 0,
+            ..self.clone()
+        };
+        !unchanged.is_clean()
+    }
+
+    /// Add a later pass's counts (the vertices left apart are the last
+    /// pass's: they describe the result).
+    fn add(&mut self, pass: RepairReport) {
+        self.welded_vertices += pass.welded_vertices;
+        self.weld_refused = pass.weld_refused;
+        self.collapsed_corners += pass.collapsed_corners;
+        self.degenerate_faces += pass.degenerate_faces;
+        self.duplicate_faces += pass.duplicate_faces;
+        self.flipped_faces += pass.flipped_faces;
+        // Conflicts are found again in every pass that orients; the most
+        // found in one pass is the figure.
+        self.orientation_conflicts = self.orientation_conflicts.max(pass.orientation_conflicts);
+        self.nonmanifold_edges += pass.nonmanifold_edges;
+        self.nonmanifold_vertices += pass.nonmanifold_vertices;
+        self.added_vertices += pass.added_vertices;
+        self.unreferenced_vertices += pass.unreferenced_vertices;
+        self.warnings.extend(pass.warnings);
+    }
+
+    fn rows(&self) -> [(&'static str, usize); 11] {
         [
             ("vertices welded", self.welded_vertices),
+            (
+                "coincident vertices left apart (welding would make an edge or vertex non-manifold)",
+                self.weld_refused,
+            ),
             ("repeated corners collapsed", self.collapsed_corners),
             ("degenerate faces dropped", self.degenerate_faces),
             ("duplicate faces dropped", self.duplicate_faces),
@@ -175,6 +257,13 @@ impl fmt::Display for RepairReport {
                 first = false;
             }
         }
+        for w in &self.warnings {
+            if !first {
+                writeln!(f)?;
+            }
+            write!(f, "warning: {w}")?;
+            first = false;
+        }
         if first {
             write!(f, "no repairs needed")?;
         }
@@ -197,17 +286,49 @@ pub struct Provenance {
 
 /// Run the chosen repairs on `polygons`, in place. Returns what was done
 /// and where every output element came from. Positions may be empty (a
-/// topology-only soup); then welding does nothing.
+/// topology-only soup, whose vertex count is one past its largest index);
+/// then welding does nothing.
+///
+/// # Errors
+/// [`Error::Build`] with the error [`Mesh::from_buffers`](crate::Mesh::from_buffers) gives for the
+/// same malformed input, and `polygons` left as they were: offsets that do
+/// not start at 0, decrease or end past the indices
+/// ([`BuildError::MalformedOffsets`]); an index past the positions
+/// ([`BuildError::IndexOutOfRange`], naming the face); a NaN or infinite
+/// position of a vertex some face uses ([`BuildError::NonFinitePosition`]);
+/// more than 2^29 corners or faces, or a topology-only soup whose largest
+/// index claims more vertices than a kept vertex list can hold in memory
+/// bounded by the input ([`BuildError::TooLarge`]).
 ///
 /// # Complexity
-/// O(C log C) for C corners (edges are grouped by sorting).
-pub fn repair(polygons: &mut Polygons, options: &RepairOptions) -> (RepairReport, Provenance) {
+/// O(C log C) time and O(C + V) memory for C corners and V positions
+/// (edges are grouped by sorting; a topology-only soup is renumbered
+/// densely first, so a huge index costs nothing).
+///
+/// ```
+/// use meshloom::repair::{repair, RepairOptions};
+/// use meshloom::{BuildError, Error, Polygons};
+/// let mut p = Polygons {
+///     positions: vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+///     offsets: vec![0, 3],
+///     indices: vec![0, 1, 3],
+/// };
+/// let err = repair(&mut p, &RepairOptions::all()).unwrap_err();
+/// assert!(matches!(err, Error::Build(BuildError::IndexOutOfRange { face: 0, index: 3, .. })));
+/// ```
+pub fn repair(
+    polygons: &mut Polygons,
+    options: &RepairOptions,
+) -> Result<(RepairReport, Provenance)> {
     repair_with(polygons, options, &[])
 }
 
 /// [`repair`], where vertices weld only when their positions are identical
 /// and their `weld_class` is the same (one class per distinct set of
 /// attribute values, say); an empty `weld_class` puts every vertex in one.
+///
+/// # Errors
+/// As [`repair`].
 ///
 /// ```
 /// use meshloom::repair::{repair_with, RepairOptions};
@@ -219,65 +340,191 @@ pub fn repair(polygons: &mut Polygons, options: &RepairOptions) -> (RepairReport
 ///     offsets: vec![0, 3, 6],
 ///     indices: vec![0, 1, 2, 3, 4, 5],
 /// };
-/// let (report, _) = repair_with(&mut p, &RepairOptions::all(), &[0, 0, 0, 1, 1, 1]);
+/// let weld = RepairOptions { weld_vertices: true, ..RepairOptions::all() };
+/// let (report, _) = repair_with(&mut p, &weld, &[0, 0, 0, 1, 1, 1])?;
 /// assert_eq!(report.welded_vertices, 0);
+/// # Ok::<(), meshloom::Error>(())
 /// ```
 pub fn repair_with(
     polygons: &mut Polygons,
     options: &RepairOptions,
     weld_class: &[u32],
-) -> (RepairReport, Provenance) {
-    let nv = if polygons.positions.is_empty() {
-        polygons.indices.iter().max().map_or(0, |&m| m as usize + 1)
-    } else {
-        polygons.positions.len()
-    };
+) -> Result<(RepairReport, Provenance)> {
+    let input = check_input(polygons, options)?;
     let mut soup = Soup {
         positions: std::mem::take(&mut polygons.positions),
-        vertex_count: nv,
+        vertex_count: 0,
         offsets: std::mem::take(&mut polygons.offsets),
         indices: std::mem::take(&mut polygons.indices),
-        prov: Provenance {
-            vertex_source: (0..nv as u32).collect(),
-            face_source: Vec::new(),
-            corner_source: Vec::new(),
-        },
+        prov: Provenance::default(),
     };
     if soup.offsets.is_empty() {
         soup.offsets.push(0);
     }
+    // A topology-only soup is renumbered densely (its vertex count is one
+    // past its largest index, which may be anything up to 2^32 - 1).
+    let implied = match input {
+        Input::Positions => {
+            soup.vertex_count = soup.positions.len();
+            soup.prov.vertex_source = (0..soup.vertex_count as u32).collect();
+            None
+        }
+        Input::TopologyOnly { implied } => {
+            let mut used = soup.indices.clone();
+            used.sort_unstable();
+            used.dedup();
+            for i in &mut soup.indices {
+                *i = used.partition_point(|&u| u < *i) as u32;
+            }
+            soup.vertex_count = used.len();
+            soup.prov.vertex_source = used;
+            Some((implied, soup.vertex_count))
+        }
+    };
     soup.prov.face_source = (0..soup.face_count() as u32).collect();
     soup.prov.corner_source = (0..soup.indices.len() as u32).collect();
+    // Passes until one changes nothing, so that repairing the result again
+    // changes nothing either: a later policy can clear what kept an earlier
+    // weld apart. Each pass is O(C log C); real files settle in two.
     let mut report = RepairReport::default();
-    if options.weld_vertices {
-        report.welded_vertices = soup.weld(weld_class);
-    }
-    if options.drop_degenerate_faces {
-        (report.collapsed_corners, report.degenerate_faces) = soup.drop_degenerate();
-    }
-    if options.drop_duplicate_faces {
-        report.duplicate_faces = soup.drop_duplicates();
-    }
-    if options.orient_faces {
-        (report.flipped_faces, report.orientation_conflicts) = soup.orient();
-    }
-    if options.split_nonmanifold_edges {
-        let (edges, copies) = soup.split_edges();
-        report.nonmanifold_edges = edges;
-        report.added_vertices += copies;
-    }
-    if options.split_nonmanifold_vertices {
-        let (vertices, copies) = soup.split_vertices();
-        report.nonmanifold_vertices = vertices;
-        report.added_vertices += copies;
+    for _pass in 0..MAX_PASSES {
+        let mut pass = RepairReport::default();
+        if options.weld_vertices {
+            // Classes follow the vertices through earlier passes.
+            let classes: Vec<u32> = if weld_class.is_empty() {
+                Vec::new()
+            } else {
+                soup.prov
+                    .vertex_source
+                    .iter()
+                    .map(|&s| weld_class.get(s as usize).copied().unwrap_or(0))
+                    .collect()
+            };
+            (pass.welded_vertices, pass.weld_refused) = soup.weld(&classes);
+        }
+        // Valid input is left as it is: the defect policies run only when
+        // the builder would refuse the polygons.
+        if soup.needs_repair() {
+            if options.drop_degenerate_faces {
+                (pass.collapsed_corners, pass.degenerate_faces) = soup.drop_degenerate();
+            }
+            if options.drop_duplicate_faces {
+                pass.duplicate_faces = soup.drop_duplicates();
+            }
+            if options.orient_faces {
+                (pass.flipped_faces, pass.orientation_conflicts) = soup.orient();
+            }
+            if options.split_nonmanifold_edges {
+                let (edges, copies) = soup.split_edges();
+                pass.nonmanifold_edges = edges;
+                pass.added_vertices += copies;
+            }
+            if options.split_nonmanifold_vertices {
+                let (vertices, copies) = soup.split_vertices();
+                pass.nonmanifold_vertices = vertices;
+                pass.added_vertices += copies;
+            }
+        }
+        if options.drop_unreferenced_vertices {
+            pass.unreferenced_vertices = soup.drop_unreferenced();
+        }
+        let settled = !pass.changed();
+        report.add(pass);
+        if settled {
+            break;
+        }
     }
     if options.drop_unreferenced_vertices {
-        report.unreferenced_vertices = soup.drop_unreferenced();
+        // The implied vertices no index names were never renumbered in.
+        report.unreferenced_vertices += implied.map_or(0, |(n, dense)| n - dense);
+    } else if let Some((n, dense)) = implied {
+        // Keep the caller's numbering: original vertices keep their index,
+        // copies follow the largest one.
+        soup.restore_numbering(n, dense);
     }
     polygons.positions = soup.positions;
     polygons.offsets = soup.offsets;
     polygons.indices = soup.indices;
-    (report, soup.prov)
+    Ok((report, soup.prov))
+}
+
+/// The most passes of the policies (see [`repair_with`]).
+const MAX_PASSES: usize = 8;
+
+/// What kind of soup passed the checks.
+enum Input {
+    Positions,
+    TopologyOnly { implied: usize },
+}
+
+/// The checks [`Mesh::from_buffers`](crate::Mesh::from_buffers) makes of malformed input, made before
+/// anything is touched, with its errors.
+fn check_input(p: &Polygons, options: &RepairOptions) -> Result<Input> {
+    if p.offsets.first().is_some_and(|&o| o != 0)
+        || p.offsets.windows(2).any(|w| w[1] < w[0])
+        || p.offsets
+            .last()
+            .map_or(!p.indices.is_empty(), |&o| o as usize != p.indices.len())
+    {
+        return Err(Error::Build(BuildError::MalformedOffsets {
+            offsets: p.offsets.len(),
+            indices: p.indices.len(),
+        }));
+    }
+    if p.indices.len() >= (1 << 29) || p.offsets.len() > (1 << 29) {
+        return Err(BuildError::TooLarge {
+            what: "more than 2^29 corners or faces",
+        }
+        .into());
+    }
+    let face_of = |c: usize| {
+        p.offsets
+            .partition_point(|&o| o as usize <= c)
+            .saturating_sub(1)
+    };
+    if p.positions.is_empty() {
+        let implied = p.indices.iter().max().map_or(0, |&m| m as usize + 1);
+        // Kept unreferenced vertices (and their provenance) are listed one
+        // by one: refuse a count the input's size does not pay for.
+        let affordable = (16 * p.indices.len() + 4096).min(1 << 31);
+        if !options.drop_unreferenced_vertices && implied > affordable {
+            return Err(BuildError::TooLarge {
+                what: "a topology-only soup's largest index implies more vertices than 16 per corner; \
+                       give positions or drop unreferenced vertices",
+            }
+            .into());
+        }
+        return Ok(Input::TopologyOnly { implied });
+    }
+    let n = p.positions.len();
+    if n >= (1 << 31) {
+        return Err(BuildError::TooLarge {
+            what: "2^31 vertices or more",
+        }
+        .into());
+    }
+    if let Some(c) = p.indices.iter().position(|&i| i as usize >= n) {
+        return Err(BuildError::IndexOutOfRange {
+            face: face_of(c),
+            index: i64::from(p.indices[c]),
+            vertex_count: n,
+        }
+        .into());
+    }
+    // The builder checks the vertices it keeps; so does this, in the same
+    // order (by index).
+    let mut used = vec![false; n];
+    for &i in &p.indices {
+        used[i as usize] = true;
+    }
+    if let Some(v) = (0..n).find(|&v| used[v] && !p.positions[v].iter().all(|c| c.is_finite())) {
+        return Err(BuildError::NonFinitePosition {
+            vertex: v,
+            position: p.positions[v],
+        }
+        .into());
+    }
+    Ok(Input::Positions)
 }
 
 #[cfg(test)]

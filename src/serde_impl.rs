@@ -3,7 +3,12 @@
 //! finite positions, then [`Mesh::validate`]; a structurally invalid mesh is
 //! an error, never a broken mesh.
 //!
-//! Column values travel as [`Value`]s, absent ones as `null`. Typed columns
+//! Column values travel as [`Value`]s, absent ones as `null`. Every value
+//! an attribute accepts comes back: NaN and the infinities (NaN often marks
+//! "no data") travel as the strings `"NaN"`, `"inf"` and `"-inf"` in
+//! human-readable formats such as JSON, which has no such numbers, and as
+//! plain floats in binary ones. A float written as `null` (what JSON
+//! writers make of NaN, and what meshloom 0.1 saved) reads back as NaN. Typed columns
 //! come back typed when their value type and rule are registered
 //! ([`attr::register`](crate::attr::register); the stock ones are), and as
 //! dynamic columns otherwise. Keys stay valid across a round trip: slots and
@@ -208,7 +213,7 @@ fn mesh_from(data: MeshData) -> Result<Mesh, String> {
         return Err("too many slots for 32-bit links".into());
     }
     let slots = |kind: &str, generations: Vec<u32>, base: u32| {
-        Slots::from_generations(generations, base).map_err(|e| format!("{kind} {e}"))
+        Slots::from_generations(generations, base, base).map_err(|e| format!("{kind} {e}"))
     };
     let v_slots = slots("vertex", data.vertex_generations, data.vertex_base)?;
     let e_slots = slots("edge", data.edge_generations, data.edge_base)?;
@@ -217,14 +222,15 @@ fn mesh_from(data: MeshData) -> Result<Mesh, String> {
         .filter(|&f| f_slots.is_live(f) && data.face_halfedge[f].is_hole())
         .count();
     let mut mesh = Mesh {
-        v_halfedge: IdVec::from_vec(data.vertex_halfedge),
+        v_halfedge: IdVec::from_vec(data.vertex_halfedge).into(),
         v_slots,
-        he: IdVec::from_vec(data.halfedges),
+        he: IdVec::from_vec(data.halfedges).into(),
         e_slots,
-        f_halfedge: IdVec::from_vec(data.face_halfedge),
+        f_halfedge: IdVec::from_vec(data.face_halfedge).into(),
         f_slots,
         holes,
         attrs: Default::default(),
+        rec: None,
     };
     mesh.attrs.vertex = columns_in(ElementKind::Vertex, data.vertex_attrs, nv)?;
     mesh.attrs.halfedge = columns_in(
@@ -266,6 +272,80 @@ impl<'de> Deserialize<'de> for Mesh {
         mesh_from(data).map_err(D::Error::custom)
     }
 }
+
+/// serde for floats that may be NaN or infinite: finite ones as numbers,
+/// the others as `"NaN"`, `"inf"` or `"-inf"` where the format is human
+/// readable (JSON cannot hold them as numbers). Reading takes a number, one
+/// of those strings (also `"nan"`, `"+inf"`, `"infinity"`, any case), or
+/// `null` as NaN.
+macro_rules! nonfinite_float {
+    ($name:ident, $t:ty, $visit_float:ident, $deserialize_float:ident) => {
+        pub(crate) mod $name {
+            use serde::de::{self, Visitor};
+            use serde::{Deserializer, Serializer};
+            use std::fmt;
+
+            pub(crate) fn serialize<S: Serializer>(x: &$t, s: S) -> Result<S::Ok, S::Error> {
+                if x.is_finite() || !s.is_human_readable() {
+                    return s.$visit_float(*x);
+                }
+                s.serialize_str(if x.is_nan() {
+                    "NaN"
+                } else if *x > 0.0 {
+                    "inf"
+                } else {
+                    "-inf"
+                })
+            }
+
+            struct Float;
+
+            impl Visitor<'_> for Float {
+                type Value = $t;
+                fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                    f.write_str("a number, or \"NaN\", \"inf\" or \"-inf\"")
+                }
+                fn visit_f64<E: de::Error>(self, v: f64) -> Result<$t, E> {
+                    Ok(v as $t)
+                }
+                fn visit_f32<E: de::Error>(self, v: f32) -> Result<$t, E> {
+                    Ok(v as $t)
+                }
+                fn visit_i64<E: de::Error>(self, v: i64) -> Result<$t, E> {
+                    Ok(v as $t)
+                }
+                fn visit_u64<E: de::Error>(self, v: u64) -> Result<$t, E> {
+                    Ok(v as $t)
+                }
+                fn visit_unit<E: de::Error>(self) -> Result<$t, E> {
+                    Ok(<$t>::NAN)
+                }
+                fn visit_none<E: de::Error>(self) -> Result<$t, E> {
+                    Ok(<$t>::NAN)
+                }
+                fn visit_str<E: de::Error>(self, v: &str) -> Result<$t, E> {
+                    match v.to_ascii_lowercase().as_str() {
+                        "nan" => Ok(<$t>::NAN),
+                        "inf" | "+inf" | "infinity" | "+infinity" => Ok(<$t>::INFINITY),
+                        "-inf" | "-infinity" => Ok(<$t>::NEG_INFINITY),
+                        _ => Err(E::invalid_value(de::Unexpected::Str(v), &self)),
+                    }
+                }
+            }
+
+            pub(crate) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<$t, D::Error> {
+                if d.is_human_readable() {
+                    d.deserialize_any(Float)
+                } else {
+                    d.$deserialize_float(Float)
+                }
+            }
+        }
+    };
+}
+
+nonfinite_float!(float32, f32, serialize_f32, deserialize_f32);
+nonfinite_float!(float64, f64, serialize_f64, deserialize_f64);
 
 #[cfg(test)]
 mod tests {
@@ -375,5 +455,88 @@ mod tests {
             back.attr_value("position", v).unwrap(),
             Some(Value::List(_))
         ));
+    }
+
+    /// Issue 10, defect 6: every float value `set_attr` accepts, NaN and
+    /// the infinities included, comes back from JSON, in every float
+    /// column kind (scalars, arrays, dynamic values and lists).
+    #[test]
+    fn non_finite_floats_round_trip() {
+        let odd = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -0.0, 1.5];
+        let mut mesh = crate::shapes::cube();
+        let vs: Vec<_> = mesh.vertices().collect();
+        let fs: Vec<_> = mesh.faces().collect();
+        let a = mesh.add_vertex_attr::<f64>("a").unwrap();
+        let b = mesh.add_vertex_attr::<f32>("b").unwrap();
+        let c = mesh.add_face_attr::<[f64; 3]>("c").unwrap();
+        let d = mesh.add_face_attr::<[f32; 2]>("d").unwrap();
+        let e = mesh
+            .add_dynamic_attr::<VertexKey>("e", ValueType::F64)
+            .unwrap();
+        let l = mesh
+            .add_dynamic_attr::<VertexKey>("l", ValueType::List)
+            .unwrap();
+        for (i, &x) in odd.iter().enumerate() {
+            mesh.set_attr(&a, vs[i], x).unwrap();
+            mesh.set_attr(&b, vs[i], x as f32).unwrap();
+            mesh.set_attr(&c, fs[i], [x, 0.0, x]).unwrap();
+            mesh.set_attr(&d, fs[i], [x as f32, 2.0]).unwrap();
+            mesh.set_attr(&e, vs[i], Value::F64(x)).unwrap();
+            let list = Value::List(vec![Value::F32(x as f32), Value::F64(x)]);
+            mesh.set_attr(&l, vs[i], list).unwrap();
+        }
+        let json = serde_json::to_string(&mesh).unwrap();
+        assert!(json.contains("\"NaN\"") && json.contains("\"-inf\""));
+        let back = round_trip(&mesh).unwrap();
+        // Every float of a value, in order.
+        fn floats(v: &Value, out: &mut Vec<u64>) {
+            match v {
+                Value::List(items) => items.iter().for_each(|x| floats(x, out)),
+                Value::F32(x) => out.push(f64::from(*x).to_bits()),
+                Value::F64(x) => out.push(x.to_bits()),
+                _ => panic!("not a float: {v:?}"),
+            }
+        }
+        let all = |m: &Mesh| {
+            let mut out = Vec::new();
+            for n in ["a", "b", "e", "l"] {
+                for &v in &vs {
+                    if let Some(x) = m.attr_value(n, v).unwrap() {
+                        floats(&x, &mut out);
+                    }
+                }
+            }
+            for n in ["c", "d"] {
+                for &f in &fs {
+                    if let Some(x) = m.attr_value(n, f).unwrap() {
+                        floats(&x, &mut out);
+                    }
+                }
+            }
+            out
+        };
+        let (was, now) = (all(&mesh), all(&back));
+        assert_eq!(was.len(), 5 * (1 + 1 + 1 + 2 + 3 + 2));
+        // Bit for bit (a NaN's payload aside: JSON keeps no payload).
+        let canon = |b: &u64| {
+            let x = f64::from_bits(*b);
+            if x.is_nan() {
+                f64::NAN.to_bits()
+            } else {
+                *b
+            }
+        };
+        assert_eq!(
+            was.iter().map(canon).collect::<Vec<_>>(),
+            now.iter().map(canon).collect::<Vec<_>>()
+        );
+        let a_back = back
+            .attr_handle::<VertexKey, f64, crate::attr::Interpolate>("a")
+            .unwrap();
+        assert!(back.attr(&a_back, vs[0]).unwrap().unwrap().is_nan());
+        // A mesh saved before: NaN written as `null` reads back as NaN.
+        let old = json.replace("\"NaN\"", "null");
+        let back: Mesh = serde_json::from_str(&old).unwrap();
+        assert!(matches!(back.attr_value("a", vs[0]).unwrap(), Some(Value::F64(x)) if x.is_nan()));
     }
 }

@@ -30,6 +30,20 @@
 //! the arena ever issued ([`Slots::compacted`]): every key from before is
 //! then stale, and only the returned maps give the new ones.
 //!
+//! # Undo and the fresh floor
+//!
+//! The journal ([`journal`](crate::journal)) undoes a birth by making the
+//! slot vacant one generation *above* the undone element's (never back to
+//! the generation it had before), and undoes a death by reviving the slot at
+//! the generation its element had. A revived slot may then sit below a
+//! generation that an undone later element held; so that no key of an
+//! undone element is ever issued again to another element, every arena
+//! keeps a **fresh** floor (odd, at least the base): a generation issued by
+//! [`Slots::alloc`] (new slot or reused) is never below it, and the journal
+//! raises it above every generation a revived slot had reached. While it
+//! is above the base the arena is `Mixed`. With no journal it stays at the
+//! base and costs one compare in the reuse path.
+//!
 //! # Fast paths
 //!
 //! While every live generation equals the base (`pristine`: no slot reused
@@ -61,13 +75,17 @@ pub(crate) struct Slots {
     /// "intact implies pristine" is visible to the optimizer: a key made
     /// and checked in one loop compares the base with itself).
     state: State,
+    /// Odd, at least `base`: no generation below it is issued any more
+    /// (see the module docs). Equal to `base` until an undo raises it.
+    fresh: u32,
 }
 
 /// What every slot is known to be.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
-enum State {
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Default)]
+pub(crate) enum State {
     /// No slot freed since the arena was built or compacted: every slot is
     /// live at the base generation, so checking a key needs no load.
+    #[default]
     Intact,
     /// No slot reused since then: every live slot has the base generation,
     /// so making a key needs no load.
@@ -94,6 +112,7 @@ impl Slots {
             live: 0,
             base: Self::FIRST_BASE,
             state: State::Intact,
+            fresh: Self::FIRST_BASE,
         }
     }
 
@@ -111,6 +130,7 @@ impl Slots {
             live: n,
             base,
             state: State::Intact,
+            fresh: base,
         }
     }
 
@@ -194,14 +214,15 @@ impl Slots {
             self.state = State::Mixed;
             let g = &mut self.generations[i as usize];
             // The free list holds only slots whose next generation exists
-            // (`reusable`, checked when the slot was freed): no overflow.
-            *g += 1;
+            // (`reusable`, checked when the slot was freed), and `fresh` is
+            // at most MAX_LIVE_GENERATION: no overflow. Both are odd.
+            *g = (*g + 1).max(self.fresh);
             debug_assert!(*g & 1 == 1 && *g <= MAX_LIVE_GENERATION);
             (i, *g, false)
         } else {
             let i = u32::try_from(self.generations.len()).expect("more than 2^32 slots");
-            self.generations.push(self.base);
-            (i, self.base, true)
+            self.generations.push(self.fresh);
+            (i, self.fresh, true)
         }
     }
 
@@ -241,6 +262,26 @@ impl Slots {
             .map(|(i, _)| i as u32)
     }
 
+    /// A copy of this arena with `n` more live slots at the end, at the
+    /// fresh floor (where [`alloc`](Self::alloc) puts a new slot), in
+    /// one allocation of exactly the size needed. Keys to the existing
+    /// slots keep their meaning.
+    pub(crate) fn extended(&self, n: usize) -> Slots {
+        let mut generations = Vec::with_capacity(self.generations.len() + n);
+        generations.extend_from_slice(&self.generations);
+        // New slots get the fresh floor, as `alloc` gives them: after an
+        // undo it lies above the base, so no undone key comes back.
+        generations.resize(self.generations.len() + n, self.fresh);
+        Slots {
+            generations,
+            free: self.free.clone(),
+            live: self.live + n,
+            base: self.base,
+            state: self.state,
+            fresh: self.fresh,
+        }
+    }
+
     /// Heap bytes held.
     pub(crate) fn heap_bytes(&self) -> usize {
         (self.generations.capacity() + self.free.capacity()) * 4
@@ -254,8 +295,145 @@ impl Slots {
     /// compacted without reissuing a generation.
     pub(crate) fn compacted(&self, live: usize) -> Option<Slots> {
         let highest = self.generations.iter().copied().max().unwrap_or(0);
-        let above = highest.max(self.base).checked_add(1)? | 1;
+        // Generations below `fresh` may have been issued to elements an
+        // undo took back: the new base is not below it either.
+        let above = (highest.max(self.base).checked_add(1)? | 1).max(self.fresh);
         (above <= MAX_LIVE_GENERATION).then(|| Slots::full_at(live, above))
+    }
+
+    // ----- undo and redo (the journal's primitives) ---------------------------
+
+    /// The fast-path state, for the journal to restore.
+    #[inline]
+    pub(crate) fn state(&self) -> State {
+        self.state
+    }
+
+    /// The fresh floor (odd, at least the base).
+    #[cfg(test)]
+    pub(crate) fn fresh(&self) -> u32 {
+        self.fresh
+    }
+
+    /// Set the fast-path state back to `state` after an undo or redo,
+    /// weakened where the arena no longer allows it: vacant slots rule out
+    /// `Intact`, a fresh floor above the base rules out `Pristine`.
+    pub(crate) fn restore_state(&mut self, state: State) {
+        let mut s = state;
+        if s == State::Intact && self.live < self.generations.len() {
+            s = State::Pristine;
+        }
+        if self.fresh != self.base {
+            s = State::Mixed;
+        }
+        self.state = s;
+    }
+
+    /// Raise the fresh floor to at least `g` (made odd), so that no
+    /// generation below it is issued again. Capped at
+    /// [`MAX_LIVE_GENERATION`]: only generations within two of 2^32, which
+    /// only deserialized input carries, could then come back.
+    pub(crate) fn raise_fresh(&mut self, g: u32) {
+        let g = (g | 1).min(MAX_LIVE_GENERATION);
+        if g > self.fresh {
+            self.fresh = g;
+            self.state = State::Mixed;
+        }
+    }
+
+    /// Undo the birth of the element in slot `i`: the slot becomes vacant
+    /// one generation above it (so its key stays stale even after a new
+    /// edit reuses the slot). A slot that came from the free list goes
+    /// back on it (`push`); a slot that was new is held vacant off the
+    /// list, for a redo to revive ([`release`](Slots::release) lets it go).
+    pub(crate) fn unbirth(&mut self, i: u32, push: bool) {
+        let g = &mut self.generations[i as usize];
+        debug_assert!(*g & 1 == 1, "undoing the birth of a vacant slot");
+        *g += 1;
+        self.live -= 1;
+        if push && Self::reusable(*g) {
+            self.free.push(i);
+        }
+    }
+
+    /// Redo the birth [`unbirth`](Slots::unbirth) undid: the slot is live
+    /// again at the same generation as before. `pop`: it was put back on
+    /// the free list (and is on top of it).
+    pub(crate) fn rebirth(&mut self, i: u32, pop: bool) {
+        let g = &mut self.generations[i as usize];
+        debug_assert!(*g & 1 == 0, "redoing the birth of a live slot");
+        let reusable = Self::reusable(*g);
+        *g -= 1;
+        if pop && reusable {
+            self.take_from_free(i);
+        }
+        self.live += 1;
+    }
+
+    /// Redo a reuse [`unbirth`](Slots::unbirth) undid: slot `i` is live
+    /// again at `g`, the generation the reuse gave it (set, not derived:
+    /// undoing an earlier death may have moved the slot's generation).
+    pub(crate) fn rebirth_at(&mut self, i: u32, g: u32) {
+        debug_assert!(
+            self.generations[i as usize] & 1 == 0,
+            "redoing the reuse of a live slot"
+        );
+        if Self::reusable(self.generations[i as usize]) {
+            self.take_from_free(i);
+        }
+        self.generations[i as usize] = g;
+        self.live += 1;
+    }
+
+    /// Take slot `i` off the free list: it is on top unless slots an
+    /// undo held for a redo were released onto the list since.
+    fn take_from_free(&mut self, i: u32) {
+        if let Some(k) = self.free.iter().rposition(|&x| x == i) {
+            self.free.remove(k);
+        } else {
+            debug_assert!(false, "slot {i} is not on the free list");
+        }
+    }
+
+    /// Undo the death of the element that lived in slot `i` at generation
+    /// `g`: it lives again with the same key. Its slot leaves the free list
+    /// (it is on top, if its death put it there). When later elements in
+    /// this slot were undone, the fresh floor rises above them.
+    pub(crate) fn undeath(&mut self, i: u32, g: u32) {
+        let current = self.generations[i as usize];
+        debug_assert!(
+            current & 1 == 0 && current > g,
+            "undoing a death that did not happen"
+        );
+        if Self::reusable(g + 1) {
+            self.take_from_free(i);
+        }
+        if current > g + 1 {
+            self.raise_fresh(current + 1);
+        }
+        self.generations[i as usize] = g;
+        self.live += 1;
+    }
+
+    /// The highest generation any slot holds (live or vacant), at least
+    /// the fresh floor: every key this arena issued is at or below it.
+    pub(crate) fn highest_issued(&self) -> u32 {
+        self.generations
+            .iter()
+            .copied()
+            .max()
+            .unwrap_or(0)
+            .max(self.fresh)
+    }
+
+    /// Put a vacant slot that [`unbirth`](Slots::unbirth) held for a redo
+    /// back on the free list (the redo was dropped).
+    pub(crate) fn release(&mut self, i: u32) {
+        if let Some(&g) = self.generations.get(i as usize) {
+            if g & 1 == 0 && Self::reusable(g) {
+                self.free.push(i);
+            }
+        }
     }
 
     /// Rebuild from raw generations and the base (deserialization), refusing
@@ -264,10 +442,19 @@ impl Slots {
     /// below the base. Vacant slots are the even ones; those with a next
     /// generation go on the free list, the others stay retired.
     #[cfg(any(feature = "serde", test))]
-    pub(crate) fn from_generations(generations: Vec<u32>, base: u32) -> Result<Self, String> {
+    pub(crate) fn from_generations(
+        generations: Vec<u32>,
+        base: u32,
+        fresh: u32,
+    ) -> Result<Self, String> {
         if base & 1 == 0 || base > MAX_LIVE_GENERATION {
             return Err(format!(
                 "base generation {base} is not an odd number up to {MAX_LIVE_GENERATION}"
+            ));
+        }
+        if fresh & 1 == 0 || fresh < base || fresh > MAX_LIVE_GENERATION {
+            return Err(format!(
+                "fresh generation {fresh} is not an odd number from the base {base} up to {MAX_LIVE_GENERATION}"
             ));
         }
         if let Some((i, g)) = generations
@@ -291,7 +478,9 @@ impl Slots {
             .rev()
             .collect();
         let live = generations.iter().filter(|g| *g & 1 == 1).count();
-        let state = if generations.iter().all(|&g| g == base) {
+        let state = if fresh != base {
+            State::Mixed
+        } else if generations.iter().all(|&g| g == base) {
             State::Intact
         } else if generations.iter().all(|&g| g & 1 == 0 || g == base) {
             State::Pristine
@@ -304,6 +493,7 @@ impl Slots {
             live,
             base,
             state,
+            fresh,
         })
     }
 
@@ -356,7 +546,7 @@ mod tests {
 
     #[test]
     fn even_generation_never_current() {
-        let s = Slots::from_generations(vec![1, 2, 3], 1).unwrap();
+        let s = Slots::from_generations(vec![1, 2, 3], 1, 1).unwrap();
         assert!(s.is_current(0, 1));
         assert!(!s.is_current(1, 2));
         assert_eq!(s.live(), 2);
@@ -384,9 +574,22 @@ mod tests {
     }
 
     #[test]
+    fn extended_keeps_old_keys_and_adds_live_slots() {
+        let mut s = Slots::full(3);
+        s.free(1);
+        let e = s.extended(2);
+        assert_eq!(e.slot_count(), 5);
+        assert_eq!(e.live(), 4);
+        assert!(e.is_current(0, 1) && !e.is_current(1, 1) && e.is_current(4, 1));
+        // The vacant slot is still reusable.
+        let mut e = e;
+        assert_eq!(e.alloc(), (1, 3, false));
+    }
+
+    #[test]
     fn generations_never_wrap() {
         let top = MAX_LIVE_GENERATION;
-        let mut s = Slots::from_generations(vec![top, top - 2], 1).unwrap();
+        let mut s = Slots::from_generations(vec![top, top - 2], 1, 1).unwrap();
         assert!(!s.pristine() && !s.intact());
         s.free(0); // top + 1: retired
         s.free(1); // top - 1: its next generation is top, still reusable
@@ -401,12 +604,60 @@ mod tests {
     }
 
     #[test]
+    fn undo_primitives_never_reissue_a_key() {
+        let mut s = Slots::full(2);
+        // Birth of a new slot, undone: vacant above it, held off the list.
+        let (i, g, new) = s.alloc();
+        assert_eq!((i, g, new), (2, 1, true));
+        s.unbirth(i, false);
+        s.restore_state(State::Intact);
+        assert!(!s.is_current(2, 1) && s.is_current(0, 1));
+        assert_eq!(s.state(), State::Pristine, "a vacant slot rules out Intact");
+        // Redo: the same key again.
+        s.rebirth(i, false);
+        assert!(s.is_current(2, 1));
+        // Death of slot 0, then its reuse, both undone: slot 0 lives at 1
+        // again and the fresh floor keeps the reused key (0, 3) unissued.
+        let g0 = s.generation_of(0);
+        s.free(0);
+        let (j, gj, _) = s.alloc();
+        assert_eq!((j, gj), (0, 3));
+        s.unbirth(j, true);
+        s.undeath(0, g0);
+        assert!(s.is_current(0, 1));
+        assert!(s.fresh() > 3);
+        s.free(0);
+        let (k, gk, _) = s.alloc();
+        assert_eq!(k, 0);
+        assert!(gk > 3, "generation {gk} reissues the undone key (0, 3)");
+        // A released slot is reused.
+        s.unbirth(2, false);
+        s.release(2);
+        assert_eq!(s.alloc().0, 2);
+    }
+
+    #[test]
+    fn compaction_stays_above_the_fresh_floor() {
+        let mut s = Slots::full(1);
+        s.raise_fresh(9);
+        assert_eq!(s.alloc(), (1, 9, true));
+        s.free(1);
+        assert_eq!(s.compacted(1).unwrap().base(), 11);
+        let mut t = Slots::full(2);
+        t.free(1);
+        t.raise_fresh(7);
+        assert_eq!(t.compacted(1).unwrap().base(), 7);
+    }
+
+    #[test]
     fn impossible_generations_are_refused() {
-        assert!(Slots::from_generations(vec![u32::MAX], 1).is_err());
-        assert!(Slots::from_generations(vec![1, 3], 3).is_err());
-        assert!(Slots::from_generations(vec![5], 4).is_err());
-        assert!(Slots::from_generations(vec![u32::MAX], u32::MAX).is_err());
-        let s = Slots::from_generations(vec![u32::MAX - 1, 7], 7).unwrap();
+        assert!(Slots::from_generations(vec![u32::MAX], 1, 1).is_err());
+        assert!(Slots::from_generations(vec![1, 3], 3, 3).is_err());
+        assert!(Slots::from_generations(vec![5], 4, 5).is_err());
+        assert!(Slots::from_generations(vec![u32::MAX], u32::MAX, u32::MAX).is_err());
+        assert!(Slots::from_generations(vec![1], 1, 2).is_err());
+        assert!(Slots::from_generations(vec![3], 3, 1).is_err());
+        let s = Slots::from_generations(vec![u32::MAX - 1, 7], 7, 7).unwrap();
         assert_eq!(s.live(), 1);
         assert!(
             s.free.is_empty(),

@@ -12,7 +12,6 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
-use crate::layout::IdVec;
 use crate::mesh::Mesh;
 
 /// Figures describing a mesh, from [`Mesh::stats`].
@@ -26,12 +25,24 @@ pub struct Stats {
     pub edges: usize,
     /// Number of faces, holes excluded.
     pub faces: usize,
-    /// Number of hole faces (the outside of each boundary loop).
+    /// Number of hole faces. A hole face is the outside of one cycle of
+    /// boundary half-edges; where boundary loops meet at a pinched vertex
+    /// (a bowtie), the half-edge structure keeps one ring per vertex and so
+    /// one hole passes through every loop that meets there: then there are
+    /// fewer holes than [`boundary_loops`](Self::boundary_loops).
     pub holes: usize,
     /// Number of edges with a hole on one side.
     pub boundary_edges: usize,
-    /// Number of closed cycles of boundary half-edges, found by walking
-    /// them. On a valid mesh this equals [`holes`](Self::holes).
+    /// Number of boundary loops, counted as independent checkers count them
+    /// on the face list (the shared `meshcheck.py`, libigl's
+    /// `boundary_loop`): walk the boundary edges, each against its face's
+    /// direction; at a vertex where several boundary edges leave, take the
+    /// first one not yet walked, in face order (faces in slot order, each
+    /// from its first half-edge); a walk ends where it finds none, and each
+    /// walk counts one loop. Without pinched vertices this equals
+    /// [`holes`](Self::holes); at a pinched vertex the count depends on
+    /// that turning rule, and may be more or fewer than the hole faces
+    /// (`geomview_cam.off`: 1 hole face, 2 loops).
     pub boundary_loops: usize,
     /// Number of connected components (vertices joined by edges).
     pub components: usize,
@@ -237,18 +248,67 @@ impl Mesh {
         out
     }
 
-    /// Number of cycles among the half-edges that lie in holes, following
-    /// `next`.
+    /// Boundary loops as [`Stats::boundary_loops`] defines them.
+    ///
+    /// # Complexity
+    /// O(B log B) for B boundary half-edges, plus a pass over the faces.
     fn boundary_loop_count(&self) -> usize {
-        let mut seen = IdVec::filled(false, self.he.len());
-        let mut loops = 0;
-        for h in self.hids() {
-            if seen[h] || !self.in_hole(h) {
+        // Every hole half-edge (origin, dest), in the order its face twin
+        // comes: faces in slot order, each from its first half-edge.
+        let mut sides: Vec<(u32, u32)> = Vec::new();
+        for f in self.fids() {
+            if self.is_hole(f) {
                 continue;
             }
-            loops += 1;
-            for g in crate::circulate::FaceHalfedges::from_halfedge(self, h) {
-                seen[g] = true;
+            for h in self.face_loop(f) {
+                let t = h.twin();
+                if self.in_hole(t) {
+                    sides.push((self.origin(t).raw(), self.origin(h).raw()));
+                }
+            }
+        }
+        // The sides leaving each vertex, in that order; vertices in the
+        // order their first leaving side comes.
+        let mut order: Vec<u32> = (0..sides.len() as u32).collect();
+        order.sort_by_key(|&i| (sides[i as usize].0, i));
+        // Per vertex: (first, cursor, end) into `order`.
+        let mut group: std::collections::HashMap<u32, (usize, usize, usize)> =
+            std::collections::HashMap::with_capacity(sides.len());
+        for (k, &i) in order.iter().enumerate() {
+            let e = group.entry(sides[i as usize].0).or_insert((k, k, k));
+            e.2 = k + 1;
+        }
+        let mut walked = vec![false; sides.len()];
+        let mut loops = 0;
+        for (i, &(a, _)) in sides.iter().enumerate() {
+            let Some(&(start, _, end)) = group.get(&a) else {
+                continue;
+            };
+            if order[start] as usize != i {
+                continue; // not the first side leaving `a`: done with `a`
+            }
+            for k in start..end {
+                let mut side = order[k] as usize;
+                if walked[side] {
+                    continue;
+                }
+                loops += 1;
+                loop {
+                    walked[side] = true;
+                    let y = sides[side].1;
+                    let Some(cursor) = group.get_mut(&y) else {
+                        break;
+                    };
+                    // Sides at a vertex are walked in order, so the first
+                    // not yet walked is at the front of its group.
+                    while cursor.1 < cursor.2 && walked[order[cursor.1] as usize] {
+                        cursor.1 += 1;
+                    }
+                    if cursor.1 == cursor.2 {
+                        break;
+                    }
+                    side = order[cursor.1] as usize;
+                }
             }
         }
         loops

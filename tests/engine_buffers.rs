@@ -13,9 +13,53 @@ const SPIDER: &str = "../shared/data/meshes/textured/spider.obj";
 
 /// The spider has faces that disagree in orientation: read it with every
 /// repair on.
-fn spider() -> Mesh {
+/// The spider as repair reads it: it keeps coincident vertices apart (welding
+/// is opt-in and refused where it would make the mesh non-manifold) and
+/// keeps triangles whose corners share a position.
+fn raw_spider() -> Mesh {
     let opts = meshloom::io::ReadOptions::repair_all();
     meshloom::io::read_with(SPIDER, &opts).unwrap().0
+}
+
+/// The spider after one trip through buffers: vertices welded by position,
+/// so every vertex has a position of its own and the next trips are exact.
+fn spider() -> Mesh {
+    let raw = raw_spider();
+    let b = raw.to_triangle_buffers(&uv_options(false)).unwrap();
+    Mesh::from_triangle_buffers(&b, &FromBuffersOptions::default()).unwrap()
+}
+
+/// Distinct vertex positions (bit patterns, `-0.0` as `0.0`).
+fn distinct_positions(mesh: &Mesh) -> usize {
+    let key = |p: [f64; 3]| p.map(|c| if c == 0.0 { 0 } else { c.to_bits() });
+    let set: std::collections::HashSet<_> = mesh
+        .vertices()
+        .map(|v| key(mesh.position(v).unwrap()))
+        .collect();
+    set.len()
+}
+
+#[test]
+fn coincident_vertices_weld_on_the_way_back() {
+    let raw = raw_spider();
+    let b = raw
+        .to_triangle_buffers_f64(&TriangleBufferOptions::default())
+        .unwrap();
+    let back = Mesh::build_triangle_buffers(&b, &FromBuffersOptions::default()).unwrap();
+    assert!(distinct_positions(&raw) < raw.vertex_count());
+    assert_eq!(back.mesh.vertex_count(), distinct_positions(&raw));
+    let same = |a: [f64; 3], b: [f64; 3]| a == b;
+    let indices = b.indices.to_u32();
+    let degenerate = indices
+        .chunks(3)
+        .filter(|t| {
+            let p = |i: u32| b.positions[i as usize];
+            same(p(t[0]), p(t[1])) || same(p(t[1]), p(t[2])) || same(p(t[0]), p(t[2]))
+        })
+        .count();
+    assert_eq!(back.collapsed, degenerate);
+    assert_eq!(back.mesh.face_count(), b.triangle_count() - degenerate);
+    back.mesh.validate().unwrap();
 }
 
 /// Interior edges across which a corner column differs at either end.

@@ -2,8 +2,8 @@
 
 use std::path::PathBuf;
 
+use crate::input::MeshFormat;
 use clap::{Args, Parser, Subcommand};
-use meshloom::io::Format;
 use meshloom_cli::render::View;
 
 const EXAMPLES: &str = "\
@@ -11,10 +11,12 @@ Examples:
   meshloom stats data/elephant.off
   meshloom validate data/elephant.off
   meshloom render data/elephant.off elephant.png --wireframe
+  meshloom smooth data/elephant.off smooth.off --method taubin
+  meshloom decimate data/elephant.off small.off --ratio 0.1
 
 Exit codes: 0 success, 1 bad input, 2 usage.";
 
-/// Look at, check, convert, repair and render polygon mesh files
+/// Look at, check, convert, repair, simplify and render polygon mesh files
 /// (OBJ, OFF, PLY, STL; a trailing .gz is read and written as gzip).
 #[derive(Parser, Debug)]
 #[command(name = "meshloom", version, after_help = EXAMPLES)]
@@ -33,10 +35,18 @@ pub enum Command {
     /// components, Euler characteristic V - E + F, genus where the mesh is
     /// closed (summed over components), the face-degree histogram and the
     /// bounding box.
+    ///
+    /// "holes" counts hole faces; "boundary loops" counts loops as
+    /// independent checkers walk them (at a vertex where several loops
+    /// meet, turning into the first boundary edge not yet walked, in face
+    /// order). They differ only where boundary loops meet at a pinched
+    /// vertex: there one hole face passes through every loop.
     #[command(after_help = "\
 Example:
   meshloom stats data/elephant.off
-  meshloom stats data/elephant.off --json")]
+  meshloom stats data/elephant.off --json
+  meshloom stats meshes/ more.ply        (a table: file, V, F, status)
+  cat cube.off | meshloom stats - --format off")]
     Stats(StatsArgs),
     /// Print the figures of each connected component.
     ///
@@ -47,7 +57,7 @@ Example:
 Example:
   meshloom components data/elephant.off
   meshloom components scan.ply --json")]
-    Components(StatsArgs),
+    Components(ComponentsArgs),
     /// Check that a file is a valid half-edge mesh as it stands.
     ///
     /// Reads strictly (no repairs) and checks every structural rule. Exit
@@ -55,14 +65,18 @@ Example:
     /// with a hint when `meshloom repair` would fix it.
     #[command(after_help = "\
 Example:
-  meshloom validate data/elephant.off && echo clean")]
+  meshloom validate data/elephant.off && echo clean
+  meshloom validate meshes/ --json        (one object per file and line)")]
     Validate(ValidateArgs),
     /// Convert between formats, chosen by the file extensions.
     #[command(after_help = "\
 Example:
   meshloom convert data/elephant.off elephant.ply
   meshloom convert scan.stl scan.obj.gz --repair
-  meshloom convert model.glb model.obj")]
+  meshloom convert model.glb model.obj
+  meshloom convert meshes/ --out-dir as-ply/ --format ply
+  meshloom convert scan.stl - --format obj | less
+  meshloom convert data/elephant.off elephant.obj --normals")]
     Convert(ConvertArgs),
     /// Repair a dirty file and report what was done.
     ///
@@ -72,7 +86,8 @@ Example:
     #[command(after_help = "\
 Example:
   meshloom repair scan.ply fixed.ply
-  meshloom repair scan.ply fixed.off --json")]
+  meshloom repair scan.ply fixed.off --json
+  meshloom repair scans/ --out-dir fixed/")]
     Repair(RepairArgs),
     /// Cut every face of more than three sides into triangles.
     ///
@@ -93,6 +108,47 @@ Example:
   meshloom fill-holes scan.ply closed.ply --triangulate
   meshloom fill-holes part.off part-filled.off --max-sides 12 --json")]
     FillHoles(FillHolesArgs),
+    /// Smooth the vertex positions and write the result.
+    ///
+    /// uniform and cotan: explicit Laplacian steps (--step is the fraction
+    /// of the way to the neighbours' mean, default 0.5; 10 iterations);
+    /// taubin: a shrinking and an inflating uniform step per iteration,
+    /// which keeps the volume; implicit: backward Euler steps of the
+    /// cotangent flow (--step is the time step, default 0.001; 1
+    /// iteration), solved by a sparse Cholesky factorisation. Boundary
+    /// vertices stay put unless --free-boundary; with --mask-column only
+    /// the vertices where that vertex column is true (or non-zero) move.
+    /// Every other column keeps its values; normal columns read from the
+    /// input are stale and dropped (--normals computes new ones).
+    #[command(after_help = "\
+Example:
+  meshloom smooth scan.ply smooth.ply --method taubin --iterations 20
+  meshloom smooth part.obj part-smooth.obj --method implicit --step 0.01 --normals --json")]
+    Smooth(SmoothArgs),
+    /// Simplify a triangle mesh by quadric error edge collapse.
+    ///
+    /// Stops at a share of the vertices, a vertex or face count, or before
+    /// the error (a distance in mesh units) would pass --max-error; give
+    /// one target, or --max-error alone. Boundaries and UV seams are kept
+    /// as lines (their vertices slide only along them); --keep-boundary and
+    /// --keep-seams keep their vertices where they are. UVs, colours and
+    /// other attributes follow each collapse. Faces must be triangles
+    /// (`meshloom triangulate` first).
+    #[command(after_help = "\
+Example:
+  meshloom decimate bunny.off bunny-10.off --ratio 0.1
+  meshloom decimate scan.ply small.ply --faces 5000 --max-error 0.01 --keep-boundary --json")]
+    Decimate(DecimateArgs),
+    /// Write several levels of detail from one decimation.
+    ///
+    /// Level i (from 1) goes to OUT_PREFIX_i with OUT_PREFIX's extension
+    /// (`lod.obj` gives `lod_1.obj`, ...; no extension: `.obj`). Each level
+    /// is the one before it, decimated further.
+    #[command(after_help = "\
+Example:
+  meshloom lod bunny.off out/bunny.obj --ratios 0.5,0.25,0.1
+  meshloom lod part.glb part.glb --ratios 0.3,0.1 --keep-seams --json")]
+    Lod(LodArgs),
     /// Draw a shaded picture of a mesh as PNG.
     ///
     /// Orthographic, flat or smooth shading, optional wireframe and
@@ -103,20 +159,38 @@ Example:
   meshloom render data/elephant.off elephant.png
   meshloom render part.obj part.png --view top --flat --wireframe --boundary --size 1024x768")]
     Render(RenderArgs),
+    /// Subdivide: Loop, Catmull-Clark, sqrt(3) or midpoint, any levels.
+    ///
+    /// Loop takes triangles, sqrt3 closed triangle meshes, catmull-clark
+    /// and midpoint any polygons. Boundaries follow the crease rule (add
+    /// --corners to keep the corners of single faces); an f64 edge column
+    /// named by --crease-column gives semi-sharp creases (loop and
+    /// catmull-clark). Attributes follow: UVs stay linear per face, so
+    /// seams stay seams; face values go to every child face.
+    #[command(after_help = "\
+Example:
+  meshloom subdivide cube.obj smooth.obj --scheme catmull-clark --levels 3
+  meshloom subdivide bunny.off bunny4.ply --scheme loop --levels 2 --json")]
+    Subdivide(SubdivideArgs),
 }
 
 /// How to read an input file.
-#[derive(Args, Debug, Clone, Copy)]
+#[derive(Args, Debug, Clone, Copy, Default)]
 pub struct ReadArgs {
     /// Repair the input while reading (as `meshloom repair` does) instead of
     /// refusing what a half-edge mesh cannot hold.
     #[arg(long)]
     pub repair: bool,
+    /// Also weld vertices at bit-identical positions where every edge and
+    /// vertex stays manifold (implies --repair; off by default because
+    /// coincident vertices may keep parts apart on purpose).
+    #[arg(long)]
+    pub weld: bool,
 }
 
-/// `meshloom stats`.
+/// `meshloom components`.
 #[derive(Args, Debug)]
-pub struct StatsArgs {
+pub struct ComponentsArgs {
     /// The mesh file.
     #[arg(value_parser = mesh_path)]
     pub file: PathBuf,
@@ -127,26 +201,123 @@ pub struct StatsArgs {
     pub read: ReadArgs,
 }
 
+/// `meshloom stats`.
+#[derive(Args, Debug)]
+pub struct StatsArgs {
+    /// Mesh files or folders (searched recursively for the extensions the
+    /// readers know); `-` reads standard input (format from --format).
+    #[arg(required = true, value_parser = input_path)]
+    pub files: Vec<PathBuf>,
+    /// Print JSON instead of text: one object per file, one per line.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub read: ReadArgs,
+    /// The format of standard input (`-`): obj, off, ply, stl, gltf or glb.
+    #[arg(long, value_parser = format_name)]
+    pub format: Option<MeshFormat>,
+}
+
 /// `meshloom validate`.
 #[derive(Args, Debug)]
 pub struct ValidateArgs {
-    /// The mesh file.
-    #[arg(value_parser = mesh_path)]
-    pub file: PathBuf,
-    /// Print one JSON object instead of text.
+    /// Mesh files or folders (searched recursively); `-` reads standard
+    /// input (format from --format).
+    #[arg(required = true, value_parser = input_path)]
+    pub files: Vec<PathBuf>,
+    /// Print JSON instead of text: one object per file, one per line.
     #[arg(long)]
     pub json: bool,
+    /// The format of standard input (`-`): obj, off, ply, stl, gltf or glb.
+    #[arg(long, value_parser = format_name)]
+    pub format: Option<MeshFormat>,
+}
+
+/// Where the results of `convert` and `repair` go.
+#[derive(Args, Debug, Clone)]
+pub struct OutArgs {
+    /// Write every result into this folder, at the input's path relative to
+    /// the folder argument it was found in (a file named on its own: its
+    /// file name). All paths are then inputs.
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: Option<PathBuf>,
+    /// The format written into --out-dir (obj, off, ply, stl, each with an
+    /// optional .gz, gltf or glb; default: the input's own), or of a `-`
+    /// input or output.
+    #[arg(long, value_parser = format_name)]
+    pub format: Option<MeshFormat>,
 }
 
 /// `meshloom convert`.
 #[derive(Args, Debug)]
 pub struct ConvertArgs {
+    /// `IN OUT` (format from the extensions; `-` for standard input or
+    /// output, with --format), or with --out-dir: files and folders to
+    /// convert.
+    #[arg(required = true, value_name = "PATHS", value_parser = input_path)]
+    pub paths: Vec<PathBuf>,
+    #[command(flatten)]
+    pub out: OutArgs,
+    /// Compute angle-weighted vertex normals and write them where the format
+    /// carries them (OBJ vn, OFF NOFF, PLY nx ny nz, glTF NORMAL).
+    #[arg(long)]
+    pub normals: bool,
+    #[command(flatten)]
+    pub read: ReadArgs,
+    /// Print JSON instead of text, one object per file and line (what was
+    /// written, and the attributes the output format cannot hold).
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `meshloom smooth --method`.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Explicit steps toward the neighbours' mean.
+    Uniform,
+    /// Explicit steps toward the cotangent-weighted mean.
+    Cotan,
+    /// Taubin's lambda|mu filter (no shrinkage).
+    Taubin,
+    /// Backward Euler with the cotangent Laplacian.
+    Implicit,
+}
+
+/// `meshloom smooth`.
+#[derive(Args, Debug)]
+pub struct SmoothArgs {
     /// The mesh file to read.
     #[arg(value_parser = mesh_path)]
     pub input: PathBuf,
     /// The mesh file to write (format from its extension).
     #[arg(value_parser = mesh_path)]
     pub output: PathBuf,
+    /// How to smooth.
+    #[arg(long, value_enum, default_value = "uniform")]
+    pub method: Method,
+    /// Iterations (implicit: time steps); default 10, implicit 1.
+    #[arg(long)]
+    pub iterations: Option<u32>,
+    /// Explicit and Taubin: the step lambda in (0, 1] (default 0.5);
+    /// implicit: the time step (default 0.001).
+    #[arg(long)]
+    pub step: Option<f64>,
+    /// Move only the vertices where this vertex column is true or non-zero.
+    #[arg(long, value_name = "NAME")]
+    pub mask_column: Option<String>,
+    /// Let boundary vertices move too.
+    #[arg(long)]
+    pub free_boundary: bool,
+    /// Implicit only: restore the input's surface area and centroid.
+    #[arg(long)]
+    pub rescale: bool,
+    /// Compute angle-weighted vertex normals and write them where the format
+    /// carries them (OBJ vn, OFF NOFF, PLY nx ny nz, glTF NORMAL).
+    #[arg(long)]
+    pub normals: bool,
+    /// Print the report as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
     #[command(flatten)]
     pub read: ReadArgs,
 }
@@ -154,15 +325,21 @@ pub struct ConvertArgs {
 /// `meshloom repair`.
 #[derive(Args, Debug)]
 pub struct RepairArgs {
-    /// The mesh file to read and repair.
-    #[arg(value_parser = mesh_path)]
-    pub input: PathBuf,
-    /// The mesh file to write (format from its extension).
-    #[arg(value_parser = mesh_path)]
-    pub output: PathBuf,
-    /// Print the report as one JSON object instead of text.
+    /// `IN OUT` (format from the extensions; `-` for standard input or
+    /// output, with --format), or with --out-dir: files and folders to
+    /// repair.
+    #[arg(required = true, value_name = "PATHS", value_parser = input_path)]
+    pub paths: Vec<PathBuf>,
+    #[command(flatten)]
+    pub out: OutArgs,
+    /// Print the report as JSON, one object per file and line (on failure
+    /// too: `{"ok": false, "error": ...}`).
     #[arg(long)]
     pub json: bool,
+    /// Also weld vertices at bit-identical positions where every edge and
+    /// vertex stays manifold.
+    #[arg(long)]
+    pub weld: bool,
 }
 
 /// `meshloom triangulate`.
@@ -203,6 +380,81 @@ pub struct FillHolesArgs {
     pub read: ReadArgs,
 }
 
+/// `meshloom decimate`.
+#[derive(Args, Debug)]
+#[command(group(clap::ArgGroup::new("target").required(true).multiple(true).args(["ratio", "vertices", "faces", "max_error"])))]
+pub struct DecimateArgs {
+    /// The mesh file to read.
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// The mesh file to write (format from its extension).
+    #[arg(value_parser = mesh_path)]
+    pub output: PathBuf,
+    /// Stop at this share of the vertices (0 to 1).
+    #[arg(long, value_parser = ratio, conflicts_with_all = ["vertices", "faces"])]
+    pub ratio: Option<f64>,
+    /// Stop at this many vertices.
+    #[arg(long, conflicts_with = "faces")]
+    pub vertices: Option<usize>,
+    /// Stop at this many faces (or one fewer).
+    #[arg(long)]
+    pub faces: Option<usize>,
+    /// Stop before a collapse whose error (mesh units) would pass this.
+    #[arg(long, value_parser = non_negative)]
+    pub max_error: Option<f64>,
+    /// Keep boundary vertices where they are.
+    #[arg(long)]
+    pub keep_boundary: bool,
+    /// Keep UV seam (and other corner discontinuity) vertices where they are.
+    #[arg(long)]
+    pub keep_seams: bool,
+    /// Print the report as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
+/// `meshloom lod`.
+#[derive(Args, Debug)]
+pub struct LodArgs {
+    /// The mesh file to read.
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// Where the levels go: `_1`, `_2`, ... before the extension.
+    pub output_prefix: PathBuf,
+    /// The levels' shares of the input's vertices, largest first.
+    #[arg(long, value_delimiter = ',', required = true, value_parser = ratio)]
+    pub ratios: Vec<f64>,
+    /// Keep boundary vertices where they are.
+    #[arg(long)]
+    pub keep_boundary: bool,
+    /// Keep UV seam (and other corner discontinuity) vertices where they are.
+    #[arg(long)]
+    pub keep_seams: bool,
+    /// Print the levels' reports as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
+/// A number from 0 to 1.
+fn ratio(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(r) if (0.0..=1.0).contains(&r) => Ok(r),
+        _ => Err("expected a number from 0 to 1".into()),
+    }
+}
+
+/// A finite number ≥ 0.
+fn non_negative(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(r) if r.is_finite() && r >= 0.0 => Ok(r),
+        _ => Err("expected a finite number ≥ 0".into()),
+    }
+}
+
 /// `meshloom render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
@@ -235,17 +487,105 @@ pub struct RenderArgs {
     pub read: ReadArgs,
 }
 
-/// A path whose extension names a mesh format.
+/// A subdivision scheme.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scheme {
+    /// Loop (triangles).
+    Loop,
+    /// Catmull-Clark (any polygons; quads after one level).
+    CatmullClark,
+    /// Kobbelt's sqrt(3) (closed triangle meshes).
+    Sqrt3,
+    /// Midpoint (nothing moves; triangles 1-to-4, other meshes to quads).
+    Midpoint,
+}
+
+impl Scheme {
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::Loop => "loop",
+            Scheme::CatmullClark => "catmull-clark",
+            Scheme::Sqrt3 => "sqrt3",
+            Scheme::Midpoint => "midpoint",
+        }
+    }
+}
+
+/// `meshloom subdivide`.
+#[derive(Args, Debug)]
+pub struct SubdivideArgs {
+    /// The mesh file to read.
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// The mesh file to write (format from its extension).
+    #[arg(value_parser = mesh_path)]
+    pub output: PathBuf,
+    /// The scheme.
+    #[arg(long, value_enum)]
+    pub scheme: Scheme,
+    /// Levels, 0 to 8 (each multiplies the faces by 3 or 4).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(0..=8))]
+    pub levels: u32,
+    /// An f64 edge column of crease sharpness (loop, catmull-clark).
+    #[arg(long, value_name = "NAME")]
+    pub crease_column: Option<String>,
+    /// Keep boundary corners (vertices of a single face) in place.
+    #[arg(long)]
+    pub corners: bool,
+    /// Print the report as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
+/// What the readers know, for messages.
+pub const KNOWN: &str = "expected .obj, .off, .ply or .stl (each optionally + .gz), .gltf or .glb";
+
+/// A path whose extension names a mesh format (for commands that take one
+/// file): a folder or an unknown extension is a usage error that says so.
 fn mesh_path(s: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(s);
-    if Format::from_path(&path).is_some() || meshloom::io::gltf::encoding_of(&path).is_some() {
+    if path.is_dir() {
+        return Err(format!("{s} is a folder; this command takes one mesh file"));
+    }
+    if MeshFormat::of_path(&path).is_some() {
         Ok(path)
     } else {
-        Err(
-            "expected a file ending in .obj, .off, .ply or .stl (optionally + .gz), .gltf or .glb"
-                .into(),
-        )
+        Err(unknown_extension(&path))
     }
+}
+
+/// An input of the commands that take several: `-`, a folder, or a path
+/// whose extension names a mesh format (an output path of `convert IN OUT`
+/// passes here too).
+fn input_path(s: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(s);
+    if s == "-" || path.is_dir() || MeshFormat::of_path(&path).is_some() {
+        Ok(path)
+    } else {
+        Err(unknown_extension(&path))
+    }
+}
+
+/// The message for a file name no reader knows.
+pub fn unknown_extension(path: &std::path::Path) -> String {
+    match path.extension() {
+        Some(e) => format!(
+            "{}: unknown extension .{}; {KNOWN}",
+            path.display(),
+            e.to_string_lossy()
+        ),
+        None => format!("{}: no extension; {KNOWN}", path.display()),
+    }
+}
+
+/// A format named on the command line: `ply`, `.off`, `obj.gz`, `glb`.
+fn format_name(s: &str) -> Result<MeshFormat, String> {
+    let name = s.trim_start_matches('.');
+    MeshFormat::of_path(std::path::Path::new(&format!("x.{name}")))
+        .ok_or_else(|| format!("unknown format {s:?}; {KNOWN}"))
 }
 
 /// A path ending in `.png`.

@@ -8,6 +8,7 @@
 //! built or written), 2 usage (clap's code for bad arguments).
 #![forbid(unsafe_code)]
 
+mod batch;
 mod cli;
 mod commands;
 mod input;
@@ -19,7 +20,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 use cli::{Cli, Command};
-use commands::{convert, render, stats, validate};
+use commands::{convert, decimate, render, smooth, stats, subdivide, validate};
 
 /// Why a command failed, and the exit code that says so.
 #[derive(Debug)]
@@ -44,12 +45,11 @@ impl Failure {
         }
     }
 
-    /// A failure already reported on stdout (validate's verdict): exit 1,
-    /// print nothing more.
-    pub fn reported() -> Failure {
+    /// A usage failure (exit 2).
+    pub fn usage(message: impl std::fmt::Display) -> Failure {
         Failure {
-            code: Failure::INPUT,
-            message: String::new(),
+            code: Failure::USAGE,
+            message: message.to_string(),
         }
     }
 }
@@ -64,7 +64,11 @@ fn main() -> ExitCode {
         Command::Repair(a) => convert::repair(&a),
         Command::Triangulate(a) => convert::triangulate(&a),
         Command::FillHoles(a) => convert::fill_holes(&a),
+        Command::Smooth(a) => smooth::run(&a),
+        Command::Decimate(a) => decimate::decimate(&a),
+        Command::Lod(a) => decimate::lod(&a),
         Command::Render(a) => render::run(&a),
+        Command::Subdivide(a) => subdivide::run(&a),
     };
     match done {
         Ok(()) => ExitCode::SUCCESS,

@@ -16,9 +16,10 @@ pub fn print(text: &str) -> Result<(), Failure> {
     }
 }
 
-/// Print `value` as pretty JSON and a newline.
+/// Print `value` as JSON on one line (JSON Lines, as the commands that take
+/// several files print one object per file).
 pub fn json(value: &serde_json::Value) -> Result<(), Failure> {
-    let text = serde_json::to_string_pretty(value)
+    let text = serde_json::to_string(value)
         .map_err(|e| Failure::input(format!("cannot encode JSON: {e}")))?;
     print(&format!("{text}\n"))
 }

@@ -66,6 +66,16 @@ impl Progress {
         }
     }
 
+    /// Change the message (a spinner's stage).
+    pub fn message(&self, message: String) {
+        self.bar.set_message(message);
+    }
+
+    /// Change the total.
+    pub fn set_length(&self, total: u64) {
+        self.bar.set_length(total);
+    }
+
     /// Report `done` units of the total.
     pub fn set(&self, done: usize) {
         self.bar.set_position(done as u64);

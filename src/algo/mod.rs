@@ -3,12 +3,24 @@
 //!
 //! | module | what | results |
 //! |---|---|---|
+//! | [`decimate`] | quadric error edge collapse to a count, ratio or error, with guards and kept lines (boundaries, UV seams, materials, features) | [`DecimateReport`] |
 //! | [`progress`] | the progress-and-cancel callback every long algorithm takes | [`Progress`], [`Error::Cancelled`](crate::Error::Cancelled) |
+//! | [`laplacian`] | the cotangent (or uniform) Laplacian and the mixed-Voronoi mass matrix, the building blocks below | [`laplacian::Laplacian`] (sparse, by vertex slot), `Vec` of areas |
+//! | [`curvature`] | mean, Gaussian and principal curvatures (cotangent Laplacian, angle defect) | `Vec`s by slot, or vertex columns |
+//! | [`smooth`] | explicit (uniform, cotangent), Taubin and implicit smoothing, with a boundary and a vertex mask kept fixed | the mesh's positions, [`smooth::SmoothReport`] |
+//! | [`fair`] | the smoothest (k-harmonic, k = 1..3) surface over a region with its surroundings fixed | the mesh's positions, [`fair::FairReport`] |
+//! | [`subdivision`] | what the schemes share: options (levels, boundary, creases, per-column vertex/varying data), the report | [`SubdivisionOptions`], [`SubdivisionReport`] |
+//! | [`loop_subdivision`] | Loop subdivision of triangle meshes, semi-sharp creases | the mesh, rebuilt wholesale |
+//! | [`catmull_clark`] | Catmull-Clark subdivision of any polygons, semi-sharp creases | the mesh, rebuilt wholesale |
+//! | [`sqrt3`] | Kobbelt's sqrt(3) subdivision | the mesh, rebuilt wholesale |
+//! | [`midpoint`] | linear subdivision: triangles 1-to-4, other polygons to quads | the mesh, rebuilt wholesale |
 //! | [`normals`] | face normals; vertex normals weighted by angle, area or uniformly; corner (half-edge) normals split at creases and hard edges | plain `Vec`s indexed by slot, or attribute columns named [`normals::NORMAL`] |
 //!
-//! Each algorithm reads the mesh through its public API (views, keys,
-//! [`Mesh::position_slots`](crate::Mesh::position_slots)) and states its
-//! cost. Analysis (`&Mesh`) never changes the mesh; the `add_*` functions
+//! The hot loops (the Laplacian, curvature, smoothing, fairing and vertex
+//! normals) read the arenas through the crate's typed slot ids (`Vid`,
+//! `Hid`, `Fid` of `layout.rs`: no key checks, no generations); keys are
+//! checked once at the public door (a mask column, a region's vertices).
+//! Every algorithm states its cost. Analysis (`&Mesh`) never changes the mesh; the `add_*` functions
 //! that write a column compute everything first and write only when
 //! nothing can fail any more.
 //!
@@ -16,11 +28,32 @@
 //! thread pool; the results are bit-identical to the serial ones only up to
 //! the order of floating-point sums (see each function).
 
+pub mod catmull_clark;
+pub mod curvature;
+pub mod decimate;
+pub mod fair;
+pub mod laplacian;
+pub mod loop_subdivision;
+pub mod midpoint;
+
 pub mod normals;
 pub mod progress;
+pub mod smooth;
+mod sparse;
+pub mod sqrt3;
+pub mod subdivision;
 
+pub use catmull_clark::catmull_clark;
+pub use decimate::{decimate, DecimateOptions, DecimateReport};
+pub use loop_subdivision::loop_subdivide;
+pub use midpoint::{midpoint_subdivide, MidpointFaces, MidpointOptions};
 pub use normals::{
     add_corner_normals, add_face_normals, add_vertex_normals, corner_normals, face_normals,
     vertex_normals, CornerNormalOptions, NormalWeight, VertexNormalOptions, NORMAL,
 };
 pub use progress::{Flow, Progress, ProgressInfo};
+pub use sqrt3::sqrt3_subdivide;
+pub use subdivision::{
+    Boundary, Counts, LevelReport, SubdivisionOptions, SubdivisionReport, VertexData,
+    VertexInterpolation,
+};

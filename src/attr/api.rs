@@ -115,7 +115,9 @@ impl Mesh {
         let len = self.arena_len(K::KIND);
         let cols = self.attrs.columns_mut(K::KIND);
         let i = cols.push_dynamic(name, Box::new(Column::<T, R>::absent(len)), value_type);
-        Ok(Attr::new(i, cols.meta[i].id, name))
+        let id = cols.meta[i].id;
+        self.journal_column_added(K::KIND, i);
+        Ok(Attr::new(i, id, name))
     }
 
     /// Add a column of `T` with `T`'s own rule on the arena of `K`.
@@ -237,6 +239,10 @@ impl Mesh {
     /// [`Error::AttributeHandle`] if it was removed already.
     pub fn remove_attr<K: Element, T: Attribute, R>(&mut self, h: &Attr<K, T, R>) -> Result<()> {
         let i = self.resolve(h)?;
+        if self.journal_column_removed(K::KIND, i) {
+            // The journal took the column (kept for undo).
+            return Ok(());
+        }
         self.attrs.columns_mut(K::KIND).remove(i);
         if K::KIND == ElementKind::Vertex {
             self.attrs.position = match self.attrs.position {
@@ -297,6 +303,12 @@ impl Mesh {
 
     /// Set the value of `key`'s element.
     ///
+    /// Every value of an attribute type is accepted, NaN and the infinities
+    /// included (a NaN often marks "no data"; only positions must be
+    /// finite), and every accepted value survives serde: JSON, which has no
+    /// such numbers, carries them as the strings `"NaN"`, `"inf"` and
+    /// `"-inf"` (with the `serde` feature).
+    ///
     /// # Errors
     /// [`Error::StaleKey`], [`Error::AttributeHandle`];
     /// [`Error::AttributeType`] for a [`Value`] of another type than a
@@ -308,8 +320,26 @@ impl Mesh {
         key: K,
         value: T,
     ) -> Result<()> {
-        let mut view = self.attr_view_mut(h)?;
-        view.set(key, Some(value))
+        self.journal_one(h, key)?;
+        let out = self.attr_view_mut_unjournaled(h)?.set(key, Some(value));
+        self.end_edit();
+        out
+    }
+
+    /// Save `key`'s value in `h`'s column before a single write, while a
+    /// journal records.
+    fn journal_one<K: Element, T: Attribute, R: Rule<T>>(
+        &mut self,
+        h: &Attr<K, T, R>,
+        key: K,
+    ) -> Result<()> {
+        if self.rec.is_some() {
+            let col = self.resolve(h)?;
+            if let Ok(i) = self.element_slot(key) {
+                self.journal_attr_write(K::KIND, col, i);
+            }
+        }
+        Ok(())
     }
 
     /// Remove the value of `key`'s element; returns what it was.
@@ -321,10 +351,12 @@ impl Mesh {
         h: &Attr<K, T, R>,
         key: K,
     ) -> Result<Option<T>> {
-        let mut view = self.attr_view_mut(h)?;
+        self.journal_one(h, key)?;
+        let mut view = self.attr_view_mut_unjournaled(h)?;
         let old = view.get(key).cloned();
-        view.set(key, None)?;
-        Ok(old)
+        let out = view.set(key, None);
+        self.end_edit();
+        out.map(|()| old)
     }
 
     /// Give every live element of the arena (holes included) `value`.
@@ -344,10 +376,16 @@ impl Mesh {
             })
             .collect();
         let mut view = self.attr_view_mut(h)?;
+        let mut out = Ok(());
         for k in keys {
-            view.set(k, Some(value.clone()))?;
+            out = view.set(k, Some(value.clone()));
+            if out.is_err() {
+                break;
+            }
         }
-        Ok(())
+        view.drop_full_presence();
+        self.end_edit();
+        out
     }
 
     /// A read-only view of a column: O(1) `get` by key without the handle
@@ -379,6 +417,19 @@ impl Mesh {
     /// # Errors
     /// [`Error::AttributeHandle`].
     pub fn attr_view_mut<K: Element, T: Attribute, R: Rule<T>>(
+        &mut self,
+        h: &Attr<K, T, R>,
+    ) -> Result<AttrViewMut<'_, K, T>> {
+        if self.rec.is_some() {
+            let i = self.resolve(h)?;
+            self.journal_bulk(K::KIND, i);
+        }
+        self.attr_view_mut_unjournaled(h)
+    }
+
+    /// [`Mesh::attr_view_mut`] without saving the column (the caller saved
+    /// what it writes).
+    fn attr_view_mut_unjournaled<K: Element, T: Attribute, R: Rule<T>>(
         &mut self,
         h: &Attr<K, T, R>,
     ) -> Result<AttrViewMut<'_, K, T>> {

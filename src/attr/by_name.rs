@@ -117,12 +117,16 @@ impl Mesh {
         if let (Some(ty), Some(v)) = (cols.meta[c].value_type, value) {
             check_dynamic(K::KIND, name, ty, v)?;
         }
-        let col = &mut cols.cols[c].1;
-        if col.set_value(i, value) {
+        self.journal_attr_write(K::KIND, c, i);
+        let col = &mut self.attrs.columns_mut(K::KIND).cols[c].1;
+        let ok = col.set_value(i, value);
+        let type_name = col.type_name();
+        self.end_edit();
+        if ok {
             Ok(())
         } else {
             let v = value.cloned().unwrap_or_default();
-            Err(mismatch::<K>(name, col.type_name(), &v))
+            Err(mismatch::<K>(name, type_name, &v))
         }
     }
 }

@@ -159,6 +159,27 @@ impl<'m, K: Element, T> AttrView<'m, K, T> {
         }
     }
 
+    /// The whole column as one slice in slot order, when every slot of the
+    /// arena holds a live element with a value (no element removed since the
+    /// mesh was built or compacted, no absent value); `None` otherwise. For
+    /// bulk copies (numpy, GPU buffers); on the face arena the slice
+    /// includes the hole faces' slots.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let t = mesh.add_vertex_attr::<f64>("t")?;
+    /// mesh.fill_attr(&t, 1.5)?;
+    /// assert_eq!(mesh.attr_view(&t)?.dense_slice(), Some(&[1.5; 4][..]));
+    /// let v = mesh.vertices().next().unwrap();
+    /// mesh.clear_attr(&t, v)?;
+    /// assert_eq!(mesh.attr_view(&t)?.dense_slice(), None);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    #[inline]
+    pub fn dense_slice(&self) -> Option<&'m [T]> {
+        self.dense_intact.then_some(self.values)
+    }
+
     /// Every live element that has a value, with it, in slot order (faces:
     /// holes included).
     pub fn iter(&self) -> impl Iterator<Item = (K, &'m T)> + '_ {
@@ -203,6 +224,20 @@ pub struct AttrViewMut<'m, K, T> {
 }
 
 impl<K: Element, T: Attribute> AttrViewMut<'_, K, T> {
+    /// Drop the presence bits when every slot of the arena has a value (a
+    /// filled column on an arena with no vacant slot): the column is dense
+    /// again, so bulk reads ([`AttrView::dense_slice`]) take it whole.
+    pub(crate) fn drop_full_presence(&mut self) {
+        let len = self.values.len();
+        let full = match self.present.as_ref() {
+            Some(bits) => (0..len).all(|i| bits[i / 64] & (1 << (i % 64)) != 0),
+            None => false,
+        };
+        if full {
+            *self.present = None;
+        }
+    }
+
     #[inline]
     fn live(&self, key: K) -> Option<usize> {
         let i = key.slot();

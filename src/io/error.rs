@@ -112,11 +112,18 @@ pub enum Error {
         /// What was still expected.
         expected: String,
     },
-    /// Occurs when a face names a vertex that does not exist.
-    #[error("{at}: vertex index {index} is out of range (there are {count} vertices)")]
+    /// Occurs when a face names a vertex (or, in OBJ, a texture coordinate
+    /// or normal) that does not exist.
+    #[error(
+        "{at}: {what} index {index} is out of range (there are {count} {})",
+        plural(what)
+    )]
     IndexOutOfRange {
         /// Where the index was read.
         at: Location,
+        /// What the index names: `"vertex"`, `"texture coordinate"` or
+        /// `"normal"`.
+        what: &'static str,
         /// The index as written in the file (1-based for OBJ; negative ones
         /// as written).
         index: i64,
@@ -172,7 +179,7 @@ pub enum Error {
     },
     /// Occurs when vertices are used by no face and the policy to drop
     /// them is off (a half-edge mesh cannot hold an isolated vertex).
-    #[error("{at}: {count} vertices are used by no face (vertex {first} is the first, 0-based); choose the drop-unreferenced policy to drop them")]
+    #[error("{at}: {count} vertices are used by no face (vertex {first} is the first, 0-based); a half-edge mesh holds no isolated vertex: the drop_unreferenced_vertices repair policy drops them")]
     Unreferenced {
         /// The file.
         at: Location,
@@ -180,6 +187,31 @@ pub enum Error {
         count: usize,
         /// The first one, 0-based in file order.
         first: usize,
+    },
+    /// Occurs when a file holds something its format does not allow but
+    /// other readers skip (a PLY header line that is not a keyword, such as
+    /// Blender's `Created by Blender ...`) and the read is strict. A read
+    /// with any repair policy skips it and reports a warning
+    /// ([`RepairReport::warnings`](crate::repair::RepairReport::warnings)).
+    #[error("{at}: {what}; a strict read refuses it (a read with repair policies skips it with a warning, as other readers do)")]
+    NonStandard {
+        /// Where.
+        at: Location,
+        /// What is there.
+        what: String,
+    },
+    /// Occurs when the repair policies dropped every face of a file that
+    /// had faces (all of them degenerate, say).
+    #[error(
+        "{at}: the repairs dropped all {faces} faces of the file ({why}); nothing is left to build"
+    )]
+    NothingLeft {
+        /// The file.
+        at: Location,
+        /// How many faces the file had.
+        faces: usize,
+        /// What the repairs did.
+        why: String,
     },
     /// Occurs when a mesh cannot be written in a format (no positions, or a
     /// value the format cannot hold).
@@ -207,6 +239,8 @@ impl Error {
             | Error::Build { at, .. }
             | Error::NonFinite { at, .. }
             | Error::Unreferenced { at, .. }
+            | Error::NonStandard { at, .. }
+            | Error::NothingLeft { at, .. }
             | Error::Unwritable { at, .. } => at,
         }
     }
@@ -224,6 +258,8 @@ impl Error {
             | Error::Build { at, .. }
             | Error::NonFinite { at, .. }
             | Error::Unreferenced { at, .. }
+            | Error::NonStandard { at, .. }
+            | Error::NothingLeft { at, .. }
             | Error::Unwritable { at, .. } => at,
         }
     }
@@ -263,6 +299,14 @@ impl Error {
             expected: expected.into(),
             found: quote(found),
         }
+    }
+}
+
+/// The plural of what an index names.
+fn plural(what: &str) -> String {
+    match what {
+        "vertex" => "vertices".to_owned(),
+        other => format!("{other}s"),
     }
 }
 

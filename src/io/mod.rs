@@ -173,6 +173,13 @@ fn read_soup(
     bytes: &[u8],
     options: &ReadOptions,
 ) -> Result<(Mesh, RepairReport), Error> {
+    // Text formats may come with a byte-order mark (UTF-8, or UTF-16 as
+    // some Windows tools write them).
+    let decoded = match format {
+        Format::Obj | Format::Off => source::decode_text(bytes),
+        _ => std::borrow::Cow::Borrowed(bytes),
+    };
+    let bytes = &decoded[..];
     let again = || parse_soup(format, bytes, true);
     match parse_soup(format, bytes, false)?.finish(options) {
         Err(Error::Build { face, source, .. }) => {
@@ -278,6 +285,60 @@ pub fn write_with(
     };
     written.map_err(|e| e.with_path(path))?;
     source::store(path, gz, &bytes)
+}
+
+/// What writing `mesh` as `format` leaves out, one line per attribute
+/// column (empty when the format holds everything): the CLI's `convert`
+/// prints it. Positions and faces are always written.
+///
+/// ```
+/// use meshloom::io::{dropped_columns, Format};
+/// let mut mesh = meshloom::shapes::cube();
+/// let w = mesh.add_vertex_attr::<f64>("weight")?;
+/// mesh.fill_attr(&w, 1.0)?;
+/// assert!(dropped_columns(&mesh, Format::Ply).is_empty());
+/// assert_eq!(dropped_columns(&mesh, Format::Stl).len(), 1);
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+pub fn dropped_columns(mesh: &Mesh, format: Format) -> Vec<String> {
+    use crate::ElementKind::{Edge, Face, Halfedge, Vertex};
+    let mut dropped = Vec::new();
+    let all = |kind| mesh.attr_info(kind).into_iter().map(move |i| (kind, i));
+    let columns = all(Vertex)
+        .chain(all(Halfedge))
+        .chain(all(Edge))
+        .chain(all(Face))
+        .filter(|(k, i)| !(*k == Vertex && i.name == crate::attr::POSITION));
+    for (kind, info) in columns {
+        let kept = match format {
+            Format::Stl => false,
+            Format::Obj => match kind {
+                Halfedge => ["texcoord", "normal"].contains(&info.name.as_str()),
+                Face => ["object", "group", "material"].contains(&info.name.as_str()),
+                _ => false,
+            },
+            Format::Off => match kind {
+                Vertex => ["w", "normal", "color", "texcoord"].contains(&info.name.as_str()),
+                Face => ["color", "color_index"].contains(&info.name.as_str()),
+                _ => false,
+            },
+            Format::Ply => match kind {
+                Vertex | Face => info
+                    .value_type
+                    .is_some_and(|t| t != crate::attr::ValueType::Text),
+                Halfedge => true, // decided below, by seams
+                Edge => false,
+            },
+        };
+        if !kept {
+            dropped.push(format!("{kind} attribute {:?}", info.name));
+        }
+    }
+    if format == Format::Ply {
+        let (_, maps) = mesh.to_polygons();
+        dropped.extend(ply::corner_dropped(mesh, &maps));
+    }
+    dropped
 }
 
 fn format_of(path: &Path) -> Result<(Format, bool), Error> {

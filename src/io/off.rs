@@ -390,6 +390,7 @@ pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
             let index = parse_i64(tok).ok_or_else(|| Error::syntax(at(), "a vertex index", tok))?;
             if index < 0 || index as u64 >= nv as u64 {
                 return Err(Error::IndexOutOfRange {
+                    what: "vertex",
                     at: at(),
                     index,
                     count: nv,

@@ -37,6 +37,11 @@ mod write;
 pub(crate) use body::parse;
 pub use write::write_ply;
 
+/// The half-edge columns [`write_ply`] leaves out.
+pub(crate) fn corner_dropped(mesh: &Mesh, maps: &crate::build::IndexMaps) -> Vec<String> {
+    write::corner_columns(mesh, maps).dropped
+}
+
 const FORMAT: super::Format = super::Format::Ply;
 use crate::repair::RepairReport;
 

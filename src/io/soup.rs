@@ -27,6 +27,11 @@ pub(crate) struct Soup {
     pub(crate) binary: bool,
     /// Attribute values read with the elements, in file order.
     pub(crate) attrs: SoupAttrs,
+    /// What the file holds that its format does not allow but other readers
+    /// skip (a PLY header line that is not a keyword): where, and what. A
+    /// strict read refuses the first; a repairing read reports each as a
+    /// warning.
+    pub(crate) nonstandard: Vec<(Location, String)>,
 }
 
 impl Soup {
@@ -93,12 +98,41 @@ impl Soup {
                 what: "more than 2^29 face corners".into(),
             });
         }
-        let (report, prov) = if options.repair.any() {
+        if let Some((at, what)) = self.nonstandard.first() {
+            if !options.repair.any() {
+                return Err(Error::NonStandard {
+                    at: at.clone(),
+                    what: what.clone(),
+                });
+            }
+        }
+        let faces_read = self.polygons.face_count();
+        let (mut report, prov) = if options.repair.any() {
             let classes = self.attrs.weld_classes(self.polygons.positions.len());
-            repair_with(&mut self.polygons, &options.repair, &classes)
+            match repair_with(&mut self.polygons, &options.repair, &classes) {
+                Ok(done) => done,
+                Err(MeshError::Build(e)) => return Err(self.build_error(e, &Provenance::default())),
+                Err(other) => {
+                    return Err(Error::Header {
+                        at: Location::whole(),
+                        message: other.to_string(),
+                    })
+                }
+            }
         } else {
             (RepairReport::default(), Provenance::default())
         };
+        report.warnings = std::mem::take(&mut self.nonstandard)
+            .into_iter()
+            .map(|(at, what)| format!("{at}: {what}; skipped as a comment"))
+            .collect();
+        if self.polygons.face_count() == 0 {
+            return Err(Error::NothingLeft {
+                at: Location::whole(),
+                faces: faces_read,
+                why: report.to_string().replace('\n', "; "),
+            });
+        }
         // Keys of the input's elements are needed only to attach attributes.
         let with_keys = !self.attrs.is_empty();
         let built = if with_keys {

@@ -158,3 +158,30 @@ mod gzip {
         Err(std::io::Error::new(std::io::ErrorKind::Unsupported, OFF))
     }
 }
+
+/// Text with a byte-order mark as UTF-8 without one: a UTF-8 mark is
+/// dropped, UTF-16 (either byte order, by its mark) is transcoded (unpaired
+/// surrogates and an odd last byte become U+FFFD). Text without a mark is
+/// returned as it is. Line numbers are unchanged.
+///
+/// Memory: at most 1.5 times the input (a UTF-16 code unit becomes at most
+/// three UTF-8 bytes).
+pub(crate) fn decode_text(bytes: &[u8]) -> std::borrow::Cow<'_, [u8]> {
+    use std::borrow::Cow;
+    if let Some(rest) = bytes.strip_prefix(b"\xEF\xBB\xBF") {
+        return Cow::Borrowed(rest);
+    }
+    let big = match bytes {
+        [0xFF, 0xFE, ..] => false,
+        [0xFE, 0xFF, ..] => true,
+        _ => return Cow::Borrowed(bytes),
+    };
+    let units = bytes[2..].chunks(2).map(|c| match c {
+        [a, b] if big => u16::from_be_bytes([*a, *b]),
+        [a, b] => u16::from_le_bytes([*a, *b]),
+        _ => 0xFFFD,
+    });
+    let mut out = String::with_capacity(bytes.len() / 2);
+    out.extend(char::decode_utf16(units).map(|c| c.unwrap_or('\u{FFFD}')));
+    Cow::Owned(out.into_bytes())
+}

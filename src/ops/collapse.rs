@@ -5,6 +5,70 @@ use crate::error::{Refusal, Result};
 use crate::keys::{HalfedgeKey, VertexKey};
 use crate::layout::{Fid, Hid, Vid};
 use crate::mesh::Mesh;
+use crate::store::ErasedColumn;
+
+/// The corners around one end of a collapsing edge, in ring order from the
+/// corner beside the edge on one side (index 0) to the one on the other
+/// side (index 1) and on around, with whether each lies in a hole.
+struct CornerRing {
+    corners: Vec<(Hid, bool)>,
+}
+
+impl CornerRing {
+    /// The ring of `origin(start)`, from `start`.
+    fn gather(mesh: &Mesh, start: Hid) -> CornerRing {
+        let corners = crate::circulate::VertexOutgoing::from_halfedge(mesh, start)
+            .map(|o| (o, mesh.in_hole(o)))
+            .collect();
+        CornerRing { corners }
+    }
+
+    /// The wedges of the corners beside the edge, for one column: run 0
+    /// (from index 0 away from the edge, backwards) when `side0` is a face,
+    /// run 1 (from index 1 forwards, stopping before run 0) when `side1`
+    /// is. Pushed as `(corner, is_left)`, where run 0 is the left side
+    /// unless `swapped`.
+    fn runs(
+        &self,
+        col: &dyn ErasedColumn,
+        side0: bool,
+        side1: bool,
+        out: &mut Vec<(Hid, bool)>,
+        swapped: bool,
+    ) {
+        let r = &self.corners;
+        let d = r.len();
+        if d < 2 {
+            return;
+        }
+        // Backwards from 0: d-1, d-2, ..., 2 while the value carries over.
+        let mut stop0 = d; // run 0 covers indices stop0..d and 0
+        if side0 {
+            out.push((r[0].0, !swapped));
+            let mut i = d - 1;
+            while i >= 2 {
+                let (c, hole) = r[i];
+                let next = r[(i + 1) % d].0;
+                if hole || !col.same(c.index(), next.index()) {
+                    break;
+                }
+                out.push((c, !swapped));
+                stop0 = i;
+                i -= 1;
+            }
+        }
+        if side1 {
+            out.push((r[1].0, swapped));
+            for i in 2..stop0 {
+                let (c, hole) = r[i];
+                if hole || !col.same(r[i - 1].0.index(), c.index()) {
+                    break;
+                }
+                out.push((c, swapped));
+            }
+        }
+    }
+}
 
 struct CollapsePlan {
     h: Hid,
@@ -301,7 +365,8 @@ impl Mesh {
 
     /// [`collapse_edge`](Mesh::collapse_edge) with the merged vertex at
     /// parameter `t` from `a` to `b`: `b = merge(b: t, a: 1−t)`, the
-    /// surviving `b` first (t = 0.5 puts it at the midpoint).
+    /// surviving `b` first (t = 0.5 puts it at the midpoint). Corner values
+    /// follow the same weights (see [`collapse_edge_to`](Mesh::collapse_edge_to)).
     ///
     /// # Errors
     /// As `collapse_edge`, and [`Refusal::Parameter`] when `t` is not in
@@ -317,6 +382,115 @@ impl Mesh {
                 Refusal::Parameter("t must lie in 0..=1"),
             ));
         }
+        let plan = self.plan_collapse(hk)?;
+        let b = self.commit_collapse(plan, t, None);
+        self.end_op();
+        Ok(self.vkey(b))
+    }
+
+    /// Whether [`collapse_edge_to`](Mesh::collapse_edge_to) would succeed;
+    /// changes nothing.
+    ///
+    /// # Errors
+    /// As [`collapse_edge_to`](Mesh::collapse_edge_to).
+    pub fn check_collapse_edge_to(&self, h: HalfedgeKey, position: [f64; 3]) -> Result<()> {
+        self.check_collapse_edge(h)?;
+        self.collapse_weight(h.id(), position, h).map(drop)
+    }
+
+    /// [`collapse_edge`](Mesh::collapse_edge) with the merged vertex at any
+    /// `position` (an optimal point of a quadric, off the edge): the
+    /// position column gets `position` exactly; every other column's rule
+    /// runs with the weights of the point's projection on the edge,
+    /// `t = clamp((p − a)·(b − a) / |b − a|², 0, 1)`: `b = merge(b: t,
+    /// a: 1−t)`, the survivor first (a zero-length edge takes t = 1).
+    ///
+    /// **Corners** (half-edge columns) follow the same weights, per column
+    /// and per *wedge* (a fan of corners around a vertex whose values are
+    /// the same across the edges between them, by
+    /// [`Attribute::same_value`](crate::attr::Attribute::same_value)): on
+    /// each side of the edge that
+    /// is a face, the corners at `a` and `b` in that face give
+    /// `merge(b's: t, a's: 1−t)`, and every corner of the wedges they
+    /// belong to, at `a` and at `b`, takes that value. A UV seam along the
+    /// edge therefore stays a seam (each side interpolates its own values)
+    /// and a seam that crosses `a` or `b` elsewhere is not blurred (the
+    /// other wedges keep their values). This holds for `collapse_edge` and
+    /// `collapse_edge_at` as well (`t` = 1 and the given `t`).
+    ///
+    /// Returns `b`, which keeps its key.
+    ///
+    /// # Errors
+    /// As [`collapse_edge`](Mesh::collapse_edge), and
+    /// [`Error::NonFinitePosition`](crate::Error::NonFinitePosition) for a
+    /// NaN or infinite `position`; [`Error::NoPositions`](crate::Error::NoPositions)
+    /// for a mesh without positions.
+    ///
+    /// # Complexity
+    /// As `collapse_edge`, plus the rings of `a` and `b` once per corner
+    /// column when the mesh has any.
+    ///
+    /// # Examples
+    /// ```
+    /// let mut mesh = meshloom::shapes::icosahedron();
+    /// let h = mesh.halfedges().next().unwrap();
+    /// let (a, b) = (mesh.halfedge(h)?.origin().key(), mesh.halfedge(h)?.dest().key());
+    /// let (pa, pb) = (mesh.position(a)?, mesh.position(b)?);
+    /// // The midpoint, pushed outwards: the projection on the edge is still t = 0.5.
+    /// let mid: Vec<f64> = (0..3).map(|i| 0.5 * (pa[i] + pb[i]) * 1.1).collect();
+    /// let p = [mid[0], mid[1], mid[2]];
+    /// mesh.check_collapse_edge_to(h, p)?;
+    /// assert_eq!(mesh.collapse_edge_to(h, p)?, b);
+    /// assert_eq!(mesh.position(b)?, p);
+    /// assert_eq!(mesh.vertex_count(), 11);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn collapse_edge_to(&mut self, hk: HalfedgeKey, position: [f64; 3]) -> Result<VertexKey> {
+        let plan = self.plan_collapse(hk)?;
+        let t = self.collapse_weight(plan.h, position, hk)?;
+        let b = self.commit_collapse(plan, t, Some(position));
+        self.end_op();
+        Ok(self.vkey(b))
+    }
+
+    /// The projection parameter of `position` on `h`'s edge, checked.
+    fn collapse_weight(&self, h: Hid, position: [f64; 3], hk: HalfedgeKey) -> Result<f64> {
+        if !position.iter().all(|c| c.is_finite()) {
+            return Err(crate::Error::NonFinitePosition {
+                key: hk.into(),
+                position,
+            });
+        }
+        let p = self.position_slots().ok_or(crate::Error::NoPositions)?;
+        let (a, b) = (p[self.origin(h).index()], p[self.dest(h).index()]);
+        let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if len2 <= 0.0 || !len2.is_finite() {
+            return Ok(1.0);
+        }
+        let s =
+            (position[0] - a[0]) * d[0] + (position[1] - a[1]) * d[1] + (position[2] - a[2]) * d[2];
+        Ok((s / len2).clamp(0.0, 1.0))
+    }
+
+    /// The decimator's door: collapse `h` with weight `t` and, if given,
+    /// the exact position, without the per-call debug validation (the
+    /// caller validates once at the end; validating after each of
+    /// thousands of collapses would make debug builds quadratic). The
+    /// caller checked that `position` is finite and `t` in `0..=1`.
+    pub(crate) fn collapse_unvalidated(
+        &mut self,
+        h: Hid,
+        t: f64,
+        position: Option<[f64; 3]>,
+    ) -> Result<Vid> {
+        let plan = self.plan_collapse(self.hkey(h))?;
+        Ok(self.commit_collapse(plan, t, position))
+    }
+
+    /// The commit and rules of a planned collapse; cannot fail.
+    #[inline(always)]
+    fn commit_collapse(&mut self, plan: CollapsePlan, t: f64, position: Option<[f64; 3]>) -> Vid {
         let CollapsePlan {
             h,
             a,
@@ -331,19 +505,28 @@ impl Mesh {
             left_goes,
             right_goes,
             rule11,
-        } = self.plan_collapse(hk)?;
+        } = plan;
+        // Corners first, while the rings are intact.
+        if !self.attrs.halfedge.cols.is_empty() {
+            self.merge_corner_wedges(h, t);
+        }
         // Rule 11: which of b, c and d touched a hole before (a's holes
         // become b's). Only they can need another half-edge afterwards.
         // The surviving vertex first (the documented order KeepFirst reads).
         self.attrs
             .vertex
             .merge(b.index(), &[(b.index(), t), (a.index(), 1.0 - t)]);
+        if let Some(p) = position {
+            if let Some(col) = self.attrs.positions_mut() {
+                col.set(b.index(), Some(p));
+            }
+        }
         // Every half-edge leaving a now leaves b (the ring of a is walked by
         // next/twin, which the origins do not affect).
         let mut o = h;
         let mut budget = self.he.len();
         loop {
-            self.he[o].origin = b;
+            self.he_mut(o).origin = b;
             o = self.next(o.twin());
             budget -= 1;
             if o == h || budget == 0 {
@@ -358,7 +541,7 @@ impl Mesh {
         if self.face_halfedge(f_right) == h.twin() {
             self.set_face_link(f_right, nt);
         }
-        self.v_halfedge[b] = nh;
+        *self.v_halfedge_mut(b) = nh;
         self.free_edge(h.edge());
         self.free_vertex(a);
         if left_goes {
@@ -379,8 +562,54 @@ impl Mesh {
                 self.point_at_hole(v);
             }
         }
-        self.debug_validate();
-        Ok(self.vkey(b))
+        b
+    }
+
+    /// The corner rule of a collapse of `h` (a → b) at weight `t` (b's),
+    /// run before the links change. Per half-edge column: on each side that
+    /// is a face, `merge(b's corner: t, a's corner: 1−t)` goes to every
+    /// corner of the two wedges (at a and at b) that hold that side's
+    /// corners. All comparisons are made before any value is written.
+    fn merge_corner_wedges(&mut self, h: Hid, t: f64) {
+        let tw = h.twin();
+        // Rings: at a from h (L side corner), then next(tw) (R side);
+        // at b from tw (R side corner), then next(h) (L side).
+        let ring_a = CornerRing::gather(self, h);
+        let ring_b = CornerRing::gather(self, tw);
+        let left = !self.in_hole(h);
+        let right = !self.in_hole(tw);
+        let (a_left, a_right) = (h, self.next(tw));
+        let (b_left, b_right) = (self.next(h), tw);
+        let mut runs: Vec<(Hid, bool)> = Vec::new();
+        let cols = &mut self.attrs.halfedge.cols;
+        for (_, col) in cols.iter_mut() {
+            runs.clear();
+            // At a: index 0 is the L corner, index 1 the R corner; at b:
+            // index 0 is the R corner, index 1 the L corner.
+            ring_a.runs(&**col, left, right, &mut runs, false);
+            ring_b.runs(&**col, right, left, &mut runs, true);
+            // The merged values go to the slots of a's corners beside the
+            // edge (h is freed by the commit; a's R corner, when it lives
+            // on, belongs to the R wedge anyway).
+            if left {
+                col.merge(
+                    a_left.index(),
+                    &[(b_left.index(), t), (a_left.index(), 1.0 - t)],
+                );
+            }
+            if right {
+                col.merge(
+                    a_right.index(),
+                    &[(b_right.index(), t), (a_right.index(), 1.0 - t)],
+                );
+            }
+            for &(c, is_left) in &runs {
+                let src = if is_left { a_left } else { a_right };
+                if c != src {
+                    col.copy(src.index(), c.index());
+                }
+            }
+        }
     }
 
     /// A face (or hole) left with the two half-edges `p` and `n` (parallel
@@ -397,17 +626,17 @@ impl Mesh {
         let r = self.next(tp);
         self.set_next(q, n);
         self.set_next(n, r);
-        self.he[n].face = g;
+        self.he_mut(n).face = g;
         if self.face_halfedge(g) == tp {
             self.set_face_link(g, n);
         }
         let u = self.origin(p);
         let w = self.origin(tp);
         if self.v_halfedge[u] == p {
-            self.v_halfedge[u] = n.twin();
+            *self.v_halfedge_mut(u) = n.twin();
         }
         if self.v_halfedge[w] == tp {
-            self.v_halfedge[w] = n;
+            *self.v_halfedge_mut(w) = n;
         }
         let (kept, gone) = (n.edge().index(), p.edge().index());
         self.attrs.edge.merge(kept, &[(kept, 0.5), (gone, 0.5)]);

@@ -169,6 +169,13 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn compact(&mut self) -> KeyMaps {
+        // A rebuild: the journal keeps the prior mesh as one step.
+        let mut maps = None;
+        self.wholesale(|m| maps = Some(m.compact_in_place()));
+        maps.expect("compaction ran")
+    }
+
+    fn compact_in_place(&mut self) -> KeyMaps {
         let v = ArenaPlan::of(&self.v_slots);
         let e = ArenaPlan::of(&self.e_slots);
         let f = ArenaPlan::of(&self.f_slots);
@@ -215,9 +222,9 @@ impl Mesh {
                 })
                 .collect(),
         );
-        self.he = he;
-        self.v_halfedge = v_halfedge;
-        self.f_halfedge = f_halfedge;
+        self.he = he.into();
+        self.v_halfedge = v_halfedge.into();
+        self.f_halfedge = f_halfedge.into();
         if let Some(s) = v.slots {
             self.v_slots = s;
             self.attrs.vertex.permute(&v.order);
@@ -231,7 +238,7 @@ impl Mesh {
             self.f_slots = s;
             self.attrs.face.permute(&f.order);
         }
-        self.debug_validate();
+        self.end_op();
         KeyMaps {
             vertices: v.map,
             edges: e.map,

@@ -228,7 +228,7 @@ impl Mesh {
         let gt = |i: usize| new_edges[i].halfedge(1);
         let map = |x: Hid| index_of_t.get(&x).map_or(x, |&j| g(j));
         for i in 0..k {
-            self.he[g(i)] = HalfedgeRecord {
+            *self.he_mut(g(i)) = HalfedgeRecord {
                 origin: copy[i + 1],
                 next: map(nexts[i]),
                 face: rights[i],
@@ -252,7 +252,7 @@ impl Mesh {
             } else {
                 hole_out[0].unwrap_or(gt(0))
             };
-            self.he[ts[i]].next = next_t;
+            self.he_mut(ts[i]).next = next_t;
             let next_gt = if i + 1 < k {
                 gt(i + 1)
             } else if closed {
@@ -261,7 +261,7 @@ impl Mesh {
                 hole_out[1].unwrap_or(ts[k - 1])
             };
             // The face is set when the new loops are labelled.
-            self.he[gt(i)] = HalfedgeRecord {
+            *self.he_mut(gt(i)) = HalfedgeRecord {
                 origin: copy[i],
                 next: next_gt,
                 face: Fid::NONE,
@@ -275,16 +275,16 @@ impl Mesh {
         }
         for (i, wedge) in &wedges {
             for &o in wedge {
-                self.he[o].origin = copy[*i];
+                self.he_mut(o).origin = copy[*i];
             }
             let out = if *i < k { gt(*i) } else { wedge[0] };
-            self.v_halfedge[copy[*i]] = out;
+            *self.v_halfedge_mut(copy[*i]) = out;
         }
         for i in 0..k {
-            self.v_halfedge[vs[i]] = hs[i];
+            *self.v_halfedge_mut(vs[i]) = hs[i];
         }
         if !closed {
-            self.v_halfedge[vs[k]] = ts[k - 1];
+            *self.v_halfedge_mut(vs[k]) = ts[k - 1];
         }
         // Hole faces: the loop through t_0, then the one through gt_0 if it
         // is another loop. Old holes are reused, one left over is freed.
@@ -295,7 +295,7 @@ impl Mesh {
             .first()
             .copied()
             .unwrap_or_else(|| self.alloc_face(true));
-        self.he[ts[0]].face = Fid::NONE;
+        self.he_mut(ts[0]).face = Fid::NONE;
         self.relabel_loop(ts[0], first);
         made.push(first);
         if self.face_of(gt(0)) != first {
@@ -328,7 +328,7 @@ impl Mesh {
                 self.attrs.face.interpolate(h.index(), &[]);
             }
         }
-        self.debug_validate();
+        self.end_op();
         Ok(made.into_iter().map(|h| self.fkey(h)).collect())
     }
 }

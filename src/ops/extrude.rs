@@ -95,30 +95,30 @@ impl Mesh {
             let up_j = up[j].halfedge(0); // v_j -> w_j
             let down_i = up[i].halfedge(1); // w_i -> v_i
             let s = sides[i];
-            self.he[c] = HalfedgeRecord {
+            *self.he_mut(c) = HalfedgeRecord {
                 origin: w[i],
                 next: cap[j].halfedge(0),
                 face: f,
             };
-            self.he[ct] = HalfedgeRecord {
+            *self.he_mut(ct) = HalfedgeRecord {
                 origin: w[j],
                 next: down_i,
                 face: s,
             };
-            self.he[up_j] = HalfedgeRecord {
+            *self.he_mut(up_j) = HalfedgeRecord {
                 origin: self.origin(ring[j]),
                 next: ct,
                 face: s,
             };
-            self.he[down_i] = HalfedgeRecord {
+            *self.he_mut(down_i) = HalfedgeRecord {
                 origin: w[i],
                 next: h,
                 face: s,
             };
-            self.he[h].next = up_j;
-            self.he[h].face = s;
+            self.he_mut(h).next = up_j;
+            self.he_mut(h).face = s;
             self.set_face_link(s, h);
-            self.v_halfedge[w[i]] = c;
+            *self.v_halfedge_mut(w[i]) = c;
         }
         self.set_face_link(f, cap[0].halfedge(0));
         for i in 0..n {
@@ -133,7 +133,9 @@ impl Mesh {
             }
             self.attrs.face.interpolate(sides[i].index(), &[]);
         }
-        if let (Some(nrm), Some(p)) = (normal, self.position_slots_mut()) {
+        // The lifted vertices were born in this edit (a reused slot's old
+        // value was saved when it was reused): raw writes need no journal.
+        if let (Some(nrm), Some(p)) = (normal, self.attrs.positions_mut().map(|c| c.raw_mut())) {
             for &x in &w {
                 let q = &mut p[x.index()];
                 for k in 0..3 {
@@ -141,7 +143,7 @@ impl Mesh {
                 }
             }
         }
-        self.debug_validate();
+        self.end_op();
         Ok(sides.into_iter().map(|s| self.fkey(s)).collect())
     }
 }

@@ -66,7 +66,7 @@ impl Mesh {
         // Rule 11: every corner is now on the boundary.
         for &x in &sides {
             let v = self.origin(x);
-            self.v_halfedge[v] = x;
+            *self.v_halfedge_mut(v) = x;
         }
         let mut kept = Vec::new();
         let mut dangling = Vec::new();
@@ -84,7 +84,7 @@ impl Mesh {
         let mut holes: Vec<Fid> = kept.iter().map(|&x| self.face_of(x)).collect();
         holes.sort_unstable();
         holes.dedup();
-        self.debug_validate();
+        self.end_op();
         Ok(holes.into_iter().map(|h| self.fkey(h)).collect())
     }
 
@@ -155,7 +155,7 @@ impl Mesh {
         for v in corners {
             self.point_at_hole(v);
         }
-        self.debug_validate();
+        self.end_op();
         Ok(hole)
     }
 }

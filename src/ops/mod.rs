@@ -9,6 +9,7 @@
 //! | [`Mesh::insert_edge`] | `split.rs` | the new half-edge `a → b` | 0 |
 //! | [`Mesh::poke_face`] | `split.rs` | the new centre vertex | 0 |
 //! | [`Mesh::collapse_edge`] | `collapse.rs` | the surviving vertex | 0, or +1 when a triangular hole closes |
+//! | [`Mesh::collapse_edge_to`] | `collapse.rs` | the surviving vertex, at the given point | as `collapse_edge` |
 //! | [`Mesh::flip_edge`] | `flip.rs` | the same edge, turned | 0 |
 //! | [`Mesh::remove_edge`] | `remove.rs` | the merged face (or hole) | 0 |
 //! | [`Mesh::remove_edge_allowing_bridge`] | `remove.rs` | the merged face, or the holes | as `remove_edge` / `remove_face` |
@@ -59,6 +60,12 @@
 //!   (`merge(kept: ½, removed: ½)`), and the triangle's values merge into
 //!   the face that receives the kept side (`merge(that face: 1, triangle:
 //!   0)`: conserved totals are kept, interpolated values unchanged).
+//!   **collapse_edge_to** `(h, p)`: the same with `t` the projection of `p`
+//!   on the edge (clamped to 0..=1), and the position column set to `p`.
+//!   Corners, in all three: on each side of the edge that is a face,
+//!   `merge(b's corner: t, a's corner: 1−t)` goes to every corner of the
+//!   wedges (fans of equal values) at `a` and `b` that hold that side's
+//!   corners; other wedges keep their values, so a UV seam stays a seam.
 //! - **flip_edge**: both faces merge (`merge(face of h: ½, face of twin: ½)`)
 //!   and split again (equal shares); the edge keeps its values; the two new
 //!   corners copy the corners they replace at the same vertex.
@@ -130,17 +137,6 @@ pub(crate) struct EdgeRemoval {
 }
 
 impl Mesh {
-    #[inline]
-    pub(crate) fn set_next(&mut self, h: Hid, n: Hid) {
-        self.he[h].next = n;
-    }
-
-    /// Point face `f` at half-edge `h`, keeping its hole flag.
-    #[inline]
-    pub(crate) fn set_face_link(&mut self, f: Fid, h: Hid) {
-        self.f_halfedge[f] = self.f_halfedge[f].with_halfedge(h);
-    }
-
     /// Number of half-edges in the loop of face `f`.
     #[inline]
     pub(crate) fn face_degree(&self, f: Fid) -> usize {
@@ -155,10 +151,10 @@ impl Mesh {
         let hole = self.is_hole(f);
         let mut h = start;
         for _ in 0..self.he.len() {
-            self.he[h].face = f;
+            self.he_mut(h).face = f;
             if hole {
                 let o = self.he[h].origin;
-                self.v_halfedge[o] = h;
+                *self.v_halfedge_mut(o) = h;
             }
             h = self.he[h].next;
             if h == start {
@@ -226,12 +222,12 @@ impl Mesh {
         let e = self.alloc_edge();
         let g = self.alloc_face(false);
         let [n0, n1] = e.halfedges();
-        self.he[n0] = HalfedgeRecord {
+        *self.he_mut(n0) = HalfedgeRecord {
             origin: a,
             next: hb,
             face: g,
         };
-        self.he[n1] = HalfedgeRecord {
+        *self.he_mut(n1) = HalfedgeRecord {
             origin: b,
             next: ha,
             face: f,
@@ -276,7 +272,7 @@ impl Mesh {
             self.set_next(px, ny);
             self.free_vertex(b);
             if self.v_halfedge[a] == x {
-                self.v_halfedge[a] = ny;
+                *self.v_halfedge_mut(a) = ny;
             }
             let fl = self.face_halfedge(fx);
             if fl == x || fl == y {
@@ -290,7 +286,7 @@ impl Mesh {
             self.set_next(py, nx);
             self.free_vertex(a);
             if self.v_halfedge[b] == y {
-                self.v_halfedge[b] = nx;
+                *self.v_halfedge_mut(b) = nx;
             }
             let fl = self.face_halfedge(fy);
             if fl == x || fl == y {
@@ -304,10 +300,10 @@ impl Mesh {
         self.set_next(px, ny);
         self.set_next(py, nx);
         if self.v_halfedge[a] == x {
-            self.v_halfedge[a] = ny;
+            *self.v_halfedge_mut(a) = ny;
         }
         if self.v_halfedge[b] == y {
-            self.v_halfedge[b] = nx;
+            *self.v_halfedge_mut(b) = nx;
         }
         if fx != fy {
             let gone = if survivor == fx { fy } else { fx };

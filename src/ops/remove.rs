@@ -101,7 +101,7 @@ impl Mesh {
             f_left
         };
         self.remove_edge_raw(e, survivor);
-        self.debug_validate();
+        self.end_op();
         Ok(self.fkey(survivor))
     }
 
@@ -227,7 +227,7 @@ impl Mesh {
         let pair = [(fi.index(), 0.5), (gi.index(), 0.5)];
         self.attrs.face.merge(fi.index(), &pair);
         self.remove_edge_raw(x.edge(), fi);
-        self.debug_validate();
+        self.end_op();
         Ok(f)
     }
 
@@ -323,7 +323,7 @@ impl Mesh {
             self.set_next(lasts[i], firsts[(i + k - 1) % k]);
             let u = self.dest(outs[i]);
             if self.v_halfedge[u] == outs[i].twin() {
-                self.v_halfedge[u] = firsts[i];
+                *self.v_halfedge_mut(u) = firsts[i];
             }
         }
         self.relabel_loop(firsts[0], keep);
@@ -334,7 +334,7 @@ impl Mesh {
             self.free_edge(o.edge());
         }
         self.free_vertex(v);
-        self.debug_validate();
+        self.end_op();
         Ok(self.fkey(keep))
     }
 }

@@ -113,28 +113,28 @@ impl Mesh {
         let ne = self.alloc_edge();
         // n0: a -> m (in h's face), n1: m -> a (in tw's face).
         let [n0, n1] = ne.halfedges();
-        self.he[n0] = HalfedgeRecord {
+        *self.he_mut(n0) = HalfedgeRecord {
             origin: a,
             next: h,
             face: self.face_of(h),
         };
-        self.he[n1] = HalfedgeRecord {
+        *self.he_mut(n1) = HalfedgeRecord {
             origin: m,
             next: nt,
             face: f_tw,
         };
-        self.he[h].origin = m;
+        self.he_mut(h).origin = m;
         self.set_next(ph, n0);
         self.set_next(tw, n1);
         // Rule 11: on a boundary edge m leaves into the hole (h and n1
         // lie in the faces of h and tw); n0 lies in h's face, like h.
-        self.v_halfedge[m] = if self.holes > 0 && self.is_hole(f_tw) {
+        *self.v_halfedge_mut(m) = if self.holes > 0 && self.is_hole(f_tw) {
             n1
         } else {
             h
         };
         if self.v_halfedge[a] == h {
-            self.v_halfedge[a] = n0;
+            *self.v_halfedge_mut(a) = n0;
         }
         // Attributes.
         self.attrs
@@ -148,7 +148,7 @@ impl Mesh {
         hc.copy(h.index(), n0.index());
         hc.interpolate(h.index(), &[(n0.index(), 1.0 - t), (nh.index(), t)]);
         hc.interpolate(n1.index(), &[(nt.index(), 1.0 - t), (tw.index(), t)]);
-        self.debug_validate();
+        self.end_op();
         Ok(self.vkey(m))
     }
 
@@ -238,7 +238,7 @@ impl Mesh {
         let f = self.face_of(ha);
         let (n0, g) = self.split_face_raw(pa, ha, pb, hb);
         self.split_face_values(f, &[f, g]);
-        self.debug_validate();
+        self.end_op();
         Ok(self.hkey(n0))
     }
 
@@ -356,21 +356,21 @@ impl Mesh {
             let Spoke { ring: h, face, .. } = buf[i];
             let out_i = buf[i].spoke.halfedge(0);
             let in_j = buf[j].spoke.halfedge(1);
-            self.he[h].next = in_j;
-            self.he[h].face = face;
-            self.he[in_j] = HalfedgeRecord {
+            self.he_mut(h).next = in_j;
+            self.he_mut(h).face = face;
+            *self.he_mut(in_j) = HalfedgeRecord {
                 origin: self.origin(buf[j].ring),
                 next: out_i,
                 face,
             };
-            self.he[out_i] = HalfedgeRecord {
+            *self.he_mut(out_i) = HalfedgeRecord {
                 origin: c,
                 next: h,
                 face,
             };
             self.set_face_link(face, h);
         }
-        self.v_halfedge[c] = buf[0].spoke.halfedge(0);
+        *self.v_halfedge_mut(c) = buf[0].spoke.halfedge(0);
         // Attributes.
         let w = 1.0 / n as f64;
         if !self.attrs.vertex.cols.is_empty() {
@@ -404,7 +404,7 @@ impl Mesh {
             let faces: Vec<Fid> = buf.iter().map(|s| s.face).collect();
             self.split_face_values(f, &faces);
         }
-        self.debug_validate();
+        self.end_op();
         Ok(self.vkey(c))
     }
 }

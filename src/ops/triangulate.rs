@@ -213,7 +213,7 @@ impl Mesh {
         self.plan_triangulate(f, &mut sides, &mut ears)?;
         let mut pieces = Vec::new();
         self.cut_ears(&mut sides, &ears, &mut pieces);
-        self.debug_validate();
+        self.end_op();
         Ok(pieces.into_iter().map(|g| self.fkey(g)).collect())
     }
 
@@ -265,7 +265,7 @@ impl Mesh {
             }
             self.cut_ears(&mut sides, &ears, &mut pieces);
         }
-        self.debug_validate();
+        self.end_op();
         left
     }
 }
@@ -312,7 +312,7 @@ impl Mesh {
         self.fill_hole(hole)?;
         let mut pieces = Vec::new();
         self.cut_ears(&mut sides, &ears, &mut pieces);
-        self.debug_validate();
+        self.end_op();
         Ok(pieces.into_iter().map(|g| self.fkey(g)).collect())
     }
 }

@@ -122,15 +122,15 @@ impl Mesh {
         let prev_c = moved.last().map_or(da, |&o| o.twin());
         let next_d = moved.first().copied().unwrap_or(ac);
         for &o in &moved {
-            self.he[o].origin = a;
+            self.he_mut(o).origin = a;
         }
         // The faces beside the wedge: ac takes hc's place, da takes d -> b's.
-        self.he[ac] = HalfedgeRecord {
+        *self.he_mut(ac) = HalfedgeRecord {
             origin: a,
             next: after_hc,
             face: f_c,
         };
-        self.he[da] = HalfedgeRecord {
+        *self.he_mut(da) = HalfedgeRecord {
             origin: d,
             next: next_d,
             face: f_d,
@@ -144,38 +144,38 @@ impl Mesh {
             self.set_face_link(f_d, da);
         }
         // Triangles (a, b, c) and (b, a, d).
-        self.he[h] = HalfedgeRecord {
+        *self.he_mut(h) = HalfedgeRecord {
             origin: a,
             next: hc,
             face: left,
         };
-        self.he[hc].next = ca;
-        self.he[hc].face = left;
-        self.he[ca] = HalfedgeRecord {
+        self.he_mut(hc).next = ca;
+        self.he_mut(hc).face = left;
+        *self.he_mut(ca) = HalfedgeRecord {
             origin: c,
             next: h,
             face: left,
         };
-        self.he[t] = HalfedgeRecord {
+        *self.he_mut(t) = HalfedgeRecord {
             origin: b,
             next: ad,
             face: right,
         };
-        self.he[ad] = HalfedgeRecord {
+        *self.he_mut(ad) = HalfedgeRecord {
             origin: a,
             next: tdb,
             face: right,
         };
-        self.he[tdb].next = t;
-        self.he[tdb].face = right;
+        self.he_mut(tdb).next = t;
+        self.he_mut(tdb).face = right;
         self.set_face_link(left, h);
         self.set_face_link(right, t);
-        self.v_halfedge[a] = h;
-        self.v_halfedge[b] = hc;
+        *self.v_halfedge_mut(a) = h;
+        *self.v_halfedge_mut(b) = hc;
         // da took d -> b's place in f_d (a hole, maybe): d keeps a half-edge
         // in that face.
         if self.v_halfedge[d] == tdb {
-            self.v_halfedge[d] = da;
+            *self.v_halfedge_mut(d) = da;
         }
         if b_on_boundary {
             self.point_at_hole(a);
@@ -195,7 +195,7 @@ impl Mesh {
         }
         self.attrs.face.interpolate(left.index(), &[]);
         self.attrs.face.interpolate(right.index(), &[]);
-        self.debug_validate();
+        self.end_op();
         Ok(self.hkey(h))
     }
 }

@@ -4,6 +4,8 @@
 use std::collections::HashMap;
 
 use super::Provenance;
+use crate::build::Polygons;
+use crate::mesh::Mesh;
 
 const NONE: u32 = u32::MAX;
 
@@ -78,14 +80,22 @@ impl Soup {
         self.prov.corner_source = corner_source;
     }
 
-    pub(super) fn weld(&mut self, class: &[u32]) -> usize {
+    /// Weld bit-identical positions of one class where the result stays
+    /// manifold; returns (vertices welded away, vertices left apart).
+    ///
+    /// Every group of coincident vertices is merged, then each merged
+    /// vertex that is not manifold in the result (see
+    /// [`nonmanifold_vertices`]) has its group taken apart again, until no
+    /// merged vertex is left non-manifold: a few rounds, each O(C log C);
+    /// after 16 the weld is given up whole.
+    pub(super) fn weld(&mut self, class: &[u32]) -> (usize, usize) {
         if self.positions.is_empty() {
-            return 0;
+            return (0, 0);
         }
-        let mut first: HashMap<([u64; 3], u32), u32> = HashMap::with_capacity(self.positions.len());
-        let mut new_of = vec![NONE; self.positions.len()];
-        let mut n = 0u32;
-        let mut rep = vec![0u32; self.positions.len()];
+        let nv = self.positions.len();
+        let mut first: HashMap<([u64; 3], u32), u32> = HashMap::with_capacity(nv);
+        let mut rep = vec![0u32; nv];
+        let mut size = vec![0u32; nv];
         for (v, p) in self.positions.iter().enumerate() {
             let key = (
                 [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()],
@@ -93,20 +103,99 @@ impl Soup {
             );
             let r = *first.entry(key).or_insert(v as u32);
             rep[v] = r;
-            if r == v as u32 {
+            size[r as usize] += 1;
+        }
+        drop(first);
+        let coincident = (0..nv).filter(|&v| rep[v] as usize != v).count();
+        if coincident == 0 {
+            return (0, 0);
+        }
+        // Groups still merged: `active[r]` for the first vertex r of each.
+        let mut active: Vec<bool> = size.iter().map(|&s| s > 1).collect();
+        let next = self.next_corners();
+        let face_of = self.corner_faces();
+        let mut mapped = vec![0u32; self.indices.len()];
+        let mut settled = false;
+        for _round in 0..16 {
+            for (m, &i) in mapped.iter_mut().zip(&self.indices) {
+                let r = rep[i as usize];
+                *m = if active[r as usize] { r } else { i };
+            }
+            let bad = nonmanifold_vertices(&mapped, &next, &face_of, nv);
+            let mut undone = false;
+            for r in 0..nv {
+                if bad[r] && active[r] {
+                    active[r] = false;
+                    undone = true;
+                }
+            }
+            if !undone {
+                settled = true;
+                break;
+            }
+        }
+        if !settled {
+            active.iter_mut().for_each(|a| *a = false);
+        }
+        let mut new_of = vec![NONE; nv];
+        let mut n = 0u32;
+        for v in 0..nv {
+            let r = rep[v] as usize;
+            if r == v || !active[r] {
                 new_of[v] = n;
                 n += 1;
             }
         }
-        let welded = self.positions.len() - n as usize;
-        if welded == 0 {
-            return 0;
+        for v in 0..nv {
+            let r = rep[v] as usize;
+            if r != v && active[r] {
+                new_of[v] = new_of[r];
+            }
         }
-        for v in 0..rep.len() {
-            new_of[v] = new_of[rep[v] as usize];
+        let welded = nv - n as usize;
+        if welded > 0 {
+            self.compact_vertices(&new_of);
         }
-        self.compact_vertices(&new_of);
-        welded
+        (welded, coincident - welded)
+    }
+
+    /// Whether the builder refuses these polygons (then the defect
+    /// policies run). Unreferenced vertices alone are no reason: the
+    /// builder drops them.
+    pub(super) fn needs_repair(&mut self) -> bool {
+        let p = Polygons {
+            positions: std::mem::take(&mut self.positions),
+            offsets: std::mem::take(&mut self.offsets),
+            indices: std::mem::take(&mut self.indices),
+        };
+        let refused = Mesh::from_buffers(&p).is_err();
+        self.positions = p.positions;
+        self.offsets = p.offsets;
+        self.indices = p.indices;
+        refused
+    }
+
+    /// Give a renumbered topology-only soup its caller's numbering back:
+    /// the first `dense` vertices are the input's (their sources are their
+    /// indices), copies made since follow index `implied - 1`.
+    pub(super) fn restore_numbering(&mut self, implied: usize, dense: usize) {
+        let src = std::mem::take(&mut self.prov.vertex_source);
+        let new_of: Vec<u32> = (0..self.vertex_count)
+            .map(|d| {
+                if d < dense {
+                    src[d]
+                } else {
+                    (implied + d - dense) as u32
+                }
+            })
+            .collect();
+        for i in &mut self.indices {
+            *i = new_of[*i as usize];
+        }
+        let mut source: Vec<u32> = (0..implied as u32).collect();
+        source.extend_from_slice(&src[dense..]);
+        self.vertex_count = source.len();
+        self.prov.vertex_source = source;
     }
 
     pub(super) fn drop_degenerate(&mut self) -> (usize, usize) {
@@ -191,20 +280,7 @@ impl Soup {
     /// Corners grouped by their undirected edge: `(order, starts)` where
     /// group `g` is `order[starts[g]..starts[g + 1]]`, each in corner order.
     fn edge_groups(&self, next: &[u32]) -> (Vec<u32>, Vec<u32>) {
-        let key = |c: usize| {
-            let (a, b) = (self.indices[c], self.indices[next[c] as usize]);
-            (u64::from(a.min(b)) << 32) | u64::from(a.max(b))
-        };
-        let mut order: Vec<u32> = (0..self.indices.len() as u32).collect();
-        order.sort_unstable_by_key(|&c| (key(c as usize), c));
-        let mut starts = Vec::new();
-        for (i, &c) in order.iter().enumerate() {
-            if i == 0 || key(c as usize) != key(order[i - 1] as usize) {
-                starts.push(i as u32);
-            }
-        }
-        starts.push(order.len() as u32);
-        (order, starts)
+        edge_groups(&self.indices, next)
     }
 
     /// The face of every corner.
@@ -430,6 +506,77 @@ impl Soup {
         }
         dropped
     }
+}
+
+/// Corners of `indices` grouped by their undirected edge (see
+/// [`Soup::edge_groups`]).
+fn edge_groups(indices: &[u32], next: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    let key = |c: usize| {
+        let (a, b) = (indices[c], indices[next[c] as usize]);
+        (u64::from(a.min(b)) << 32) | u64::from(a.max(b))
+    };
+    let mut order: Vec<u32> = (0..indices.len() as u32).collect();
+    order.sort_unstable_by_key(|&c| (key(c as usize), c));
+    let mut starts = Vec::new();
+    for (i, &c) in order.iter().enumerate() {
+        if i == 0 || key(c as usize) != key(order[i - 1] as usize) {
+            starts.push(i as u32);
+        }
+    }
+    starts.push(order.len() as u32);
+    (order, starts)
+}
+
+/// The vertices of `indices` (renumbered, every one below `n`) that are
+/// not manifold: on an edge used by more than two faces or twice in one
+/// direction or twice by one face, repeated in a face, or with more than
+/// one fan of faces (open fans too). `marked[v]` is set for each.
+fn nonmanifold_vertices(indices: &[u32], next: &[u32], face_of: &[u32], n: usize) -> Vec<bool> {
+    let nc = indices.len();
+    let mut marked = vec![false; n];
+    let (order, starts) = edge_groups(indices, next);
+    let mut parent: Vec<u32> = (0..nc as u32).collect();
+    for g in starts.windows(2) {
+        let group = &order[g[0] as usize..g[1] as usize];
+        let (c, d) = (
+            group[0] as usize,
+            *group.last().unwrap_or(&group[0]) as usize,
+        );
+        let (a, b) = (indices[c], indices[next[c] as usize]);
+        if a == b {
+            marked[a as usize] = true;
+            continue;
+        }
+        let opposite = group.len() == 2 && indices[c] == indices[next[d] as usize];
+        if group.len() > 2 || (group.len() == 2 && (!opposite || face_of[c] == face_of[d])) {
+            marked[a as usize] = true;
+            marked[b as usize] = true;
+        } else if group.len() == 2 {
+            union(&mut parent, c as u32, next[d]);
+            union(&mut parent, d as u32, next[c]);
+        }
+    }
+    // One root per fan: a vertex whose corners have two roots has two fans;
+    // a face with a vertex at two corners repeats it.
+    let mut root_of_vertex = vec![NONE; n];
+    for (c, &v) in indices.iter().enumerate() {
+        let v = v as usize;
+        let r = find(&mut parent, c as u32);
+        if root_of_vertex[v] == NONE {
+            root_of_vertex[v] = r;
+        } else if root_of_vertex[v] != r {
+            marked[v] = true;
+        }
+    }
+    let mut last_face = vec![NONE; n];
+    for (&v, &f) in indices.iter().zip(face_of) {
+        let v = v as usize;
+        if last_face[v] == f {
+            marked[v] = true;
+        }
+        last_face[v] = f;
+    }
+    marked
 }
 
 fn find(parent: &mut [u32], mut x: u32) -> u32 {

@@ -51,12 +51,43 @@ pub trait Attribute: Clone + Default + Send + Sync + 'static {
         let _ = value;
         None
     }
+
+    /// Whether two values are the same, as operators see it: corners whose
+    /// values are the same on both sides of an edge belong to one *wedge*
+    /// (no UV seam there), so a collapse interpolates them together.
+    /// Defaults to comparing [`to_value`](Attribute::to_value) (unequal
+    /// when not portable, so such a column counts as a seam everywhere and
+    /// its corners keep their values); the stock types compare with `==`.
+    ///
+    /// ```
+    /// use meshloom::attr::Attribute;
+    /// assert!([0.5f32, 0.25].same_value(&[0.5, 0.25]));
+    /// assert!(!1.0f64.same_value(&2.0));
+    /// ```
+    fn same_value(&self, other: &Self) -> bool {
+        matches!((self.to_value(), other.to_value()), (Some(a), Some(b)) if a == b)
+    }
+
+    /// Whether `self` and `other` are the same value, bit for bit where
+    /// floats are concerned (`0.0` and `-0.0` differ, a NaN equals itself).
+    /// The [journal](crate::journal) uses it to leave out writes that
+    /// changed nothing (a collapse that keeps `b`'s position writes it
+    /// unchanged). Defaults to `false`: every write is recorded, which is
+    /// always correct, only larger. The stock types implement it.
+    fn same_as(&self, other: &Self) -> bool {
+        let _ = other;
+        false
+    }
 }
 
 macro_rules! scalar_attribute {
-    ($rule:ty: $($t:ty => $variant:ident),*) => {$(
+    ($rule:ty, $same:expr; $($t:ty => $variant:ident),*) => {$(
         impl Attribute for $t {
             type Rule = $rule;
+            #[inline]
+            fn same_as(&self, other: &Self) -> bool {
+                $same(self, other)
+            }
             fn to_value(&self) -> Option<Value> {
                 Some(Value::$variant(self.clone()))
             }
@@ -66,14 +97,19 @@ macro_rules! scalar_attribute {
                     _ => None,
                 }
             }
+            #[inline]
+            fn same_value(&self, other: &Self) -> bool {
+                self == other
+            }
         }
     )*};
 }
 
-scalar_attribute!(Interpolate: f32 => F32, f64 => F64);
-scalar_attribute!(Incompatible: i8 => I8, u8 => U8, i16 => I16, u16 => U16, i32 => I32,
+scalar_attribute!(Interpolate, |a: &f32, b: &f32| a.to_bits() == b.to_bits(); f32 => F32);
+scalar_attribute!(Interpolate, |a: &f64, b: &f64| a.to_bits() == b.to_bits(); f64 => F64);
+scalar_attribute!(Incompatible, PartialEq::eq; i8 => I8, u8 => U8, i16 => I16, u16 => U16, i32 => I32,
     u32 => U32, i64 => I64, u64 => U64, String => Text);
-scalar_attribute!(Contagion: bool => Bool);
+scalar_attribute!(Contagion, PartialEq::eq; bool => Bool);
 
 macro_rules! array_attribute {
     ($($t:ty => $variant:ident),*) => {$(
@@ -82,6 +118,10 @@ macro_rules! array_attribute {
             [$t; N]: Default,
         {
             type Rule = Interpolate;
+            #[inline]
+            fn same_as(&self, other: &Self) -> bool {
+                self.iter().zip(other).all(|(a, b)| a.to_bits() == b.to_bits())
+            }
             fn to_value(&self) -> Option<Value> {
                 Some(Value::List(self.iter().map(|&x| Value::$variant(x)).collect()))
             }
@@ -99,6 +139,10 @@ macro_rules! array_attribute {
                 }
                 Some(out)
             }
+            #[inline]
+            fn same_value(&self, other: &Self) -> bool {
+                self == other
+            }
         }
     )*};
 }
@@ -107,17 +151,51 @@ array_attribute!(f32 => F32, f64 => F64);
 
 impl Attribute for Value {
     type Rule = Dynamic;
+    fn same_as(&self, other: &Self) -> bool {
+        same_value(self, other)
+    }
     fn to_value(&self) -> Option<Value> {
         Some(self.clone())
     }
     fn from_value(value: &Value) -> Option<Self> {
         Some(value.clone())
     }
+    fn same_value(&self, other: &Self) -> bool {
+        self == other
+    }
+}
+
+/// Values equal bit for bit (floats by their bits, lists item by item).
+fn same_value(a: &Value, b: &Value) -> bool {
+    match (a, b) {
+        (Value::F32(x), Value::F32(y)) => x.to_bits() == y.to_bits(),
+        (Value::F64(x), Value::F64(y)) => x.to_bits() == y.to_bits(),
+        (Value::List(x), Value::List(y)) => {
+            x.len() == y.len() && x.iter().zip(y).all(|(p, q)| same_value(p, q))
+        }
+        (Value::F32(_) | Value::F64(_) | Value::List(_), _) => false,
+        _ => a == b,
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn same_as_is_bitwise() {
+        assert!(1.5f64.same_as(&1.5));
+        assert!(!0.0f64.same_as(&-0.0));
+        assert!(f64::NAN.same_as(&f64::NAN));
+        assert!([1.0f32, -0.0].same_as(&[1.0, -0.0]));
+        assert!(![1.0f32, -0.0].same_as(&[1.0, 0.0]));
+        assert!(7u8.same_as(&7) && !7u8.same_as(&8));
+        let l = Value::List(vec![Value::F64(-0.0), Value::Text("a".into())]);
+        assert!(l.same_as(&l.clone()));
+        assert!(!l.same_as(&Value::List(vec![Value::F64(0.0), Value::Text("a".into())])));
+        assert!(!Value::F32(1.0).same_as(&Value::F64(1.0)));
+        assert!(Value::U8(3).same_as(&Value::U8(3)));
+    }
 
     #[test]
     fn values_round_trip() {

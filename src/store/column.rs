@@ -4,6 +4,7 @@ use std::any::Any;
 use std::marker::PhantomData;
 
 use super::attribute::Attribute;
+use super::plan::{ColumnPlan, Source};
 use super::rule::Rule;
 use super::value::Value;
 
@@ -23,14 +24,39 @@ pub struct Column<T, R> {
     pub(crate) values: Vec<T>,
     /// Bit `i` set = slot `i` has a value. `None` = every slot has one.
     pub(crate) present: Option<Vec<u64>>,
+    /// While a journal records: the old values of the open step's writes,
+    /// oldest first, one entry per write ([`journal`](crate::journal)).
+    pub(crate) saved: Vec<Saved<T>>,
+    /// Old values saved by bulk writers (mutable views, raw slices), sealed
+    /// as a step of their own before the next edit's.
+    pub(crate) bulk: Vec<Saved<T>>,
     rule: PhantomData<fn() -> R>,
 }
 
+/// One slot's value (or absence) as it was before a write.
+#[derive(Clone, Debug)]
+pub(crate) struct Saved<T> {
+    pub(crate) slot: u32,
+    pub(crate) present: bool,
+    pub(crate) value: T,
+}
+
+/// A sealed record of one column in one step: unique slots, ascending, each
+/// with the value to put back. Applying it swaps every value with the
+/// column's, so the same record then holds what applying it again restores:
+/// undo turns it into the redo record and back, with no allocation.
+pub(crate) struct ColumnRecord<T> {
+    pub(crate) entries: Vec<Saved<T>>,
+}
+
 impl<T: Clone, R> Clone for Column<T, R> {
+    /// A copy of the values; whatever a journal saved stays behind.
     fn clone(&self) -> Self {
         Column {
             values: self.values.clone(),
             present: self.present.clone(),
+            saved: Vec::new(),
+            bulk: Vec::new(),
             rule: PhantomData,
         }
     }
@@ -42,6 +68,8 @@ impl<T: Default + Clone, R> Column<T, R> {
         Column {
             values: vec![T::default(); len],
             present: Some(vec![0; len.div_ceil(64)]),
+            saved: Vec::new(),
+            bulk: Vec::new(),
             rule: PhantomData,
         }
     }
@@ -51,10 +79,68 @@ impl<T: Default + Clone, R> Column<T, R> {
         Column {
             values,
             present: None,
+            saved: Vec::new(),
+            bulk: Vec::new(),
             rule: PhantomData,
         }
     }
 
+    /// Slot `i` as it is now, for a journal.
+    #[inline]
+    pub(crate) fn saved_of(&self, i: usize) -> Saved<T> {
+        Saved {
+            slot: i as u32,
+            present: self.has(i),
+            value: self.values[i].clone(),
+        }
+    }
+
+    /// Save slot `i`'s value before a write (the open step's journal).
+    #[inline]
+    pub(crate) fn save(&mut self, i: usize) {
+        let s = self.saved_of(i);
+        self.saved.push(s);
+    }
+
+    /// Save slots `range` for a bulk writer (mutable view, raw slice).
+    pub(crate) fn save_bulk(&mut self, range: std::ops::Range<usize>) {
+        let range = range.start.min(self.values.len())..range.end.min(self.values.len());
+        self.bulk.reserve(range.len());
+        for i in range {
+            let s = self.saved_of(i);
+            self.bulk.push(s);
+        }
+    }
+
+    /// Put slot `i` back to `(present, value)`, handing back what it held.
+    #[inline]
+    fn swap_in(&mut self, e: &mut Saved<T>) {
+        let i = e.slot as usize;
+        let was = self.has(i);
+        std::mem::swap(&mut self.values[i], &mut e.value);
+        if e.present {
+            if let Some(bits) = &mut self.present {
+                bits[i / 64] |= 1 << (i % 64);
+            }
+        } else {
+            let len = self.values.len();
+            let bits = self
+                .present
+                .get_or_insert_with(|| vec![u64::MAX; len.div_ceil(64)]);
+            bits[i / 64] &= !(1 << (i % 64));
+        }
+        e.present = was;
+    }
+}
+
+/// Sort saved entries by slot, keeping the first (oldest) of each slot.
+fn first_per_slot<T>(entries: &mut Vec<Saved<T>>) {
+    // Stable: of equal slots the oldest stays first.
+    entries.sort_by_key(|e| e.slot);
+    entries.dedup_by_key(|e| e.slot);
+}
+
+impl<T: Default + Clone, R> Column<T, R> {
     /// The value of slot `i`, if it has one. The caller checked liveness.
     #[inline]
     pub(crate) fn get(&self, i: usize) -> Option<&T> {
@@ -125,15 +211,116 @@ impl<T: Default + Clone, R> Column<T, R> {
         }
     }
 
+    /// As [`with_inputs`](Self::with_inputs), for `(u32 slot, weight)`
+    /// pairs (a [`ColumnPlan`]'s entries).
+    #[inline]
+    fn with_u32_inputs(&self, inputs: &[(u32, f64)], rule: RuleFn<T>) -> Option<T> {
+        const SMALL: usize = 16;
+        if inputs.len() <= SMALL {
+            let mut args: [(Option<&T>, f64); SMALL] = [(None, 0.0); SMALL];
+            for (a, &(s, w)) in args.iter_mut().zip(inputs) {
+                *a = (self.get(s as usize), w);
+            }
+            rule(&args[..inputs.len()])
+        } else {
+            let args: Vec<(Option<&T>, f64)> = inputs
+                .iter()
+                .map(|&(s, w)| (self.get(s as usize), w))
+                .collect();
+            rule(&args)
+        }
+    }
+
     /// The presence bits (`None`: every slot has a value).
     #[inline]
     pub(crate) fn present_bits(&self) -> Option<&[u64]> {
         self.present.as_deref()
     }
 
-    /// The raw values, mutably.
+    /// The raw values, mutably. Writes through it are not journaled: use
+    /// it only after [`save_bulk`](Column::save_bulk) on the range written,
+    /// or on a column no journal watches.
     pub(crate) fn raw_mut(&mut self) -> &mut [T] {
         &mut self.values
+    }
+}
+
+impl<T: Attribute, R> Column<T, R> {
+    /// Whether slot `i` holds what `e` saved.
+    #[inline]
+    fn unchanged(&self, e: &Saved<T>) -> bool {
+        let i = e.slot as usize;
+        self.has(i) == e.present && (!e.present || self.values[i].same_as(&e.value))
+    }
+
+    /// Seal the open step's saved values: the oldest per slot, left out
+    /// where the slot holds the same again. `None`: nothing changed.
+    pub(crate) fn seal_saved(&mut self) -> Option<ColumnRecord<T>> {
+        if self.saved.is_empty() {
+            return None;
+        }
+        let mut entries = std::mem::take(&mut self.saved);
+        first_per_slot(&mut entries);
+        entries.retain(|e| !self.unchanged(e));
+        // The scratch keeps its capacity for the next step.
+        self.saved = Vec::with_capacity(entries.capacity().min(64));
+        (!entries.is_empty()).then_some(ColumnRecord { entries })
+    }
+
+    /// Seal the bulk writers' saved values as a record of their own. A
+    /// slot that the open step saved since is compared with that saved
+    /// value (what the bulk write left), not with the current one.
+    pub(crate) fn seal_bulk(&mut self) -> Option<ColumnRecord<T>> {
+        if self.bulk.is_empty() {
+            return None;
+        }
+        let mut entries = std::mem::take(&mut self.bulk);
+        first_per_slot(&mut entries);
+        if !self.saved.is_empty() {
+            first_per_slot(&mut self.saved);
+        }
+        let saved = &self.saved;
+        entries.retain(|e| match saved.binary_search_by_key(&e.slot, |s| s.slot) {
+            Ok(k) => {
+                let s = &saved[k];
+                !(s.present == e.present && (!e.present || s.value.same_as(&e.value)))
+            }
+            Err(_) => !self.unchanged(e),
+        });
+        (!entries.is_empty()).then_some(ColumnRecord { entries })
+    }
+
+    /// Apply a record (undo or redo): every slot gets the record's value,
+    /// and the record gets the slot's.
+    pub(crate) fn apply_record(&mut self, record: &mut ColumnRecord<T>) {
+        for e in &mut record.entries {
+            self.swap_in(e);
+        }
+    }
+}
+
+/// A sealed column record with its value type erased, as the journal keeps
+/// it.
+pub(crate) trait Record: Any + Send + Sync {
+    /// The slots it holds, ascending.
+    fn slots(&self) -> Box<dyn Iterator<Item = u32> + '_>;
+    /// Heap bytes held.
+    fn heap_bytes(&self) -> usize;
+    /// Upcast for the typed column.
+    fn as_any_mut(&mut self) -> &mut dyn Any;
+}
+
+impl<T: Send + Sync + 'static> Record for ColumnRecord<T> {
+    fn slots(&self) -> Box<dyn Iterator<Item = u32> + '_> {
+        Box::new(self.entries.iter().map(|e| e.slot))
+    }
+
+    fn heap_bytes(&self) -> usize {
+        self.entries.capacity() * std::mem::size_of::<Saved<T>>()
+    }
+
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
     }
 }
 
@@ -155,8 +342,31 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     fn split(&mut self, src: usize, pieces: &[(usize, f64)]);
     /// Copy slot `from`'s value (or absence) to slot `to`.
     fn copy(&mut self, from: usize, to: usize);
+    /// Whether slots `i` and `j` hold the same value (both absent counts as
+    /// the same), by [`Attribute::same_value`].
+    fn same(&self, i: usize, j: usize) -> bool;
     /// Reorder: slot `i` of the result holds old slot `order[i]`.
     fn permute(&mut self, order: &[u32]);
+    /// A new column of the same type and rule, one slot per source of
+    /// `plan`, each computed from this column as it is (see
+    /// [`Source`]). Dense (no presence bits) when every slot gets a value.
+    fn rebuilt(&self, plan: &ColumnPlan) -> Box<dyn ErasedColumn>;
+    /// Whether the rule's interpolation is a weighted mean
+    /// ([`Rule::LINEAR`]).
+    fn interpolates_linearly(&self) -> bool;
+    /// Save slot `i`'s value before a write (the journal's open step).
+    fn save(&mut self, i: usize);
+    /// Save slots `range` for a bulk writer.
+    fn save_bulk(&mut self, range: std::ops::Range<usize>);
+    /// Seal the open step's saved values (see [`Column::seal_saved`]).
+    fn seal_saved(&mut self) -> Option<Box<dyn Record>>;
+    /// Seal the bulk writers' saved values (see [`Column::seal_bulk`]).
+    fn seal_bulk(&mut self) -> Option<Box<dyn Record>>;
+    /// Forget whatever was saved (the journal stopped).
+    fn discard_saved(&mut self);
+    /// Apply a record sealed from a column of this type: `false` if it is
+    /// of another type (nothing changes).
+    fn apply_record(&mut self, record: &mut dyn Record) -> bool;
     /// Heap bytes held.
     fn heap_bytes(&self) -> usize;
     /// Slot `i`'s value as a dynamic [`Value`] (`None`: absent, or the type
@@ -241,6 +451,15 @@ where
         self.set(to, v);
     }
 
+    #[inline]
+    fn same(&self, i: usize, j: usize) -> bool {
+        match (self.get(i), self.get(j)) {
+            (None, None) => true,
+            (Some(x), Some(y)) => x.same_value(y),
+            _ => false,
+        }
+    }
+
     fn permute(&mut self, order: &[u32]) {
         let values: Vec<T> = order
             .iter()
@@ -259,9 +478,91 @@ where
         self.present = present;
     }
 
+    fn rebuilt(&self, plan: &ColumnPlan) -> Box<dyn ErasedColumn> {
+        let n = plan.sources.len();
+        let mut values = Vec::with_capacity(n);
+        let mut bits = vec![0u64; n.div_ceil(64)];
+        let mut all = true;
+        let entries = &plan.entries;
+        for (i, source) in plan.sources.iter().enumerate() {
+            let value = match *source {
+                Source::Copy(from) => self.get(from as usize).cloned(),
+                Source::Split(at) => {
+                    let (from, share) = entries[at as usize];
+                    R::split(self.get(from as usize), share)
+                }
+                Source::Interpolate { start, len } => {
+                    let inputs = &entries[start as usize..(start + len) as usize];
+                    self.with_u32_inputs(inputs, R::interpolate)
+                }
+                Source::FlipPiece(at) => {
+                    let (a, sa) = entries[at as usize];
+                    let (b, sb) = entries[at as usize + 1];
+                    let pa = R::split(self.get(a as usize), sa);
+                    let pb = R::split(self.get(b as usize), sb);
+                    let merged = R::merge(&[(pa.as_ref(), 0.5), (pb.as_ref(), 0.5)]);
+                    R::split(merged.as_ref(), 0.5)
+                }
+            };
+            match value {
+                Some(v) => {
+                    values.push(v);
+                    bits[i / 64] |= 1 << (i % 64);
+                }
+                None => {
+                    values.push(T::default());
+                    all = false;
+                }
+            }
+        }
+        Box::new(Column::<T, R> {
+            values,
+            present: (!all).then_some(bits),
+            rule: PhantomData,
+            saved: Vec::new(),
+            bulk: Vec::new(),
+        })
+    }
+
+    fn interpolates_linearly(&self) -> bool {
+        R::LINEAR
+    }
+
+    fn save(&mut self, i: usize) {
+        Column::save(self, i);
+    }
+
+    fn save_bulk(&mut self, range: std::ops::Range<usize>) {
+        Column::save_bulk(self, range);
+    }
+
+    fn seal_saved(&mut self) -> Option<Box<dyn Record>> {
+        Column::seal_saved(self).map(|r| Box::new(r) as Box<dyn Record>)
+    }
+
+    fn seal_bulk(&mut self) -> Option<Box<dyn Record>> {
+        Column::seal_bulk(self).map(|r| Box::new(r) as Box<dyn Record>)
+    }
+
+    fn discard_saved(&mut self) {
+        self.saved = Vec::new();
+        self.bulk = Vec::new();
+    }
+
+    fn apply_record(&mut self, record: &mut dyn Record) -> bool {
+        match record.as_any_mut().downcast_mut::<ColumnRecord<T>>() {
+            Some(r) => {
+                Column::apply_record(self, r);
+                true
+            }
+            None => false,
+        }
+    }
+
     fn heap_bytes(&self) -> usize {
         self.values.capacity() * std::mem::size_of::<T>()
             + self.present.as_ref().map_or(0, |b| b.capacity() * 8)
+            + (self.saved.capacity() + self.bulk.capacity()) * std::mem::size_of::<Saved<T>>()
     }
 
     fn value_at(&self, i: usize) -> Option<Value> {

@@ -12,18 +12,20 @@
 //! | `column.rs` | [`Column`] (a `Vec` per slot plus lazy presence bits) and the type-erased `ErasedColumn` every edit calls |
 //! | `rule.rs`, `rules.rs` | the [`Rule`](rule::Rule) trait and the stock rules |
 //! | `attribute.rs` | [`Attribute`]: a value type that names its rule |
+//! | `plan.rs` | `ColumnPlan`: the sources of every slot of a column rebuilt wholesale (subdivision) |
 //! | `value.rs` | [`Value`] and [`ValueType`], the portable form of a value (file formats, serde, dynamic columns) |
 //! | this file | `Columns` (one arena's columns) and `AttrStore` (the four arenas) |
 
 mod attribute;
 mod column;
+pub(crate) mod plan;
 pub mod rule;
 pub mod rules;
 mod value;
 
 pub use attribute::Attribute;
 pub use column::Column;
-pub(crate) use column::ErasedColumn;
+pub(crate) use column::{ErasedColumn, Record};
 pub use value::{Dynamic, Value, ValueType};
 
 use rules::Interpolate;
@@ -53,9 +55,17 @@ pub(crate) struct Columns {
     pub(crate) cols: Vec<(String, Box<dyn ErasedColumn>)>,
     /// One entry per column, in the same order.
     pub(crate) meta: Vec<ColumnMeta>,
+    /// While a journal records: the arena's slot count when the open step
+    /// began. A write to a slot below it saves the old value first; slots
+    /// at or past it were born in the step (undo needs nothing of them).
+    /// 0 with no journal, so the check is one compare that never passes.
+    pub(crate) log_below: usize,
+    /// Whether a column saved a value in the open step.
+    pub(crate) dirty: bool,
 }
 
 impl Clone for Columns {
+    /// The columns and values; nothing of a journal.
     fn clone(&self) -> Self {
         Columns {
             cols: self
@@ -64,6 +74,8 @@ impl Clone for Columns {
                 .map(|(n, c)| (n.clone(), c.clone_box()))
                 .collect(),
             meta: self.meta.clone(),
+            log_below: 0,
+            dirty: false,
         }
     }
 }
@@ -131,6 +143,42 @@ impl Columns {
         self.cols.get_mut(i)?.1.as_any_mut().downcast_mut()
     }
 
+    /// Before a write to slot `i` of every column: save the old values
+    /// while a journal records (one compare otherwise).
+    #[inline(always)]
+    pub(crate) fn save(&mut self, i: usize) {
+        if i < self.log_below {
+            self.save_all_columns(i);
+        }
+    }
+
+    #[inline(never)]
+    fn save_all_columns(&mut self, i: usize) {
+        self.dirty = true;
+        for (_, c) in &mut self.cols {
+            c.save(i);
+        }
+    }
+
+    /// Before a write to slot `i` of column `col` alone.
+    #[inline]
+    pub(crate) fn save_one(&mut self, col: usize, i: usize) {
+        if i < self.log_below {
+            self.dirty = true;
+            self.cols[col].1.save(i);
+        }
+    }
+
+    /// A reused slot starts as a freed one would have been left (values
+    /// dropped), with the old values saved: while a journal records, a
+    /// freed slot keeps its values (so undoing its death needs nothing),
+    /// and they go only when the slot is reused.
+    #[inline]
+    pub(crate) fn reset(&mut self, i: usize) {
+        self.save(i);
+        self.clear(i);
+    }
+
     /// Every column grows to `len` slots.
     #[inline]
     pub(crate) fn ensure_len(&mut self, len: usize) {
@@ -149,6 +197,7 @@ impl Columns {
 
     /// Merge rule on every column.
     pub(crate) fn merge(&mut self, dst: usize, inputs: &[(usize, f64)]) {
+        self.save(dst);
         for (_, c) in &mut self.cols {
             c.merge(dst, inputs);
         }
@@ -156,6 +205,7 @@ impl Columns {
 
     /// Interpolate rule on every column.
     pub(crate) fn interpolate(&mut self, dst: usize, inputs: &[(usize, f64)]) {
+        self.save(dst);
         for (_, c) in &mut self.cols {
             c.interpolate(dst, inputs);
         }
@@ -163,6 +213,9 @@ impl Columns {
 
     /// Split rule on every column.
     pub(crate) fn split(&mut self, src: usize, pieces: &[(usize, f64)]) {
+        for &(dst, _) in pieces {
+            self.save(dst);
+        }
         for (_, c) in &mut self.cols {
             c.split(src, pieces);
         }
@@ -170,6 +223,7 @@ impl Columns {
 
     /// Copy slot `from` to `to` in every column.
     pub(crate) fn copy(&mut self, from: usize, to: usize) {
+        self.save(to);
         for (_, c) in &mut self.cols {
             c.copy(from, to);
         }
@@ -243,5 +297,64 @@ impl AttrStore {
     pub(crate) fn positions_mut(&mut self) -> Option<&mut PositionColumn> {
         let i = self.position?;
         self.vertex.typed_mut(i)
+    }
+
+    /// Take column `col` out of set `set` (a journal keeps it), keeping
+    /// the position index right. Returns `(name, column, meta)`.
+    pub(crate) fn take_column(
+        &mut self,
+        set: usize,
+        col: usize,
+    ) -> (String, Box<dyn ErasedColumn>, ColumnMeta) {
+        let c = &mut self.all_mut()[set];
+        let (name, column) = c.cols.remove(col);
+        let meta = c.meta.remove(col);
+        if set == 0 {
+            self.position = match self.position {
+                Some(p) if p == col => None,
+                Some(p) if p > col => Some(p - 1),
+                p => p,
+            };
+        }
+        (name, column, meta)
+    }
+
+    /// Put back a column [`take_column`](AttrStore::take_column) took, at
+    /// `col`, grown to `len` slots.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn insert_column(
+        &mut self,
+        set: usize,
+        col: usize,
+        name: String,
+        mut column: Box<dyn ErasedColumn>,
+        meta: ColumnMeta,
+        position: bool,
+        len: usize,
+    ) {
+        column.ensure_len(len);
+        let c = &mut self.all_mut()[set];
+        c.cols.insert(col, (name, column));
+        c.meta.insert(col, meta);
+        if set == 0 {
+            self.position = match self.position {
+                Some(p) if p >= col => Some(p + 1),
+                p => p,
+            };
+            if position {
+                self.position = Some(col);
+            }
+        }
+    }
+
+    /// The four column sets, in arena order (vertex, half-edge, edge,
+    /// face: [`ElementKind`] order).
+    pub(crate) fn all_mut(&mut self) -> [&mut Columns; 4] {
+        [
+            &mut self.vertex,
+            &mut self.halfedge,
+            &mut self.edge,
+            &mut self.face,
+        ]
     }
 }

@@ -18,6 +18,17 @@ pub use super::rules::Interpolate;
 /// [`Attribute::Rule`](crate::attr::Attribute) or pass it when adding a
 /// column.
 pub trait Rule<T>: 'static {
+    /// Whether [`merge`](Rule::merge) and [`interpolate`](Rule::interpolate)
+    /// are the weighted mean of the present values: an affine combination,
+    /// so an algorithm may pass any non-negative weights that sum to 1 (a
+    /// subdivision stencil over a vertex's neighbours) and get that
+    /// combination back. [`Interpolate`] says so; the other stock rules
+    /// (sums, flags, labels) do not. Subdivision smooths the columns whose
+    /// rule is linear like positions (OpenSubdiv's "vertex" data, unless
+    /// asked for linear "varying" data) and gives the others their rule's
+    /// `interpolate` over the linear contributors, as the operators do.
+    const LINEAR: bool = false;
+
     /// Several elements become one (collapse: two vertices, and two edges
     /// where a triangle disappears; remove edge or merge faces: two faces;
     /// remove vertex: a ring of faces). `inputs` are `(value, weight)`

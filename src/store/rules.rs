@@ -35,6 +35,8 @@ use super::rule::{Linear, Rule};
 pub struct Interpolate;
 
 impl<T: Linear> Rule<T> for Interpolate {
+    const LINEAR: bool = true;
+
     // Inlined into the column's merge and interpolate: left to the
     // compiler's heuristics it was not, after an unrelated change moved it
     // to another codegen unit (+8% instructions in `ErasedColumn::merge`).

@@ -34,10 +34,12 @@ pub enum Value {
     I64(i64),
     /// 64-bit unsigned integer.
     U64(u64),
-    /// 32-bit float.
-    F32(f32),
-    /// 64-bit float.
-    F64(f64),
+    /// 32-bit float. NaN and the infinities are values like any other;
+    /// serde carries them as the strings `"NaN"`, `"inf"` and `"-inf"` in
+    /// human-readable formats (JSON has no such numbers).
+    F32(#[cfg_attr(feature = "serde", serde(with = "crate::serde_impl::float32"))] f32),
+    /// 64-bit float; non-finite values as for [`Value::F32`].
+    F64(#[cfg_attr(feature = "serde", serde(with = "crate::serde_impl::float64"))] f64),
     /// Text.
     Text(String),
     /// A list (a PLY list property, a fixed-size vector).
@@ -203,6 +205,10 @@ impl Value {
 pub struct Dynamic;
 
 impl Rule<Value> for Dynamic {
+    /// Floats (and lists of floats) are averaged like [`Interpolate`](super::rules::Interpolate);
+    /// other values are kept only where every contributor agrees.
+    const LINEAR: bool = true;
+
     fn merge(inputs: &[(Option<&Value>, f64)]) -> Option<Value> {
         let present: Vec<(&Value, f64)> = inputs
             .iter()

@@ -1,65 +1,155 @@
-//! `meshloom convert IN OUT [--repair]`, `meshloom repair IN OUT [--json]`
+//! `meshloom convert IN OUT [--repair]` (or `INPUTS... --out-dir DIR`),
+//! `meshloom repair IN OUT [--json]` (or `INPUTS... --out-dir DIR`),
 //! `meshloom triangulate IN OUT [--json]` and `meshloom fill-holes IN OUT`:
 //! read, change, write.
 
+use meshloom::io;
 use serde_json::json;
 
+use crate::batch::{self, Record, Source, Target};
 use crate::cli::{ConvertArgs, FillHolesArgs, ReadArgs, RepairArgs, TriangulateArgs};
+use crate::commands::normals;
+use crate::input::MeshFormat;
 use crate::output::{self, to_json};
 use crate::progress::Progress;
 use crate::{input, Failure};
 
-/// Read one format, write another.
+/// Read one format, write another; say which attributes the output format
+/// cannot hold. `IN OUT`, or many inputs with `--out-dir`.
 pub fn convert(args: &ConvertArgs) -> Result<(), Failure> {
-    let (mesh, repairs) = input::read(&args.input, args.read)?;
-    input::write(&mesh, &args.output)?;
+    let (batch, targets) = batch::plan(&args.paths, &args.out)?;
+    let records = batch.run(|i, source| convert_one(source, &targets[i], args, batch.several));
+    let to_stderr = targets.first() == Some(&Target::Stdout);
+    batch.report("convert", &records, args.json, to_stderr)
+}
+
+fn convert_one(source: &Source, target: &Target, args: &ConvertArgs, quiet: bool) -> Record {
+    let name = source.name();
+    let (mut mesh, repairs) = match source.read(args.read, args.out.format, quiet) {
+        Ok(read) => read,
+        Err(f) => return Record::failed(name, f.message),
+    };
+    let plain = match target.format(args.out.format) {
+        Some(MeshFormat::Plain(format, _)) => Some(format),
+        _ => None,
+    };
+    let normals = if args.normals {
+        match normals::add_for(&mut mesh, plain) {
+            Ok(n) => Some(n),
+            Err(f) => return Record::failed(name, f.message),
+        }
+    } else {
+        None
+    };
+    let mut record = Record::ok(name, &mesh);
+    record.fields.insert("input".into(), json!(record.file));
+    record.fields.insert("output".into(), json!(target.name()));
+    if let Err(f) = target.write(&mesh, args.out.format, quiet) {
+        record.error = Some(f.message);
+        return record;
+    }
+    let dropped = match plain {
+        Some(format) => io::dropped_columns(&mesh, format),
+        None => Vec::new(),
+    };
+    record.status = match dropped.len() {
+        0 => format!("wrote {}", target.name()),
+        n => format!("wrote {} ({n} attributes dropped)", target.name()),
+    };
+    record.fields.insert("dropped".into(), json!(dropped));
     let mut text = format!(
         "wrote {} ({} vertices, {} faces)\n",
-        args.output.display(),
+        target.name(),
         mesh.vertex_count(),
         mesh.face_count()
     );
+    for d in &dropped {
+        text.push_str(&format!(
+            "dropped: {d} (the output format cannot hold it)\n"
+        ));
+    }
+    if let Some(n) = normals {
+        text.push_str(&format!("normals: {n}\n"));
+        record.fields.insert("normals".into(), json!(n));
+    }
     if let Some(report) = repairs {
+        if let Ok(r) = to_json(&report) {
+            record.fields.insert("repairs".into(), r);
+        }
         text.push_str(&format!("{report}\n"));
     }
-    output::print(&text)
+    record.text = text;
+    record
 }
 
-/// Read with every repair on, write, report what was done.
+/// Read with every repair on, write, report what was done. `IN OUT`, or
+/// many inputs with `--out-dir`. With `--json`, a failure prints
+/// `{"ok": false, "error": ...}` too (and exits 1).
 pub fn repair(args: &RepairArgs) -> Result<(), Failure> {
-    let (mesh, report) = input::read(&args.input, ReadArgs { repair: true })?;
+    let (batch, targets) = batch::plan(&args.paths, &args.out)?;
+    let records = batch.run(|i, source| repair_one(source, &targets[i], args, batch.several));
+    let to_stderr = targets.first() == Some(&Target::Stdout);
+    batch.report("repair", &records, args.json, to_stderr)
+}
+
+fn repair_one(source: &Source, target: &Target, args: &RepairArgs, quiet: bool) -> Record {
+    let name = source.name();
+    let how = ReadArgs {
+        repair: true,
+        weld: args.weld,
+    };
+    let mut failed = Record::failed(name.clone(), String::new());
+    failed.fields.insert("input".into(), json!(name));
+    failed.fields.insert("output".into(), json!(target.name()));
+    let (mesh, report) = match source.read(how, args.out.format, quiet) {
+        Ok(read) => read,
+        Err(f) => {
+            failed.error = Some(f.message);
+            return failed;
+        }
+    };
     let report = report.unwrap_or_default();
-    input::write(&mesh, &args.output)?;
-    let stats = mesh.stats();
-    if args.json {
-        return output::json(&json!({
-            "input": args.input.display().to_string(),
-            "output": args.output.display().to_string(),
-            "clean": report.is_clean(),
-            "repairs": to_json(&report)?,
-            "result": to_json(&stats)?,
-        }));
+    if let Err(f) = target.write(&mesh, args.out.format, quiet) {
+        failed.error = Some(f.message);
+        return failed;
     }
-    output::print(&format!(
-        "{report}\nwrote {} ({} vertices, {} edges, {} faces, {} holes, {} components)\n",
-        args.output.display(),
+    let stats = mesh.stats();
+    let mut record = Record::ok(name, &mesh);
+    record.fields = failed.fields;
+    record
+        .fields
+        .insert("clean".into(), json!(report.is_clean()));
+    if let (Ok(r), Ok(s)) = (to_json(&report), to_json(&stats)) {
+        record.fields.insert("repairs".into(), r);
+        record.fields.insert("result".into(), s);
+    }
+    record.status = if report.is_clean() {
+        format!("wrote {} (no repairs needed)", target.name())
+    } else {
+        format!("wrote {} (repaired)", target.name())
+    };
+    record.text = format!(
+        "{report}\nwrote {} ({} vertices, {} edges, {} faces, {} holes, {} boundary loops, {} components)\n",
+        target.name(),
         stats.vertices,
         stats.edges,
         stats.faces,
         stats.holes,
+        stats.boundary_loops,
         stats.components
-    ))
+    );
+    record
 }
 
 /// Read, triangulate every face of more than three sides, write.
 pub fn triangulate(args: &TriangulateArgs) -> Result<(), Failure> {
-    let (mut mesh, _) = input::read(&args.input, args.read)?;
+    let (mut mesh, _) = input::read(&args.input, args.read, false)?;
     let faces_before = mesh.face_count();
     let left = {
         let _progress = Progress::spinner("triangulating");
         mesh.triangulate_all()
     };
-    input::write(&mesh, &args.output)?;
+    input::write(&mesh, &args.output, false, false)?;
     let triangles = mesh
         .faces()
         .filter(|&f| mesh.face(f).is_ok_and(|v| v.degree() == 3))
@@ -90,7 +180,7 @@ pub fn triangulate(args: &TriangulateArgs) -> Result<(), Failure> {
 
 /// Read, fill the holes asked for (and triangulate the new faces), write.
 pub fn fill_holes(args: &FillHolesArgs) -> Result<(), Failure> {
-    let (mut mesh, _) = input::read(&args.input, args.read)?;
+    let (mut mesh, _) = input::read(&args.input, args.read, false)?;
     let holes_before = mesh.hole_count();
     let max = args.max_sides.unwrap_or(u64::MAX);
     let (mut filled, mut too_big, mut refused, mut untriangulated) = (0, 0, 0, 0);
@@ -114,7 +204,7 @@ pub fn fill_holes(args: &FillHolesArgs) -> Result<(), Failure> {
             }
         }
     }
-    input::write(&mesh, &args.output)?;
+    input::write(&mesh, &args.output, false, false)?;
     if args.json {
         return output::json(&json!({
             "input": args.input.display().to_string(),

@@ -1,6 +1,10 @@
 //! One module per command family: each prints what the library computes.
 
 pub mod convert;
+pub mod decimate;
+pub mod normals;
 pub mod render;
+pub mod smooth;
 pub mod stats;
+pub mod subdivide;
 pub mod validate;

@@ -27,7 +27,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         code: Failure::USAGE,
         message: e.to_string(),
     })?;
-    let (mesh, _) = input::read(&args.input, args.read)?;
+    let (mesh, _) = input::read(&args.input, args.read, false)?;
     let image = {
         let progress = Progress::bar("rendering faces", mesh.face_count());
         render::render_with_progress(&mesh, &options, &mut |done, _| progress.set(done))

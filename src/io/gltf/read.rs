@@ -569,6 +569,7 @@ pub(super) fn read(
                     if let Some(k) = list.iter().position(|&x| x as usize >= n) {
                         return Err(Error::IndexOutOfRange {
                             at: v.location(k),
+                            what: "vertex",
                             index: i64::from(list[k]),
                             count: n,
                         });

@@ -293,6 +293,7 @@ fn face_corner(
         if index == 0 || index as usize > count {
             return Err(Error::IndexOutOfRange {
                 at: at(),
+                what: "vertex",
                 index: i64::from(index),
                 count,
             });
@@ -308,24 +309,24 @@ fn face_corner(
     }
     let mut parts = corner.splitn(3, |&b| b == b'/');
     let v_tok = parts.next().unwrap_or_default();
-    let reference = |tok: &[u8], what: &str, count: usize| -> Result<u32, Error> {
-        let index = parse_i64(tok).ok_or_else(|| Error::syntax(at(), what, corner))?;
+    let reference = |tok: &[u8], kind: &'static str, count: usize| -> Result<u32, Error> {
+        let index =
+            parse_i64(tok).ok_or_else(|| Error::syntax(at(), format!("a {kind} index"), corner))?;
         resolve(index, count).ok_or_else(|| Error::IndexOutOfRange {
             at: at(),
+            what: kind,
             index,
             count,
         })
     };
-    let v = reference(v_tok, "a vertex index", soup.polygons.positions.len())?;
+    let v = reference(v_tok, "vertex", soup.polygons.positions.len())?;
     soup.polygons.indices.push(v);
     let vt = match parts.next() {
-        Some(tok) if !tok.is_empty() => {
-            reference(tok, "a texture coordinate index", refs.texcoords.len())?
-        }
+        Some(tok) if !tok.is_empty() => reference(tok, "texture coordinate", refs.texcoords.len())?,
         _ => u32::MAX,
     };
     let vn = match parts.next() {
-        Some(tok) if !tok.is_empty() => reference(tok, "a normal index", refs.normals.len())?,
+        Some(tok) if !tok.is_empty() => reference(tok, "normal", refs.normals.len())?,
         _ => u32::MAX,
     };
     if vt != u32::MAX || !refs.texcoord_of.is_empty() {

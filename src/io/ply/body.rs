@@ -137,6 +137,19 @@ pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
     }
     let mut soup = Soup::new(record);
     soup.binary = !ascii;
+    soup.nonstandard = header
+        .nonstandard
+        .iter()
+        .map(|(line, text)| {
+            (
+                Location::line(*line),
+                format!(
+                    "{} is not a PLY header line (format, element, property, comment, obj_info or end_header)",
+                    crate::io::error::quote(text.as_bytes())
+                ),
+            )
+        })
+        .collect();
     let mut values: Vec<f64> = Vec::new();
     for element in &header.elements {
         let room = capped(element.count, body.remaining(), element.min_size(ascii));
@@ -188,9 +201,11 @@ pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
         if is_face {
             soup.polygons.offsets.reserve(room);
 
-            soup.polygons
-                .indices
-                .reserve(capped(3 * element.count, body.remaining(), 2));
+            soup.polygons.indices.reserve(capped(
+                element.count.saturating_mul(3),
+                body.remaining(),
+                2,
+            ));
         }
         for i in 0..element.count {
             let start = match &body {
@@ -232,6 +247,7 @@ pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
                                 let v = body.value(prop.item, &what)?;
                                 if v < 0.0 || v >= nv as f64 || v.fract() != 0.0 {
                                     return Err(Error::IndexOutOfRange {
+                                        what: "vertex",
                                         at,
                                         index: v as i64,
                                         count: nv,

@@ -175,7 +175,14 @@ pub(crate) struct Header {
     pub(crate) elements: Vec<Element>,
     pub(crate) body: usize,
     pub(crate) body_line: u64,
+    /// Lines that are not PLY header lines (Blender writes `Created by
+    /// Blender ...` without `comment`), skipped as comments: the line and
+    /// what it held.
+    pub(crate) nonstandard: Vec<(u64, String)>,
 }
+
+/// The elements the reader takes a meaning from; each may appear once.
+const KNOWN: [&str; 2] = ["vertex", "face"];
 
 pub(super) fn header_error(line: u64, message: impl Into<String>) -> Error {
     Error::Header {
@@ -203,6 +210,7 @@ pub(crate) fn parse_header(bytes: &[u8]) -> Result<Header, Error> {
     }
     let mut encoding = None;
     let mut elements: Vec<Element> = Vec::new();
+    let mut nonstandard = Vec::new();
     loop {
         let Some(line) = lines.next() else {
             return Err(Error::Truncated {
@@ -234,8 +242,24 @@ pub(crate) fn parse_header(bytes: &[u8]) -> Result<Header, Error> {
                 let count = crate::io::text::parse_i64(tok)
                     .and_then(|c| usize::try_from(c).ok())
                     .ok_or_else(|| Error::syntax(Location::line(n), "an element count", tok))?;
+                let name = String::from_utf8_lossy(name).into_owned();
+                if name.is_empty() {
+                    return Err(Error::syntax(Location::line(n), "an element name", b""));
+                }
+                if let Some(first) = elements
+                    .iter()
+                    .find(|e| e.name == name && KNOWN.contains(&name.as_str()))
+                {
+                    return Err(header_error(
+                        n,
+                        format!(
+                            "a second {name} element (the first is on line {}); a PLY file has one",
+                            first.line
+                        ),
+                    ));
+                }
                 elements.push(Element {
-                    name: String::from_utf8_lossy(name).into_owned(),
+                    name,
                     count,
                     props: Vec::new(),
                     line: n,
@@ -272,6 +296,13 @@ pub(crate) fn parse_header(bytes: &[u8]) -> Result<Header, Error> {
                 element.props.push(prop);
             }
             b"end_header" => break,
+            _ if encoding.is_some() && line.is_ascii() => {
+                // Not a header keyword: other readers skip such lines (Blender
+                // writes "Created by Blender ..." without "comment"). Kept so
+                // that a strict read can refuse it and a repairing read can
+                // report it.
+                nonstandard.push((n, String::from_utf8_lossy(line.trim_ascii()).into_owned()));
+            }
             other => {
                 return Err(Error::syntax(
                     Location::line(n),
@@ -287,5 +318,6 @@ pub(crate) fn parse_header(bytes: &[u8]) -> Result<Header, Error> {
         elements,
         body: lines.offset(),
         body_line: lines.line,
+        nonstandard,
     })
 }

@@ -15,15 +15,26 @@ use crate::mesh::Mesh;
 /// attribute with a PLY type as a property of that type: dynamic columns
 /// keep their declared type, `f64` columns are `double`, arrays and lists
 /// are list properties, `i64`/`u64` go as `double` and `bool` as `uchar`.
-/// Text columns and half-edge and edge attributes have no place in PLY and
-/// are left out. An element without a value writes 0 (an empty list).
+/// An element without a value writes 0 (an empty list).
+///
+/// Half-edge (corner) attributes with a PLY type go on the vertices where
+/// every corner of a vertex holds the same value (no seams): `texcoord` as
+/// `s t`, `normal` as `nx ny nz`, others as `name` or `name_0 name_1 ...`.
+/// A `texcoord` column with seams goes on the faces as a list property
+/// `texcoord` (two numbers per corner, in the face's corner order), as
+/// MeshLab and Assimp write it. Text columns, edge attributes and other
+/// corner columns with seams have no place in PLY and are left out
+/// ([`dropped_columns`](crate::io::dropped_columns) names them).
 ///
 /// # Errors
 /// [`Error::Unwritable`] without positions; [`Error::Io`].
 pub fn write_ply(mesh: &Mesh, writer: impl Write, encoding: PlyEncoding) -> Result<(), Error> {
     let (p, maps) = polygons_of(mesh)?;
-    let vcols = out_columns(mesh, &maps.vertices);
-    let fcols = out_columns(mesh, &maps.faces);
+    let mut vcols = out_columns(mesh, &maps.vertices);
+    let mut fcols = out_columns(mesh, &maps.faces);
+    let corners = corner_columns(mesh, &maps);
+    vcols.extend(corners.vertex);
+    fcols.extend(corners.face);
     let wide = p.faces().any(|f| f.len() > 255);
     let mut out = Vec::with_capacity(24 * p.positions.len() + 5 * p.indices.len() + 256);
     let format = match encoding {
@@ -181,4 +192,109 @@ fn out_columns<K: crate::attr::Element>(mesh: &Mesh, keys: &[K]) -> Vec<OutColum
         });
     }
     cols
+}
+
+/// Half-edge columns as PLY holds them: per-vertex properties where they
+/// have no seams, a face list for a seamed `texcoord`, and the names of
+/// what PLY cannot hold.
+pub(crate) struct CornerColumns {
+    vertex: Vec<OutColumn>,
+    face: Vec<OutColumn>,
+    pub(crate) dropped: Vec<String>,
+}
+
+/// Split half-edge columns as [`write_ply`] documents.
+pub(crate) fn corner_columns(mesh: &Mesh, maps: &crate::build::IndexMaps) -> CornerColumns {
+    let mut out = CornerColumns {
+        vertex: Vec::new(),
+        face: Vec::new(),
+        dropped: Vec::new(),
+    };
+    for info in mesh.attr_info(crate::ElementKind::Halfedge) {
+        let portable = info.value_type.is_some_and(|t| t != ValueType::Text);
+        if !portable {
+            out.dropped
+                .push(format!("half-edge attribute {:?} (no PLY type)", info.name));
+            continue;
+        }
+        // Each face's corner values, in the face's corner order, and each
+        // vertex's value if all its corners agree.
+        let mut per_face: Vec<Vec<Option<Value>>> = Vec::with_capacity(maps.faces.len());
+        let mut per_vertex: Vec<Option<Value>> = vec![None; maps.vertices.len()];
+        let mut seen = vec![false; maps.vertices.len()];
+        let mut seamless = true;
+        for &f in &maps.faces {
+            let Ok(view) = mesh.face(f) else { continue };
+            let mut corners = Vec::new();
+            for h in view.halfedges() {
+                let value = mesh.attr_value(&info.name, h).ok().flatten();
+                let origin = mesh.halfedge(h).ok().map(|v| v.origin().key());
+                if let Some(i) = origin.and_then(|v| maps.vertex_index(v)) {
+                    if !seen[i] {
+                        seen[i] = true;
+                        per_vertex[i] = value.clone();
+                    } else if per_vertex[i] != value {
+                        seamless = false;
+                    }
+                }
+                corners.push(value);
+            }
+            per_face.push(corners);
+        }
+        let numbers = |v: &Option<Value>| -> Option<Vec<f64>> {
+            match v.as_ref()? {
+                Value::List(items) => items.iter().map(Value::as_f64).collect(),
+                other => other.as_f64().map(|x| vec![x]),
+            }
+        };
+        let width = per_vertex.iter().find_map(|v| numbers(v).map(|n| n.len()));
+        let same_width = per_vertex
+            .iter()
+            .all(|v| v.is_none() || numbers(v).map(|n| n.len()) == width);
+        let names: Vec<String> = match (info.name.as_str(), width) {
+            ("texcoord", Some(2)) => vec!["s".into(), "t".into()],
+            ("normal", Some(3)) => vec!["nx".into(), "ny".into(), "nz".into()],
+            (name, Some(1)) => vec![name.into()],
+            (name, Some(n)) => (0..n).map(|k| format!("{name}_{k}")).collect(),
+            (_, None) => Vec::new(),
+        };
+        if seamless && same_width && !names.is_empty() {
+            for (k, name) in names.into_iter().enumerate() {
+                out.vertex.push(OutColumn {
+                    name,
+                    item: Scalar::F32,
+                    list: None,
+                    values: per_vertex
+                        .iter()
+                        .map(|v| numbers(v).map(|n| Value::F64(n[k])))
+                        .collect(),
+                });
+            }
+        } else if info.name == "texcoord" {
+            out.face.push(OutColumn {
+                name: "texcoord".into(),
+                item: Scalar::F32,
+                list: Some(Scalar::U8),
+                values: per_face
+                    .iter()
+                    .map(|corners| {
+                        let flat: Vec<Value> = corners
+                            .iter()
+                            .flat_map(|c| {
+                                let n = numbers(c).unwrap_or_default();
+                                (0..2).map(move |k| Value::F64(n.get(k).copied().unwrap_or(0.0)))
+                            })
+                            .collect();
+                        Some(Value::List(flat))
+                    })
+                    .collect(),
+            });
+        } else {
+            out.dropped.push(format!(
+                "half-edge attribute {:?} (differs between the corners of a vertex; PLY holds it per vertex only)",
+                info.name
+            ));
+        }
+    }
+    out
 }

@@ -1,0 +1,76 @@
+"""The exceptions meshloom raises. Every one derives from `MeshloomError`
+and carries, as attributes, what the Rust error carries."""
+
+from __future__ import annotations
+
+from typing import Any, Optional
+
+
+class MeshloomError(Exception):
+    """Base class of every meshloom error."""
+
+
+class StaleKeyError(MeshloomError, KeyError):
+    """A key names an element that was removed (or one of another mesh).
+
+    `element` is the stale key."""
+
+    element: Any = None
+
+    def __str__(self) -> str:  # KeyError would quote the message
+        return str(self.args[0]) if self.args else ""
+
+
+class RefusedError(MeshloomError, ValueError):
+    """An operator's preconditions failed; the mesh is unchanged.
+
+    `op` is the operator's name, `reason` a short identifier
+    (``"link_condition"``, ``"boundary"``, ...), `element` the key it was
+    called on (or the offending one)."""
+
+    op: str = ""
+    reason: str = ""
+    element: Any = None
+
+
+class BuildError(MeshloomError, ValueError):
+    """Polygons that cannot form a half-edge mesh. `face` is the index of the
+    offending face in the input (or None), `kind` a short identifier
+    (``"non_manifold_edge"``, ``"index_out_of_range"``, ...)."""
+
+    face: Optional[int] = None
+    kind: str = ""
+
+
+class ValidationError(MeshloomError):
+    """A structural rule is broken. `rule` is its number, `element` the key
+    where it broke (or None)."""
+
+    rule: int = 0
+    element: Any = None
+
+
+class ReadError(MeshloomError, OSError):
+    """A mesh file could not be read or written. `file` is its path (or
+    None), `line` the 1-based line for text input, `byte` the offset for
+    binary input (either may be None)."""
+
+    file: Optional[str] = None
+    line: Optional[int] = None
+    byte: Optional[int] = None
+
+
+class ColumnError(MeshloomError, LookupError):
+    """An attribute column is missing, exists already, or holds another type
+    or rule than asked."""
+
+
+__all__ = [
+    "MeshloomError",
+    "StaleKeyError",
+    "RefusedError",
+    "BuildError",
+    "ValidationError",
+    "ReadError",
+    "ColumnError",
+]

@@ -1,0 +1,411 @@
+//! What the four subdivision schemes share: options, the report, the
+//! driver that runs the levels and hands the result over, the topology of
+//! the face-splitting schemes, the crease rules, and the attribute plans.
+//!
+//! The schemes themselves live one per file beside this folder:
+//! [`loop_subdivision`](crate::algo::loop_subdivision),
+//! [`catmull_clark`](crate::algo::catmull_clark),
+//! [`sqrt3`](crate::algo::sqrt3) and [`midpoint`](crate::algo::midpoint).
+//!
+//! # How a level is built
+//!
+//! A level is built wholesale into a new [`Mesh`] from the previous one,
+//! never through the operators: one pass over the faces and one over the
+//! edges write every new half-edge record once, in slot order, into arenas
+//! allocated once at their final size. The operators would do the same
+//! relinking one element at a time, each with its own checks, rule calls
+//! and (in debug builds) a full validation. Measured with the peers kit
+//! (`../shared/peers/compare.sh`, 3 rounds, one level, thread-CPU medians
+//! with the minimum in brackets; 2026-11-24 on a 2-core machine at load
+//! average 15, so the spread is wide), against the best peer:
+//!
+//! | workload | mesh | meshloom ms | best peer ms | ratio |
+//! |---|---|---:|---:|---:|
+//! | Loop | 250k grid | 166 (130) | CGAL 264 (235) | 0.63 |
+//! | Loop | icosphere(7) | 139 (127) | CGAL 229 (194) | 0.61 |
+//! | Catmull-Clark | 250k grid | 184 (145) | CGAL 342 (283) | 0.54 |
+//! | Catmull-Clark | icosphere(7) | 163 (132) | CGAL 288 (252) | 0.57 |
+//! | √3 | 250k grid | 136 (106) | CGAL 221 (214) | 0.62 |
+//! | √3 | icosphere(7) | 124 (94) | CGAL 184 (138) | 0.67 |
+//!
+//! (A run of the same code less the division fix in `refine`, minutes
+//! earlier, gave 0.63, 0.59, 0.54, 0.64, 0.62, 0.68.) Instructions for one
+//! level of icosphere(7) (callgrind): Loop 324 M (topology 231 M,
+//! positions 93 M), Catmull-Clark 413 M before the fix (topology 260 M,
+//! positions 153 M), √3 300 M.
+//!
+//! Every program produced the same counts. Nothing of the input changes until every level is
+//! built: a cancelled or failed run drops its scratch meshes and leaves the
+//! input exactly as it was. The result goes in through `Mesh::replace_with`.
+//!
+//! # Keys
+//!
+//! Vertex keys from before stay valid and name the same (moved) vertex:
+//! vertex slots keep their numbers and new vertices come after them. Edge,
+//! half-edge and face keys from before are stale afterwards: every such
+//! element was split, and their arenas start at a base generation above
+//! every generation they ever issued (as [`Mesh::compact`] does).
+//!
+//! # Attributes
+//!
+//! Every column of the input is in the result, under the same name and id,
+//! so handles keep working:
+//!
+//! | arena | what the children get |
+//! |---|---|
+//! | vertices, positions | the scheme's stencil |
+//! | vertices, columns with a linear rule ([`Rule::LINEAR`](crate::attr::Rule::LINEAR): [`Interpolate`](crate::attr::Interpolate), floats in dynamic columns) | the stencil ("vertex" data, the default) or linear interpolation ("varying" data), chosen per column by [`VertexData`] |
+//! | vertices, other columns | old vertices keep their value; new ones get the rule's `interpolate` over the linear contributors (edge ends, face corners), as `split_edge` and `poke_face` do |
+//! | half-edges (corners: UVs) | face-varying, linear: each child corner interpolates the corners of its parent face only, so seams stay seams and charts never mix (OpenSubdiv's "linear all" face-varying interpolation) |
+//! | edges | the two children along a parent edge get `split(value, ½)` (flags are copied, conserved values halved); new edges inside a face get `interpolate` of nothing; the crease column's children get sharpness − 1 |
+//! | faces | every child gets `split(value, share)`, shares by area in the parent's plane (¼ for a triangle cut in four); holes keep their values |
+
+mod columns;
+pub(crate) mod creases;
+pub(crate) mod refine;
+
+pub(crate) use columns::{crease_children, finish_columns, ColumnPlans, RefinePlans};
+
+use crate::algo::progress::Progress;
+use crate::attr::ValueType;
+use crate::error::{Error, Result};
+use crate::keys::{AnyKey, ElementKind};
+use crate::mesh::Mesh;
+
+/// How the boundary is treated (boundary edges are always infinitely
+/// sharp creases: the boundary curve follows the curve rule of the scheme).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Boundary {
+    /// Every boundary vertex follows the crease (curve) rule, corners
+    /// included: a flat square's corners are rounded off (OpenSubdiv's
+    /// `VTX_BOUNDARY_EDGE_ONLY`). The default.
+    #[default]
+    Crease,
+    /// As `Crease`, and boundary vertices of valence 2 (the corner of a
+    /// single face) stay where they are: a flat square keeps its corners
+    /// (OpenSubdiv's `VTX_BOUNDARY_EDGE_AND_CORNER`).
+    CreaseAndCorners,
+}
+
+/// How a vertex column with a linear rule is refined.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub enum VertexInterpolation {
+    /// With the scheme's stencil, like positions (OpenSubdiv's "vertex"
+    /// data): colours, weights and other values that should be as smooth as
+    /// the surface. The default.
+    #[default]
+    Smooth,
+    /// Linearly: old vertices keep their value, a new vertex on an edge gets
+    /// the mean of its ends, a face point the mean of the face's corners
+    /// (OpenSubdiv's "varying" data).
+    Linear,
+}
+
+/// The choice between [`VertexInterpolation::Smooth`] and
+/// [`Linear`](VertexInterpolation::Linear) for the vertex columns with a
+/// linear rule (positions always take the scheme's stencil).
+///
+/// ```
+/// use meshloom::algo::subdivision::{VertexData, VertexInterpolation};
+/// // Smooth every column but "temperature", which is interpolated linearly.
+/// let data = VertexData::default().with("temperature", VertexInterpolation::Linear);
+/// assert_eq!(data.of("temperature"), VertexInterpolation::Linear);
+/// assert_eq!(data.of("colour"), VertexInterpolation::Smooth);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct VertexData {
+    /// For the columns not named in `columns`.
+    pub default: VertexInterpolation,
+    /// Per column, by name.
+    pub columns: Vec<(String, VertexInterpolation)>,
+}
+
+impl VertexData {
+    /// The same, with `name` interpolated as `how`.
+    pub fn with(mut self, name: &str, how: VertexInterpolation) -> VertexData {
+        self.columns.retain(|(n, _)| n != name);
+        self.columns.push((name.to_owned(), how));
+        self
+    }
+
+    /// How column `name` is interpolated.
+    pub fn of(&self, name: &str) -> VertexInterpolation {
+        self.columns
+            .iter()
+            .find(|(n, _)| n == name)
+            .map_or(self.default, |(_, how)| *how)
+    }
+}
+
+/// Options of [`loop_subdivide`](crate::algo::loop_subdivide),
+/// [`catmull_clark`](crate::algo::catmull_clark()) and
+/// [`sqrt3_subdivide`](crate::algo::sqrt3_subdivide) (which takes no crease
+/// column).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SubdivisionOptions {
+    /// Levels to apply (default 1; 0 leaves the mesh as it is).
+    pub levels: u32,
+    /// Boundary corners (default: every boundary vertex follows the curve
+    /// rule).
+    pub boundary: Boundary,
+    /// A boolean vertex column: vertices where it is `true` stay where they
+    /// are (the corner rule), anywhere on the mesh. Default: none.
+    pub corner_column: Option<String>,
+    /// A numeric (`f64` or `f32`) edge column of crease sharpness, as in
+    /// OpenSubdiv and Pixar's semi-sharp creases: an edge of sharpness
+    /// `s ≥ 1` follows the sharp (curve) rule, its two children get `s − 1`;
+    /// `0 < s < 1` blends the sharp and smooth rules; `f64::INFINITY` never
+    /// softens. Absent values, zero and negative values are smooth; NaN is
+    /// refused. Default: none (no creases but the boundary).
+    pub crease_column: Option<String>,
+    /// Smooth or linear, per vertex column with a linear rule.
+    pub vertex_data: VertexData,
+}
+
+impl Default for SubdivisionOptions {
+    fn default() -> Self {
+        SubdivisionOptions {
+            levels: 1,
+            boundary: Boundary::Crease,
+            corner_column: None,
+            crease_column: None,
+            vertex_data: VertexData::default(),
+        }
+    }
+}
+
+impl SubdivisionOptions {
+    /// `levels` levels, everything else by default.
+    pub fn levels(levels: u32) -> SubdivisionOptions {
+        SubdivisionOptions {
+            levels,
+            ..SubdivisionOptions::default()
+        }
+    }
+}
+
+/// Element counts of a mesh.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Counts {
+    /// Vertices.
+    pub vertices: usize,
+    /// Edges.
+    pub edges: usize,
+    /// Faces (holes excluded).
+    pub faces: usize,
+    /// Holes (boundary loops).
+    pub holes: usize,
+}
+
+impl Counts {
+    /// The counts of `mesh`.
+    pub fn of(mesh: &Mesh) -> Counts {
+        Counts {
+            vertices: mesh.vertex_count(),
+            edges: mesh.edge_count(),
+            faces: mesh.face_count(),
+            holes: mesh.hole_count(),
+        }
+    }
+}
+
+/// What one level did.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct LevelReport {
+    /// Counts after the level.
+    pub counts: Counts,
+    /// Interior edges of the parent with a positive sharpness.
+    pub sharp_edges: usize,
+    /// Parent vertices moved by the crease (curve) rule: boundary vertices
+    /// and vertices on two sharp edges.
+    pub crease_vertices: usize,
+    /// Parent vertices that stayed put (the corner rule).
+    pub corner_vertices: usize,
+    /// Parent vertices whose rule changes at this level (a sharpness
+    /// decaying below 1), moved by a blend of the two rules.
+    pub blended_vertices: usize,
+    /// √3 only: whether this level trisected the boundary edges.
+    pub boundary_trisected: bool,
+}
+
+/// What a subdivision did: counts before and after every level, and the
+/// rules it used. Time-independent: the same input gives the same report.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct SubdivisionReport {
+    /// The scheme's function name (`"loop_subdivide"`, `"catmull_clark"`,
+    /// `"sqrt3_subdivide"`, `"midpoint_subdivide"`).
+    pub scheme: &'static str,
+    /// Counts of the input.
+    pub input: Counts,
+    /// One entry per level, in order.
+    pub levels: Vec<LevelReport>,
+}
+
+impl SubdivisionReport {
+    /// Counts after the last level (the input's when no level ran).
+    pub fn output(&self) -> Counts {
+        self.levels.last().map_or(self.input, |l| l.counts)
+    }
+}
+
+/// Run `levels` levels of `level`, each reading the previous result, and
+/// hand the last over to `mesh`. Nothing of `mesh` changes before every
+/// level is built; an error or a cancellation leaves it as it was.
+pub(crate) fn run_levels(
+    mesh: &mut Mesh,
+    scheme: &'static str,
+    levels: u32,
+    progress: &mut Progress<'_>,
+    mut level: impl FnMut(&Mesh, u32, &mut Progress<'_>) -> Result<(Mesh, LevelReport)>,
+) -> Result<SubdivisionReport> {
+    let mut report = SubdivisionReport {
+        scheme,
+        input: Counts::of(mesh),
+        levels: Vec::with_capacity(levels as usize),
+    };
+    let mut current: Option<Mesh> = None;
+    for i in 0..levels {
+        let source = current.as_ref().unwrap_or(mesh);
+        if source.is_empty() {
+            break;
+        }
+        let (next, mut level_report) = level(source, i, progress)?;
+        debug_assert_eq!(next.validate(), Ok(()), "{scheme} level {i}");
+        level_report.counts = Counts::of(&next);
+        report.levels.push(level_report);
+        current = Some(next);
+    }
+    progress.report(scheme, "done", 1, 1)?;
+    if let Some(result) = current {
+        mesh.replace_with(result);
+    }
+    Ok(report)
+}
+
+/// Reports progress every `STRIDE` units of a pass.
+pub(crate) struct Stage<'p, 'a> {
+    progress: &'p mut Progress<'a>,
+    algorithm: &'static str,
+    name: String,
+    total: u64,
+}
+
+impl<'p, 'a> Stage<'p, 'a> {
+    /// Report every this many units (a power of two).
+    pub(crate) const STRIDE: usize = 1 << 15;
+
+    pub(crate) fn new(
+        progress: &'p mut Progress<'a>,
+        algorithm: &'static str,
+        level: u32,
+        what: &str,
+        total: usize,
+    ) -> Result<Stage<'p, 'a>> {
+        let name = format!("level {}: {what}", level + 1);
+        progress.report(algorithm, &name, 0, total as u64)?;
+        Ok(Stage {
+            progress,
+            algorithm,
+            name,
+            total: total as u64,
+        })
+    }
+
+    /// Report `done` units if `done` is a multiple of [`STRIDE`](Self::STRIDE).
+    #[inline]
+    pub(crate) fn tick(&mut self, done: usize) -> Result<()> {
+        if done & (Self::STRIDE - 1) == 0 && self.progress.is_active() {
+            self.progress
+                .report(self.algorithm, &self.name, done as u64, self.total)?;
+        }
+        Ok(())
+    }
+
+    /// The stage is over.
+    pub(crate) fn finish(self) -> Result<()> {
+        self.progress
+            .report(self.algorithm, &self.name, self.total, self.total)
+    }
+}
+
+/// An `Unsuitable` error.
+pub(crate) fn unsuitable(
+    algorithm: &'static str,
+    key: Option<AnyKey>,
+    reason: impl Into<String>,
+) -> Error {
+    Error::Unsuitable {
+        algorithm,
+        key,
+        reason: reason.into(),
+    }
+}
+
+/// Check the options that name columns: they exist with a fitting type.
+pub(crate) fn check_columns(
+    mesh: &Mesh,
+    algorithm: &'static str,
+    corner_column: Option<&str>,
+    crease_column: Option<&str>,
+    vertex_data: &VertexData,
+) -> Result<()> {
+    if let Some(name) = corner_column {
+        column_of_type(mesh, ElementKind::Vertex, name, &[ValueType::Bool], "bool")?;
+    }
+    if let Some(name) = crease_column {
+        column_of_type(
+            mesh,
+            ElementKind::Edge,
+            name,
+            &[ValueType::F64, ValueType::F32],
+            "f64",
+        )?;
+    }
+    for (name, _) in &vertex_data.columns {
+        if name == crate::attr::POSITION {
+            return Err(unsuitable(
+                algorithm,
+                None,
+                "positions always follow the scheme's stencil; VertexData cannot name them",
+            ));
+        }
+        if mesh.attrs.vertex.find(name).is_none() {
+            return Err(Error::AttributeMissing {
+                kind: ElementKind::Vertex,
+                name: name.clone(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The index of column `name` of arena `kind`, whose values convert to one
+/// of `types`.
+pub(crate) fn column_of_type(
+    mesh: &Mesh,
+    kind: ElementKind,
+    name: &str,
+    types: &[ValueType],
+    expected: &'static str,
+) -> Result<usize> {
+    let cols = mesh.attrs.columns(kind);
+    let i = cols.find(name).ok_or_else(|| Error::AttributeMissing {
+        kind,
+        name: name.to_owned(),
+    })?;
+    let col = &cols.cols[i].1;
+    let ty = cols.meta[i].value_type.or_else(|| col.portable_type());
+    if ty.is_some_and(|t| types.contains(&t)) {
+        Ok(i)
+    } else {
+        Err(Error::AttributeType {
+            kind,
+            name: name.to_owned(),
+            expected,
+            found: col.type_name(),
+        })
+    }
+}

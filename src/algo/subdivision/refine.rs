@@ -1,0 +1,511 @@
+//! The topology of the face-splitting schemes: every edge splits at a new
+//! edge point, and every face is cut either 1-to-4 (a triangle: its three
+//! corner triangles and a centre triangle, as Loop) or into one quad per
+//! corner around a new face point (any polygon, as Catmull-Clark).
+//!
+//! ```text
+//!   triangle (1-to-4)               polygon (quads)
+//!
+//!         v1                            v1 ---- m0 ---- v0
+//!        /  \                           |       |       |
+//!      m0 -- m1                         m1 ---- c ----- m3
+//!      / \  / \                         |       |       |
+//!    v0 -- m2 -- v2                     v2 ---- m2 ---- v3
+//! ```
+//!
+//! # The new layout
+//!
+//! With `nv` the parent's vertex slots, `E` its edges, `C` its face corners
+//! (half-edges not in holes), `T` the faces cut 1-to-4, `Q` those cut into
+//! quads and `H` the holes:
+//!
+//! | arena | slots |
+//! |---|---|
+//! | vertices | `[0, nv)` the parent's (vacant ones stay vacant), `[nv, nv + E)` edge points by edge rank, `[nv + E, nv + E + Q)` face points by rank |
+//! | edges | `[0, C)` one new edge inside a face per corner, by corner id; `[C, C + 2E)` the two children of each parent edge (the one at the end the parent's side-0 half-edge leaves first) |
+//! | faces | `[0, C)` one child face per corner (the triangle or quad at that corner), by corner id; `[C, C + T)` centre triangles; `[C + T, C + T + H)` the holes |
+//!
+//! Corner ids number the corners face by face in slot order, each face from
+//! its own half-edge along `next`. The face pass writes the records of the
+//! new inside edges in that order, the edge pass the four records of each
+//! parent edge's children in edge order: every record is written once, in
+//! slot order, into arenas reserved at their final size.
+
+use crate::error::Result;
+use crate::layout::{Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};
+use crate::mesh::Mesh;
+use crate::slots::Slots;
+
+use super::{unsuitable, Stage};
+use crate::algo::progress::Progress;
+
+/// How a face is cut.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Cut {
+    /// A triangle into four triangles.
+    Triangle,
+    /// A polygon into one quad per corner around a face point.
+    Quads,
+}
+
+/// Which faces are cut how.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum CutRule {
+    /// Every face is a triangle cut 1-to-4 (other faces are refused).
+    Triangles,
+    /// Every face is cut into quads.
+    Quads,
+}
+
+impl CutRule {
+    /// How a face of `degree` sides is cut, `None` if it cannot be.
+    #[inline]
+    pub(crate) fn cut(self, degree: usize) -> Option<Cut> {
+        match self {
+            CutRule::Triangles => (degree == 3).then_some(Cut::Triangle),
+            CutRule::Quads => Some(Cut::Quads),
+        }
+    }
+}
+
+/// Dense ranks of the live slots of an arena: the identity while no slot
+/// was ever freed, a table otherwise.
+pub(crate) struct Ranks(Option<Vec<u32>>);
+
+impl Ranks {
+    pub(crate) fn of(slots: &Slots) -> Ranks {
+        if slots.intact() {
+            return Ranks(None);
+        }
+        let mut next = 0u32;
+        let table = (0..slots.slot_count())
+            .map(|i| {
+                let r = next;
+                next += u32::from(slots.is_live(i));
+                r
+            })
+            .collect();
+        Ranks(Some(table))
+    }
+
+    /// The rank of live slot `i`.
+    #[inline(always)]
+    pub(crate) fn get(&self, i: usize) -> u32 {
+        match &self.0 {
+            None => i as u32,
+            Some(t) => t[i],
+        }
+    }
+}
+
+/// The maps from the parent to the new layout (see the module doc).
+pub(crate) struct Refinement {
+    /// The parent's vertex slots.
+    pub(crate) nv: u32,
+    /// The parent's live edges.
+    pub(crate) edges: u32,
+    /// The parent's face corners.
+    pub(crate) corners: u32,
+    /// Faces cut 1-to-4.
+    pub(crate) tris: u32,
+    /// Faces cut into quads.
+    pub(crate) quads: u32,
+    /// Holes.
+    pub(crate) holes: u32,
+    pub(crate) rule: CutRule,
+    pub(crate) edge_rank: Ranks,
+    /// Per parent half-edge slot: its corner id + 1; 0 in holes and vacant
+    /// slots.
+    pub(crate) corner: Vec<u32>,
+    /// Per parent face slot: its rank among the faces cut the same way, or
+    /// among the holes.
+    pub(crate) face_rank: Vec<u32>,
+}
+
+/// Children per parent edge.
+const CHILDREN: u32 = 2;
+
+impl Refinement {
+    /// The edge point of parent edge `e`.
+    #[inline(always)]
+    pub(crate) fn edge_point(&self, e: Eid) -> Vid {
+        Vid::new(self.nv + self.edge_rank.get(e.index()))
+    }
+
+    /// Child `j` of parent edge `e`: child 0 touches the end that side 0
+    /// leaves, child 1 the other.
+    #[inline(always)]
+    pub(crate) fn child(&self, e: Eid, j: u32) -> Eid {
+        Eid::new(self.corners + CHILDREN * self.edge_rank.get(e.index()) + j)
+    }
+
+    /// The child of parent half-edge `p` that leaves `origin(p)`, on `p`'s
+    /// side.
+    #[inline(always)]
+    pub(crate) fn first_child(&self, p: Hid) -> Hid {
+        self.child(p.edge(), p.side()).halfedge(p.side())
+    }
+
+    /// The child of `p` that enters `dest(p)`, on `p`'s side.
+    #[inline(always)]
+    pub(crate) fn second_child(&self, p: Hid) -> Hid {
+        self.child(p.edge(), 1 - p.side()).halfedge(p.side())
+    }
+
+    /// The corner id of parent half-edge `h`, if it is in a face.
+    #[inline(always)]
+    pub(crate) fn corner_of(&self, h: Hid) -> Option<u32> {
+        self.corner[h.index()].checked_sub(1)
+    }
+
+    /// The new hole of parent hole `f`.
+    #[inline(always)]
+    pub(crate) fn hole(&self, f: Fid) -> Fid {
+        Fid::new(self.corners + self.tris + self.face_rank[f.index()])
+    }
+
+    /// The new vertex slots.
+    pub(crate) fn vertex_slots(&self) -> usize {
+        (self.nv + self.edges + self.quads) as usize
+    }
+}
+
+/// The connectivity of a new level, without attribute columns.
+pub(crate) struct Topology {
+    pub(crate) v_halfedge: IdVec<Vid, Hid>,
+    pub(crate) v_slots: Slots,
+    pub(crate) he: IdVec<Hid, HalfedgeRecord>,
+    pub(crate) e_slots: Slots,
+    pub(crate) f_halfedge: IdVec<Fid, FaceLink>,
+    pub(crate) f_slots: Slots,
+    pub(crate) holes: usize,
+}
+
+impl Topology {
+    /// A mesh of this connectivity, with the given attribute columns.
+    pub(crate) fn into_mesh(self, attrs: crate::store::AttrStore) -> Mesh {
+        Mesh {
+            v_halfedge: self.v_halfedge.into(),
+            v_slots: self.v_slots,
+            he: self.he.into(),
+            e_slots: self.e_slots,
+            f_halfedge: self.f_halfedge.into(),
+            f_slots: self.f_slots,
+            holes: self.holes,
+            attrs,
+            rec: None,
+        }
+    }
+}
+
+/// The half-edges of the face through `h`, in order (bounded by the
+/// number of half-edge slots).
+#[inline]
+pub(crate) fn face_ring(mesh: &Mesh, start: Hid, ring: &mut Vec<Hid>) {
+    ring.clear();
+    let mut h = start;
+    for _ in 0..mesh.he.len() {
+        ring.push(h);
+        h = mesh.he[h].next;
+        if h == start {
+            break;
+        }
+    }
+}
+
+/// A fresh arena of `n` live slots whose generations are above every
+/// generation `old` ever issued.
+pub(crate) fn fresh_slots(old: &Slots, n: usize, algorithm: &'static str) -> Result<Slots> {
+    old.compacted(n).ok_or_else(|| {
+        unsuitable(
+            algorithm,
+            None,
+            "an arena has used up its generations (2^32 reuses of a slot)",
+        )
+    })
+}
+
+/// Build the connectivity of one level: every edge split, every face cut by
+/// `rule`.
+///
+/// # Errors
+/// [`Error::Unsuitable`](crate::Error::Unsuitable) for a face `rule` cannot
+/// cut; [`Error::Cancelled`](crate::Error::Cancelled).
+pub(crate) fn refine(
+    mesh: &Mesh,
+    rule: CutRule,
+    algorithm: &'static str,
+    level: u32,
+    progress: &mut Progress<'_>,
+) -> Result<(Refinement, Topology)> {
+    let nv = mesh.v_slots.slot_count();
+    let ne_slots = mesh.e_slots.slot_count();
+    let nf_slots = mesh.f_slots.slot_count();
+    let edges = mesh.edge_count();
+    let mut boundary = 0usize;
+    for f in mesh.fids() {
+        if mesh.is_hole(f) {
+            boundary += mesh.face_loop(f).count();
+        }
+    }
+    let corners = Eid::halfedge_slots(edges) - boundary;
+    let too_big = u32::try_from(nv + edges + mesh.face_count()).is_err()
+        || u32::try_from(Eid::halfedge_slots(corners + 2 * edges)).is_err()
+        || Eid::halfedge_slots(corners + 2 * edges) >= (1usize << 31);
+    if too_big {
+        return Err(unsuitable(
+            algorithm,
+            None,
+            "the result would have more than 2^31 half-edges",
+        ));
+    }
+    let mut r = Refinement {
+        nv: nv as u32,
+        edges: edges as u32,
+        corners: corners as u32,
+        tris: 0,
+        quads: 0,
+        holes: 0,
+        rule,
+        edge_rank: Ranks::of(&mesh.e_slots),
+        corner: vec![0u32; Eid::halfedge_slots(ne_slots)],
+        face_rank: vec![0u32; nf_slots],
+    };
+
+    // ----- faces: the records of the new inside edges, in corner order ----
+    let new_edges = corners + 2 * edges;
+    let mut he: IdVec<Hid, HalfedgeRecord> =
+        IdVec::from_vec(Vec::with_capacity(Eid::halfedge_slots(new_edges)));
+    let max_faces = corners + mesh.face_count() + mesh.hole_count();
+    let mut f_halfedge: IdVec<Fid, FaceLink> = IdVec::from_vec(Vec::with_capacity(max_faces));
+    let mut centers: Vec<FaceLink> = Vec::new();
+    let mut hole_links: Vec<FaceLink> = Vec::with_capacity(mesh.hole_count());
+    let mut face_point_links: Vec<Hid> = Vec::new();
+    let mut ring: Vec<Hid> = Vec::with_capacity(16);
+    let mut next_corner = 0u32;
+    let mut stage = Stage::new(progress, algorithm, level, "faces", nf_slots)?;
+    for fi in 0..nf_slots {
+        stage.tick(fi)?;
+        if !mesh.f_slots.is_live(fi) {
+            continue;
+        }
+        let f = Fid::new(fi as u32);
+        let link = mesh.f_halfedge[f];
+        if link.is_hole() {
+            r.face_rank[fi] = r.holes;
+            r.holes += 1;
+            hole_links.push(FaceLink::new(r.first_child(link.halfedge()), true));
+            continue;
+        }
+        face_ring(mesh, link.halfedge(), &mut ring);
+        let n = ring.len();
+        let Some(cut) = rule.cut(n) else {
+            return Err(unsuitable(
+                algorithm,
+                Some(mesh.fkey(f).into()),
+                format!("the scheme takes triangles; this face has {n} sides"),
+            ));
+        };
+        let c0 = next_corner;
+        for (i, &h) in ring.iter().enumerate() {
+            r.corner[h.index()] = c0 + i as u32 + 1;
+        }
+        next_corner += n as u32;
+        // Corner ids of position i, i - 1 and i + 1 around the face, without
+        // a division (this loop runs once per corner of the mesh).
+        let cid = |i: usize| c0 + i as u32;
+        let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
+        let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
+        match cut {
+            Cut::Triangle => {
+                r.face_rank[fi] = r.tris;
+                let center = Fid::new(r.corners + r.tris);
+                r.tris += 1;
+                for i in 0..n {
+                    let (hi, hp) = (ring[i], ring[prev(i)]);
+                    let (mi, mp) = (r.edge_point(hi.edge()), r.edge_point(hp.edge()));
+                    // m_i -> m_{i-1}, in the corner triangle at origin(h_i).
+                    he.push(HalfedgeRecord {
+                        origin: mi,
+                        next: r.second_child(hp),
+                        face: Fid::new(cid(i)),
+                    });
+                    // m_{i-1} -> m_i, in the centre triangle.
+                    he.push(HalfedgeRecord {
+                        origin: mp,
+                        next: Eid::new(cid(next(i))).halfedge(1),
+                        face: center,
+                    });
+                }
+                centers.push(FaceLink::new(Eid::new(c0).halfedge(1), false));
+            }
+            Cut::Quads => {
+                r.face_rank[fi] = r.quads;
+                let c = Vid::new(r.nv + r.edges + r.quads);
+                r.quads += 1;
+                for (i, &hi) in ring.iter().enumerate() {
+                    let mi = r.edge_point(hi.edge());
+                    // m_i -> c, in the quad at origin(h_i).
+                    he.push(HalfedgeRecord {
+                        origin: mi,
+                        next: Eid::new(cid(prev(i))).halfedge(1),
+                        face: Fid::new(cid(i)),
+                    });
+                    // c -> m_i, in the quad at dest(h_i).
+                    he.push(HalfedgeRecord {
+                        origin: c,
+                        next: r.second_child(hi),
+                        face: Fid::new(cid(next(i))),
+                    });
+                }
+                face_point_links.push(Eid::new(c0).halfedge(1));
+            }
+        }
+        for &h in &ring {
+            f_halfedge.push(FaceLink::new(r.first_child(h), false));
+        }
+    }
+    stage.finish()?;
+    debug_assert_eq!(next_corner, r.corners);
+    f_halfedge.extend_from(&centers);
+    f_halfedge.extend_from(&hole_links);
+
+    // ----- vertices: the parent's keep their slots ---------------------------
+    let mut v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(Vec::with_capacity(r.vertex_slots()));
+    for vi in 0..nv {
+        let v = Vid::new(vi as u32);
+        v_halfedge.push(if mesh.v_slots.is_live(vi) {
+            r.first_child(mesh.v_halfedge[v])
+        } else {
+            Hid::NONE
+        });
+    }
+
+    // ----- edges: the records of the two children of each ------------------
+    let mut stage = Stage::new(progress, algorithm, level, "edges", ne_slots)?;
+    for ei in 0..ne_slots {
+        stage.tick(ei)?;
+        if !mesh.e_slots.is_live(ei) {
+            continue;
+        }
+        let e = Eid::new(ei as u32);
+        let m = r.edge_point(e);
+        let [h, t] = e.halfedges();
+        let (ha, hb) = child_records(mesh, &r, h, m);
+        let (ta, tb) = child_records(mesh, &r, t, m);
+        // Child 0 is (a, m): h's first child and t's second; child 1 is
+        // (m, b): h's second child and t's first.
+        he.push(ha);
+        he.push(tb);
+        he.push(hb);
+        he.push(ta);
+        // An edge point on the boundary names its half-edge in the hole.
+        let out = if r.corner_of(t).is_none() {
+            r.second_child(t)
+        } else {
+            r.second_child(h)
+        };
+        v_halfedge.push(out);
+    }
+    stage.finish()?;
+    v_halfedge.extend_from(&face_point_links);
+
+    let topology = Topology {
+        v_slots: mesh.v_slots.extended((r.edges + r.quads) as usize),
+        e_slots: fresh_slots(&mesh.e_slots, new_edges, algorithm)?,
+        f_slots: fresh_slots(&mesh.f_slots, f_halfedge.len(), algorithm)?,
+        v_halfedge,
+        he,
+        f_halfedge,
+        holes: r.holes as usize,
+    };
+    Ok((r, topology))
+}
+
+/// The records of the two children of parent half-edge `p`, whose edge
+/// point is `m`: the first leaves `origin(p)`, the second enters `dest(p)`.
+#[inline(always)]
+fn child_records(mesh: &Mesh, r: &Refinement, p: Hid, m: Vid) -> (HalfedgeRecord, HalfedgeRecord) {
+    let rec = mesh.he[p];
+    let next_first = r.first_child(rec.next);
+    match r.corner_of(p) {
+        Some(c) => {
+            // In a face: the first child lies in the child face at origin(p)
+            // and goes on along the new edge inside the face; the second
+            // lies in the child face at dest(p), the corner of next(p).
+            let next_corner = r.corner[rec.next.index()] - 1;
+            (
+                HalfedgeRecord {
+                    origin: rec.origin,
+                    next: Eid::new(c).halfedge(0),
+                    face: Fid::new(c),
+                },
+                HalfedgeRecord {
+                    origin: m,
+                    next: next_first,
+                    face: Fid::new(next_corner),
+                },
+            )
+        }
+        None => {
+            let hole = r.hole(rec.face);
+            (
+                HalfedgeRecord {
+                    origin: rec.origin,
+                    next: r.second_child(p),
+                    face: hole,
+                },
+                HalfedgeRecord {
+                    origin: m,
+                    next: next_first,
+                    face: hole,
+                },
+            )
+        }
+    }
+}
+
+/// Refuse an interior vertex of valence 2 whose two faces are both cut
+/// 1-to-4: its two faces share both its edges, and each would join the same
+/// two edge points, making a double edge.
+pub(crate) fn check_valence_two(mesh: &Mesh, rule: CutRule, algorithm: &'static str) -> Result<()> {
+    if rule == CutRule::Quads {
+        return Ok(());
+    }
+    for v in mesh.vids() {
+        if let Some(e) = valence_two_error(mesh, v, rule, algorithm) {
+            return Err(e);
+        }
+    }
+    Ok(())
+}
+
+/// The error for `v` if it is an interior vertex of valence 2 between two
+/// faces cut 1-to-4.
+#[inline]
+pub(crate) fn valence_two_error(
+    mesh: &Mesh,
+    v: Vid,
+    rule: CutRule,
+    algorithm: &'static str,
+) -> Option<crate::Error> {
+    let h0 = mesh.v_halfedge[v];
+    if mesh.in_hole(h0) {
+        return None;
+    }
+    let h1 = mesh.he[h0.twin()].next;
+    if h1 == h0 || mesh.he[h1.twin()].next != h0 {
+        return None;
+    }
+    let both_cut = [h0, h1]
+        .iter()
+        .all(|&h| rule.cut(mesh.face_loop(mesh.face_of(h)).count()) == Some(Cut::Triangle));
+    both_cut.then(|| {
+        unsuitable(
+            algorithm,
+            Some(mesh.vkey(v).into()),
+            "an interior vertex of valence 2: its two faces share both its edges, \
+             and splitting them would join two edge points twice",
+        )
+    })
+}

@@ -1,0 +1,700 @@
+//! Transactions, undo/redo and change tracking: what a modelling editor
+//! needs from its mesh kernel.
+//!
+//! Three services share one recorder, which is off until one of them is
+//! asked for (then [`Mesh`] carries it; with it off, every mutator's
+//! journal check is one test of a null pointer):
+//!
+//! - **Transactions.** [`Mesh::transaction`] runs a closure; if it returns
+//!   an error or panics, the mesh is put back exactly as it was (links,
+//!   attribute columns and their values, which keys are valid), and the
+//!   error or panic goes on to the caller. Nested transactions are one.
+//! - **Undo and redo.** [`Mesh::enable_history`] keeps every committed edit
+//!   as a compact delta (the links, births and deaths, hole count and
+//!   attribute values it changed, as varint bytes), not a copy.
+//!   [`Mesh::undo`] and [`Mesh::redo`] restore the exact state, keys
+//!   included: keys valid before an edit are valid after undoing it; keys
+//!   of elements the undone edit created are stale, and never name another
+//!   element later (an undone birth leaves its slot one generation above
+//!   the element; a new edit takes the slot at a later generation); redo
+//!   revives the same slots at the same generations, so an editor's
+//!   selection survives undo/redo. [`Mesh::begin_step`]/[`Mesh::end_step`]
+//!   (or [`Mesh::step`]) group edits under one name; [`HistoryLimits`]
+//!   bounds depth and memory; a new edit after undos drops the redo branch.
+//! - **Change tracking.** [`Mesh::take_changes`] reports which vertices,
+//!   edges, faces and attribute columns were created, removed or modified
+//!   since the last call, after edits, transactions, undos and redos.
+//!
+//! # What is one edit
+//!
+//! Every public operator, attribute setter and [`RawEdit`] session
+//! (closed by [`RawEdit::finish`]) is one step; each undo takes back one
+//! *unit*: one step, or every step of a [`Mesh::begin_step`] group or of a
+//! transaction. Algorithms built on the operators are journaled for free
+//! (group them with [`Mesh::step`] to undo them as one).
+//!
+//! Wholesale rebuilds ([`Mesh::compact`], algorithms that rebuild the mesh
+//! through the crate's one door for that, `Mesh::replace_with`) are kept as
+//! one step holding the whole prior mesh (memory: one copy); undo swaps it
+//! back, and the rebuilt mesh's keys stay stale after that undo. Change
+//! tracking reports them as [`Changes::rebuilt`].
+//!
+//! # Bulk writes (the rule for algorithm writers)
+//!
+//! Raw mutable access to a whole column, [`Mesh::position_slots_mut`] and
+//! [`Mesh::attr_view_mut`], saves the whole column when it is taken while
+//! the recorder is on (O(slots), once per call), closes the open step, and
+//! the writes become one step of their own (holding only the values that
+//! changed) at the next edit or journal call. So: take the view once per
+//! pass, not once per element; for a few elements use
+//! [`Mesh::set_position`] or [`Mesh::set_attr`], which save one value.
+//! Inside the crate, every link write goes through the mutators in
+//! `journal/hooks.rs` (the link arrays have no `IndexMut`), every column
+//! write through the `Columns` rule methods, which save first; a slot born
+//! in the open step needs no saving (undo makes it vacant).
+//!
+//! # Equality, precisely
+//!
+//! After undoing everything, the mesh equals its starting snapshot in:
+//! every live element's links (as compacted polygons), every attribute
+//! column (names, order, types, values and absences of live elements), and
+//! the set of valid keys. What may differ: vacant slots (an undone birth
+//! leaves its slot vacant at a higher generation, and its old content), the
+//! order of the free lists, and the arenas' slot counts (slots stay, held
+//! for a redo). The journal is not serialised or cloned: a clone or a
+//! deserialised copy has no history, and the slots held for a redo are
+//! free in it.
+//!
+//! # An editor loop
+//!
+//! ```
+//! use meshloom::{shapes, journal::HistoryLimits, buffers::TriangleBufferOptions};
+//! let mut mesh = shapes::cube();
+//! mesh.enable_history(HistoryLimits::default());
+//! mesh.track_changes(true);
+//! let upload = |m: &meshloom::Mesh| m.to_triangle_buffers(&TriangleBufferOptions::default());
+//! let _gpu = upload(&mesh).unwrap(); // first upload
+//!
+//! // The user selects an edge and runs "Split" twice, as one menu item.
+//! let e = mesh.edges().next().unwrap();
+//! let v = mesh.step("Split twice", |m| {
+//!     let v = m.split_edge(e, 0.5)?;
+//!     let h = m.vertex(v)?.outgoing().next().unwrap();
+//!     let e2 = m.halfedge(h)?.edge().key();
+//!     m.split_edge(e2, 0.5)
+//! })?;
+//! assert_eq!(mesh.undo_name(), Some("Split twice"));
+//!
+//! // Re-upload only what changed (here: rebuild the buffers; an engine
+//! // would patch the listed vertices and faces).
+//! let changes = mesh.take_changes();
+//! assert_eq!(changes.vertices.created.len(), 2);
+//! assert!(changes.vertices.created.contains(&v));
+//! let _gpu = upload(&mesh).unwrap();
+//!
+//! // Undo: the new vertices go, and their keys are stale.
+//! assert!(mesh.undo());
+//! assert!(mesh.vertex(v).is_err());
+//! assert_eq!(mesh.take_changes().vertices.removed.len(), 2);
+//! // Redo: the same keys come back.
+//! assert!(mesh.redo());
+//! assert!(mesh.vertex(v).is_ok());
+//!
+//! // A tool that fails half-way changes nothing.
+//! let before = mesh.vertex_count();
+//! let r: Result<(), _> = mesh.transaction(|m| {
+//!     let e = m.edges().next().unwrap();
+//!     m.split_edge(e, 0.5)?;
+//!     Err(meshloom::Error::Cancelled { algorithm: "Split" }) // the user pressed Escape
+//! });
+//! assert!(r.is_err());
+//! assert_eq!(mesh.vertex_count(), before);
+//! # Ok::<(), meshloom::Error>(())
+//! ```
+//!
+//! [`RawEdit`]: crate::link::RawEdit
+//! [`RawEdit::finish`]: crate::link::RawEdit::finish
+
+mod codec;
+mod hooks;
+mod recorder;
+
+use recorder::Dir;
+pub(crate) use recorder::Recorder;
+
+use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+
+use crate::error::Result;
+use crate::keys::{EdgeKey, ElementKind, FaceKey, VertexKey};
+use crate::layout::{Eid, Fid, Vid};
+use crate::mesh::Mesh;
+
+/// Bounds on the undo history. `None`: unbounded.
+///
+/// When a bound is passed, the oldest units go first (never the one just
+/// recorded, nor any while a transaction or step group is open).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct HistoryLimits {
+    /// At most this many undo units.
+    pub max_steps: Option<usize>,
+    /// At most about this many bytes of undo log (bytes and side records).
+    pub max_bytes: Option<usize>,
+}
+
+/// Keys of one kind of element that changed since the last
+/// [`Mesh::take_changes`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ElementChanges<K> {
+    /// Live now, not live at the last call (sorted by slot).
+    pub created: Vec<K>,
+    /// Live at the last call, stale now.
+    pub removed: Vec<K>,
+    /// Live at both with the same key, and written since: its links, an
+    /// attribute value, or (for faces and vertices) a half-edge of its
+    /// loop or star. A write that put back the same value may still count.
+    pub modified: Vec<K>,
+}
+
+impl<K> Default for ElementChanges<K> {
+    fn default() -> Self {
+        ElementChanges {
+            created: Vec::new(),
+            removed: Vec::new(),
+            modified: Vec::new(),
+        }
+    }
+}
+
+impl<K> ElementChanges<K> {
+    /// Whether nothing changed.
+    pub fn is_empty(&self) -> bool {
+        self.created.is_empty() && self.removed.is_empty() && self.modified.is_empty()
+    }
+}
+
+/// What happened to an attribute column.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ColumnChangeKind {
+    /// Added since the last call.
+    Created,
+    /// Removed since the last call.
+    Removed,
+    /// Some value written.
+    Modified,
+}
+
+/// An attribute column that changed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ColumnChange {
+    /// Its arena.
+    pub kind: ElementKind,
+    /// Its name.
+    pub name: String,
+    /// What happened.
+    pub change: ColumnChangeKind,
+}
+
+/// What changed since the last [`Mesh::take_changes`].
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Changes {
+    /// Vertices.
+    pub vertices: ElementChanges<VertexKey>,
+    /// Edges (half-edge attribute writes count for their edge).
+    pub edges: ElementChanges<EdgeKey>,
+    /// Faces and holes.
+    pub faces: ElementChanges<FaceKey>,
+    /// Attribute columns.
+    pub columns: Vec<ColumnChange>,
+    /// The mesh was rebuilt wholesale ([`Mesh::compact`], an undo or redo
+    /// of one): every key may have changed; the lists above cover only
+    /// what happened after the last rebuild. Re-upload everything.
+    pub rebuilt: bool,
+}
+
+impl Changes {
+    /// Whether nothing changed.
+    pub fn is_empty(&self) -> bool {
+        self.vertices.is_empty()
+            && self.edges.is_empty()
+            && self.faces.is_empty()
+            && self.columns.is_empty()
+            && !self.rebuilt
+    }
+}
+
+const KINDS: [ElementKind; 4] = [
+    ElementKind::Vertex,
+    ElementKind::Halfedge,
+    ElementKind::Edge,
+    ElementKind::Face,
+];
+
+impl Mesh {
+    /// Turn the undo history on (or change its limits). Edits from now on
+    /// can be undone.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// mesh.enable_history(Default::default());
+    /// let f = mesh.faces().next().unwrap();
+    /// mesh.poke_face(f)?;
+    /// assert_eq!(mesh.vertex_count(), 9);
+    /// assert!(mesh.undo());
+    /// assert_eq!(mesh.vertex_count(), 8);
+    /// assert!(mesh.redo());
+    /// assert_eq!(mesh.vertex_count(), 9);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn enable_history(&mut self, limits: HistoryLimits) {
+        let r = self.ensure_recorder();
+        r.history = true;
+        r.max_units = limits.max_steps;
+        r.max_bytes = limits.max_bytes;
+        self.trim();
+    }
+
+    /// Turn the undo history off and drop it (undo and redo logs).
+    pub fn disable_history(&mut self) {
+        self.clear_history();
+        if let Some(r) = self.rec.as_deref_mut() {
+            r.history = false;
+        }
+        self.maybe_stop();
+    }
+
+    /// Whether the undo history is on.
+    pub fn history_enabled(&self) -> bool {
+        self.rec.as_ref().is_some_and(|r| r.history)
+    }
+
+    /// Drop every undo and redo step, keeping the history on. Refused
+    /// (nothing happens) while a transaction is open.
+    pub fn clear_history(&mut self) {
+        if self.rec.as_ref().is_none_or(|r| r.tx_depth > 0) {
+            return;
+        }
+        self.seal();
+        self.drop_redo();
+        let r = self.rec.as_deref_mut().expect("recorder");
+        r.undo = Default::default();
+    }
+
+    /// Undo the last unit (one edit, or one named step or transaction).
+    /// Returns `false` if there is nothing to undo, or while a transaction
+    /// or step group is open (undo then would tear it).
+    ///
+    /// # Complexity
+    /// O(size of the unit's delta).
+    pub fn undo(&mut self) -> bool {
+        if !self.can_act() {
+            return false;
+        }
+        let done = self.move_unit(Dir::Undo);
+        self.debug_validate();
+        done
+    }
+
+    /// Redo the last undone unit. Returns `false` if there is nothing to
+    /// redo (a new edit after undos dropped the redo branch), or while a
+    /// transaction or step group is open.
+    pub fn redo(&mut self) -> bool {
+        if !self.can_act() {
+            return false;
+        }
+        let done = self.move_unit(Dir::Redo);
+        self.debug_validate();
+        done
+    }
+
+    fn can_act(&self) -> bool {
+        self.rec
+            .as_ref()
+            .is_some_and(|r| r.history && r.tx_depth == 0 && r.group_depth == 0)
+    }
+
+    /// How many units [`undo`](Mesh::undo) can take back. Raw writes
+    /// through [`position_slots_mut`](Mesh::position_slots_mut) or
+    /// [`attr_view_mut`](Mesh::attr_view_mut) count once committed (by
+    /// [`commit_writes`](Mesh::commit_writes), the next edit or any
+    /// journal call).
+    pub fn undo_len(&self) -> usize {
+        self.rec.as_ref().map_or(0, |r| r.undo.units)
+    }
+
+    /// Close the open journal step now: raw writes through
+    /// [`position_slots_mut`](Mesh::position_slots_mut) or
+    /// [`attr_view_mut`](Mesh::attr_view_mut) since the view was taken
+    /// become one undo unit (if they changed anything; the redo branch
+    /// then goes) and show in [`take_changes`](Mesh::take_changes).
+    /// Otherwise that happens at the next edit or journal call.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// mesh.enable_history(Default::default());
+    /// mesh.position_slots_mut().unwrap()[0][2] += 1.0;
+    /// mesh.commit_writes();
+    /// assert_eq!(mesh.undo_len(), 1);
+    /// assert!(mesh.undo());
+    /// assert_eq!(mesh.position_slots().unwrap()[0], [0.0, 0.0, 0.0]);
+    /// ```
+    pub fn commit_writes(&mut self) {
+        self.seal_if_on();
+    }
+
+    /// How many units [`redo`](Mesh::redo) can bring back.
+    pub fn redo_len(&self) -> usize {
+        self.rec.as_ref().map_or(0, |r| r.redo.units)
+    }
+
+    /// The name of the unit [`undo`](Mesh::undo) would take back, if it
+    /// was a named step.
+    pub fn undo_name(&self) -> Option<&str> {
+        self.rec.as_deref()?.undo_name()
+    }
+
+    /// The name of the unit [`redo`](Mesh::redo) would bring back, if named.
+    pub fn redo_name(&self) -> Option<&str> {
+        self.rec.as_deref()?.redo_name()
+    }
+
+    /// Heap bytes the undo and redo logs hold (steps, side records, names).
+    pub fn history_bytes(&self) -> usize {
+        self.rec
+            .as_ref()
+            .map_or(0, |r| r.undo.memory() + r.redo.memory())
+    }
+
+    /// Begin a named step: every edit until the matching
+    /// [`end_step`](Mesh::end_step) is one undo unit, named `name` (the
+    /// outermost name wins). Steps nest.
+    pub fn begin_step(&mut self, name: &str) {
+        self.seal_if_on();
+        let r = self.ensure_recorder();
+        if r.group_depth == 0 {
+            r.group_name = Some(name.to_owned());
+            r.group_started = false;
+        }
+        r.group_depth += 1;
+    }
+
+    /// End the step [`begin_step`](Mesh::begin_step) began (a no-op with
+    /// none open).
+    pub fn end_step(&mut self) {
+        let Some(r) = self.rec.as_deref() else { return };
+        if r.group_depth == 0 {
+            return;
+        }
+        self.seal();
+        let r = self.rec.as_deref_mut().expect("recorder");
+        r.group_depth -= 1;
+        if r.group_depth == 0 {
+            r.group_started = false;
+            r.group_name = None;
+            self.trim();
+        }
+        self.maybe_stop();
+    }
+
+    /// Run `f` as one named undo unit and as a [transaction](Mesh::transaction).
+    ///
+    /// # Errors
+    /// Whatever `f` returns (the mesh is then as before).
+    pub fn step<R>(&mut self, name: &str, f: impl FnOnce(&mut Mesh) -> Result<R>) -> Result<R> {
+        self.begin_step(name);
+        let out = catch_unwind(AssertUnwindSafe(|| self.transaction(f)));
+        self.end_step();
+        match out {
+            Ok(r) => r,
+            Err(p) => resume_unwind(p),
+        }
+    }
+
+    /// Run `f` all or nothing: if it returns an error or panics, the mesh
+    /// (links, attribute columns and values, valid keys) is exactly as
+    /// before, and the error is returned (the panic resumed). Nested
+    /// transactions are one: an inner failure that the outer closure
+    /// swallows rolls back only the inner part. With history on, a
+    /// committed transaction is one undo unit.
+    ///
+    /// Built on the undo log: rollback undoes to a mark, so its cost is
+    /// the size of what was done, not of the mesh. A failed transaction
+    /// that edited drops the redo branch, as any edit does.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// let f = mesh.faces().next().unwrap();
+    /// let r = mesh.transaction(|m| {
+    ///     let c = m.poke_face(f)?;
+    ///     m.remove_vertex(c)?;
+    ///     Err::<(), _>(meshloom::Error::Cancelled { algorithm: "tool" })
+    /// });
+    /// assert!(r.is_err());
+    /// assert_eq!((mesh.vertex_count(), mesh.face_count()), (8, 6));
+    /// assert!(mesh.face(f).is_ok());
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// Whatever `f` returns.
+    pub fn transaction<R>(&mut self, f: impl FnOnce(&mut Mesh) -> Result<R>) -> Result<R> {
+        self.seal_if_on();
+        let r = self.ensure_recorder();
+        r.tx_depth += 1;
+        r.group_depth += 1;
+        let mark = (
+            r.undo.bytes.len(),
+            r.undo.units,
+            r.undo.names.len(),
+            r.group_started,
+        );
+        let out = catch_unwind(AssertUnwindSafe(|| f(self)));
+        let failed = !matches!(out, Ok(Ok(_)));
+        if failed {
+            self.roll_back_to(mark.0);
+        } else {
+            self.seal();
+        }
+        let r = self.rec.as_deref_mut().expect("recorder");
+        if failed {
+            r.undo.units = mark.1;
+            r.undo.names.truncate(mark.2);
+            r.group_started = mark.3;
+        }
+        r.tx_depth -= 1;
+        r.group_depth -= 1;
+        if r.group_depth == 0 {
+            r.group_started = false;
+            r.group_name = None;
+        }
+        if r.tx_depth == 0 && !r.history {
+            r.undo = Default::default();
+        }
+        if r.group_depth == 0 {
+            self.trim();
+        }
+        self.maybe_stop();
+        if failed {
+            self.debug_validate();
+        }
+        match out {
+            Ok(r) => r,
+            Err(p) => resume_unwind(p),
+        }
+    }
+
+    /// Whether a transaction is open.
+    pub fn in_transaction(&self) -> bool {
+        self.rec.as_ref().is_some_and(|r| r.tx_depth > 0)
+    }
+
+    /// Turn change tracking on or off. On: [`take_changes`](Mesh::take_changes)
+    /// reports from now on.
+    pub fn track_changes(&mut self, on: bool) {
+        if on {
+            self.ensure_recorder().tracking = true;
+        } else if let Some(r) = self.rec.as_deref_mut() {
+            r.tracking = false;
+            r.touched = Default::default();
+            r.cols.clear();
+            r.rebuilt = false;
+            self.maybe_stop();
+        }
+    }
+
+    /// What changed since the last call (or since
+    /// [`track_changes`](Mesh::track_changes) turned tracking on): edits,
+    /// transactions (a rolled-back one changes nothing), undos and redos.
+    /// Empty with tracking off.
+    ///
+    /// # Complexity
+    /// O(elements touched).
+    pub fn take_changes(&mut self) -> Changes {
+        if !self.rec.as_ref().is_some_and(|r| r.tracking) {
+            return Changes::default();
+        }
+        self.seal();
+        let r = self.rec.as_deref_mut().expect("recorder");
+        let touched = std::mem::take(&mut r.touched);
+        let cols = std::mem::take(&mut r.cols);
+        let rebuilt = std::mem::take(&mut r.rebuilt);
+        let mut out = Changes {
+            rebuilt,
+            ..Changes::default()
+        };
+        // Per arena: (created, removed, modified) as (slot, generation).
+        let mut lists: [[Vec<(u32, u32)>; 3]; 3] = Default::default();
+        for (a, map) in touched.iter().enumerate() {
+            for (&slot, &g0) in map {
+                let now = self.gen_now(a, slot);
+                let (live0, live1) = (g0 & 1 == 1, now & 1 == 1);
+                if live0 && live1 && g0 == now {
+                    lists[a][2].push((slot, now));
+                } else {
+                    if live0 {
+                        lists[a][1].push((slot, g0));
+                    }
+                    if live1 {
+                        lists[a][0].push((slot, now));
+                    }
+                }
+            }
+        }
+        // Faces and vertices around a written live edge changed too.
+        let mut extra_f = Vec::new();
+        let mut extra_v = Vec::new();
+        for (&slot, _) in touched[1].iter() {
+            let e = Eid::new(slot);
+            if self.gen_now(1, slot) & 1 == 0 {
+                continue;
+            }
+            for h in e.halfedges() {
+                let rec = self.he[h];
+                if !rec.face.is_none() {
+                    extra_f.push(rec.face.raw());
+                }
+                if !rec.origin.is_none() {
+                    extra_v.push(rec.origin.raw());
+                }
+            }
+        }
+        for (a, extra) in [(2usize, extra_f), (0usize, extra_v)] {
+            for slot in extra {
+                if !touched[a].contains_key(&slot) {
+                    let g = self.gen_now(a, slot);
+                    if g & 1 == 1 {
+                        lists[a][2].push((slot, g));
+                    }
+                }
+            }
+        }
+        for l in lists.iter_mut().flatten() {
+            l.sort_unstable();
+            l.dedup();
+        }
+        let [lv, le, lf] = lists;
+        let vk = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Vid::new(s).key(g)).collect();
+        let ek = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Eid::new(s).key(g)).collect();
+        let fk = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Fid::new(s).key(g)).collect();
+        out.vertices = ElementChanges {
+            created: vk(&lv[0]),
+            removed: vk(&lv[1]),
+            modified: vk(&lv[2]),
+        };
+        out.edges = ElementChanges {
+            created: ek(&le[0]),
+            removed: ek(&le[1]),
+            modified: ek(&le[2]),
+        };
+        out.faces = ElementChanges {
+            created: fk(&lf[0]),
+            removed: fk(&lf[1]),
+            modified: fk(&lf[2]),
+        };
+        let mut columns: Vec<ColumnChange> = cols
+            .into_iter()
+            .filter_map(|((set, id), (existed, name))| {
+                let kind = KINDS[set as usize];
+                let cols = self.attrs.columns(kind);
+                let now = cols.meta.iter().position(|m| m.id == id);
+                let change = match (existed, now) {
+                    (true, Some(_)) => ColumnChangeKind::Modified,
+                    (true, None) => ColumnChangeKind::Removed,
+                    (false, Some(_)) => ColumnChangeKind::Created,
+                    (false, None) => return None,
+                };
+                let name = now.map_or(name, |i| cols.cols[i].0.clone());
+                Some(ColumnChange { kind, name, change })
+            })
+            .collect();
+        columns.sort_by(|a, b| (a.kind as u8, &a.name).cmp(&(b.kind as u8, &b.name)));
+        out.columns = columns;
+        out
+    }
+
+    fn gen_now(&self, a: usize, slot: u32) -> u32 {
+        let s = match a {
+            0 => &self.v_slots,
+            1 => &self.e_slots,
+            _ => &self.f_slots,
+        };
+        s.generation(slot as usize).unwrap_or(0)
+    }
+
+    /// Close the open step if a recorder is on.
+    #[inline]
+    fn seal_if_on(&mut self) {
+        if self.rec.is_some() {
+            self.seal();
+        }
+    }
+
+    /// Before a column's structure changes (added, removed): close the
+    /// open step, then record `side` as a step of its own.
+    pub(crate) fn journal_column_added(&mut self, kind: ElementKind, col: usize) {
+        if self.rec.is_none() {
+            return;
+        }
+        self.push_structure(recorder::Side::Added {
+            set: kind as u8,
+            col: col as u32,
+        });
+    }
+
+    /// Record a removed column (the journal keeps it for undo). Returns
+    /// `None` with no journal (the caller drops the column).
+    pub(crate) fn journal_column_removed(&mut self, kind: ElementKind, col: usize) -> bool {
+        if self.rec.is_none() {
+            return false;
+        }
+        self.seal();
+        let position = kind == ElementKind::Vertex && self.attrs.position == Some(col);
+        let (name, column, meta) = self.attrs.take_column(kind as usize, col);
+        self.push_structure(recorder::Side::Removed {
+            set: kind as u8,
+            col: col as u32,
+            name,
+            column,
+            meta,
+            position,
+        });
+        true
+    }
+
+    fn push_structure(&mut self, s: recorder::Side) {
+        self.r_mut().side.push(s);
+        self.seal();
+    }
+
+    fn r_mut(&mut self) -> &mut Recorder {
+        self.rec.as_deref_mut().expect("recorder")
+    }
+
+    /// Save a column's values of every slot for a raw mutable view (see
+    /// the module docs).
+    pub(crate) fn journal_bulk(&mut self, kind: ElementKind, col: usize) {
+        if self.rec.is_some() {
+            let n = self.slot_counts()[kind as usize];
+            self.save_bulk(kind as usize, col, 0..n);
+        }
+    }
+
+    /// The position column, mutably, over `range` of slots, saved first
+    /// while a journal records.
+    pub(crate) fn bulk_positions_mut(
+        &mut self,
+        range: std::ops::Range<usize>,
+    ) -> Option<&mut [[f64; 3]]> {
+        let p = self.attrs.position?;
+        if self.rec.is_some() {
+            self.save_bulk(0, p, range);
+        }
+        self.attrs.positions_mut().map(|c| c.raw_mut())
+    }
+
+    /// Save slot `i` of column `col` of `kind` before a single write.
+    pub(crate) fn journal_attr_write(&mut self, kind: ElementKind, col: usize, i: usize) {
+        if self.rec.is_some() {
+            self.attrs.columns_mut(kind).save_one(col, i);
+        }
+    }
+}

@@ -1,0 +1,801 @@
+//! The journal against a model that keeps full snapshots: random streams of
+//! every operator, attribute writes (typed, dynamic, bulk views, column
+//! add/remove), raw edits and compaction under undo history; undo all,
+//! redo all, random interleavings of undo/redo/new edits; transactions that
+//! fail or panic at a random step; change sets against snapshot diffs.
+//!
+//! "Equal" (see the `journal` module docs): the same live keys of every
+//! kind, the same links between them (origin, next, face of every
+//! half-edge; each vertex's and face's half-edge; hole flags), the same
+//! attribute columns (kind, name, type, order) with the same values on
+//! every live element. Vacant slots, free-list order and slot counts may
+//! differ.
+
+mod common;
+use common::*;
+use meshloom::attr::{Incompatible, Interpolate, Value};
+use meshloom::journal::{ColumnChangeKind, HistoryLimits};
+use meshloom::{shapes, AnyKey, EdgeKey, ElementKind, FaceKey, Mesh, VertexKey};
+use quickcheck::{Arbitrary, Gen, QuickCheck, TestResult};
+use std::collections::{BTreeMap, BTreeSet, HashSet};
+
+#[derive(Clone, Debug)]
+enum Op {
+    SplitEdge(usize, u8),
+    SplitFace(usize, usize, usize),
+    Poke(usize),
+    CollapseAt(usize, u8),
+    Flip(usize),
+    RemoveEdge(usize),
+    MergeFaces(usize, usize),
+    RemoveVertex(usize),
+    RemoveFace(usize),
+    FillHole(usize),
+    Triangulate(usize),
+    TriangulateAll,
+    Compact,
+    Extrude(usize),
+    SplitVertex(usize, usize, usize),
+    CutLoop(usize),
+    SetPosition(usize, i8),
+    SetWeight(usize, i8),
+    ClearWeight(usize),
+    SetLabel(usize, u8),
+    BulkMove(i8),
+    ViewWrite(i8),
+    AddColumn,
+    RemoveColumn,
+    RawRepoint(usize),
+}
+
+impl Arbitrary for Op {
+    fn arbitrary(g: &mut Gen) -> Op {
+        let i = usize::arbitrary(g);
+        let j = usize::arbitrary(g);
+        let k = usize::arbitrary(g);
+        let t = u8::arbitrary(g) % 11;
+        let d = i8::arbitrary(g);
+        match u8::arbitrary(g) % 34 {
+            0..=2 => Op::SplitEdge(i, t),
+            3 => Op::SplitFace(i, j, k),
+            4..=5 => Op::Poke(i),
+            6..=8 => Op::CollapseAt(i, t),
+            9..=10 => Op::Flip(i),
+            11 => Op::RemoveEdge(i),
+            12 => Op::MergeFaces(i, j),
+            13 => Op::RemoveVertex(i),
+            14 => Op::RemoveFace(i),
+            15 => Op::FillHole(i),
+            16 => Op::Triangulate(i),
+            17 => Op::TriangulateAll,
+            18 => Op::Compact,
+            19 => Op::Extrude(i),
+            20 => Op::SplitVertex(i, j, k),
+            21 => Op::CutLoop(i),
+            22..=23 => Op::SetPosition(i, d),
+            24..=25 => Op::SetWeight(i, d),
+            26 => Op::ClearWeight(i),
+            27 => Op::SetLabel(i, t),
+            28 => Op::BulkMove(d),
+            29 => Op::ViewWrite(d),
+            30 => Op::AddColumn,
+            31 => Op::RemoveColumn,
+            _ => Op::RawRepoint(i),
+        }
+    }
+}
+
+fn nth<T>(mut it: impl Iterator<Item = T>, count: usize, i: usize) -> Option<T> {
+    if count == 0 {
+        None
+    } else {
+        it.nth(i % count)
+    }
+}
+
+fn shape(i: u8) -> Mesh {
+    let mut m = match i % 6 {
+        0 => one_ring(),
+        1 => l_shape(),
+        2 => quad_grid(3),
+        3 => shapes::cube(),
+        4 => shapes::icosahedron(),
+        _ => open_cone(),
+    };
+    let w = m.add_vertex_attr::<f64>("weight").unwrap();
+    let vs: Vec<_> = m.vertices().collect();
+    for (n, v) in vs.into_iter().enumerate() {
+        if n % 3 != 0 {
+            m.set_attr(&w, v, n as f64).unwrap();
+        }
+    }
+    m.add_face_attr::<u32>("label").unwrap();
+    m
+}
+
+/// Apply one op; errors are fine (a refused op must change nothing, which
+/// the model checks through the undo length).
+fn apply(m: &mut Mesh, op: &Op) {
+    match *op {
+        Op::SplitEdge(i, t) => {
+            if let Some(e) = nth(m.edges(), m.edge_count(), i) {
+                let _ = m.split_edge(e, f64::from(t) / 10.0);
+            }
+        }
+        Op::SplitFace(i, j, k) => {
+            if let Some(f) = nth(m.faces(), m.face_count(), i) {
+                let c: Vec<_> = m.face(f).unwrap().vertices().collect();
+                let _ = m.split_face(f, c[j % c.len()], c[k % c.len()]);
+            }
+        }
+        Op::Poke(i) => {
+            if let Some(f) = nth(m.faces_and_holes(), m.face_count() + m.hole_count(), i) {
+                let _ = m.poke_face(f);
+            }
+        }
+        Op::CollapseAt(i, t) => {
+            if let Some(h) = nth(m.halfedges(), m.halfedge_count(), i) {
+                let _ = m.collapse_edge_at(h, f64::from(t) / 10.0);
+            }
+        }
+        Op::Flip(i) => {
+            if let Some(e) = nth(m.edges(), m.edge_count(), i) {
+                let _ = m.flip_edge(e);
+            }
+        }
+        Op::RemoveEdge(i) => {
+            if let Some(e) = nth(m.edges(), m.edge_count(), i) {
+                let _ = m.remove_edge(e);
+            }
+        }
+        Op::MergeFaces(i, j) => {
+            if let Some(f) = nth(m.faces(), m.face_count(), i) {
+                let ns: Vec<_> = m.face(f).unwrap().neighbors().collect();
+                let g = if ns.is_empty() { f } else { ns[j % ns.len()] };
+                let _ = m.merge_faces(f, g);
+            }
+        }
+        Op::RemoveVertex(i) => {
+            if let Some(v) = nth(m.vertices(), m.vertex_count(), i) {
+                let _ = m.remove_vertex(v);
+            }
+        }
+        Op::RemoveFace(i) => {
+            if let Some(f) = nth(m.faces(), m.face_count(), i) {
+                let _ = m.remove_face(f);
+            }
+        }
+        Op::FillHole(i) => {
+            if let Some(h) = nth(m.holes(), m.hole_count(), i) {
+                let _ = m.fill_hole(h);
+            }
+        }
+        Op::Triangulate(i) => {
+            if let Some(f) = nth(m.faces(), m.face_count(), i) {
+                let _ = m.triangulate(f);
+            }
+        }
+        Op::TriangulateAll => {
+            m.triangulate_all();
+        }
+        Op::Compact => {
+            m.compact();
+        }
+        Op::Extrude(i) => {
+            if let Some(f) = nth(m.faces(), m.face_count(), i) {
+                let _ = m.extrude_face(f, 0.5);
+            }
+        }
+        Op::SplitVertex(i, j, k) => {
+            if let Some(v) = nth(m.vertices(), m.vertex_count(), i) {
+                let outs: Vec<_> = m.vertex(v).unwrap().outgoing().collect();
+                let _ = m.split_vertex(outs[j % outs.len()], outs[k % outs.len()]);
+            }
+        }
+        Op::CutLoop(i) => {
+            if let Some(v) = nth(m.vertices(), m.vertex_count(), i) {
+                let mut ring: Vec<_> = m.vertex(v).unwrap().neighbors().collect();
+                ring.push(ring[0]);
+                let _ = m.cut_path(&ring);
+            }
+        }
+        Op::SetPosition(i, d) => {
+            if let Some(v) = nth(m.vertices(), m.vertex_count(), i) {
+                let p = m.position(v).unwrap();
+                let _ = m.set_position(v, [p[0] + f64::from(d), p[1], p[2]]);
+            }
+        }
+        Op::SetWeight(i, d) => {
+            if let (Some(v), Ok(w)) = (
+                nth(m.vertices(), m.vertex_count(), i),
+                m.attr_handle::<VertexKey, f64, Interpolate>("weight"),
+            ) {
+                let _ = m.set_attr(&w, v, f64::from(d));
+            }
+        }
+        Op::ClearWeight(i) => {
+            if let (Some(v), Ok(w)) = (
+                nth(m.vertices(), m.vertex_count(), i),
+                m.attr_handle::<VertexKey, f64, Interpolate>("weight"),
+            ) {
+                let _ = m.clear_attr(&w, v);
+            }
+        }
+        Op::SetLabel(i, t) => {
+            if let Some(f) = nth(m.faces(), m.face_count(), i) {
+                let _ = m.set_attr_value("label", f, Some(&Value::U32(u32::from(t))));
+            }
+        }
+        Op::BulkMove(d) => {
+            let live: Vec<usize> = m.vertices().map(|v| v.index()).collect();
+            if let Some(p) = m.position_slots_mut() {
+                for (n, i) in live.into_iter().enumerate() {
+                    if n % 2 == 0 {
+                        p[i][1] += f64::from(d);
+                    }
+                }
+            }
+        }
+        Op::ViewWrite(d) => {
+            if let Ok(w) = m.attr_handle::<VertexKey, f64, Interpolate>("weight") {
+                let mut view = m.attr_view_mut(&w).unwrap();
+                for (n, (_, x)) in view.iter_mut().enumerate() {
+                    if n % 2 == 1 {
+                        *x += f64::from(d);
+                    }
+                }
+            }
+        }
+        Op::AddColumn => {
+            // Two edits as one named unit.
+            let _ = m.step("Add crease", |m| {
+                let c = m.add_edge_attr::<i32>("crease")?;
+                let first = m.edges().next();
+                if let Some(e) = first {
+                    m.set_attr(&c, e, 7)?;
+                }
+                Ok(())
+            });
+        }
+        Op::RemoveColumn => {
+            if let Ok(c) = m.attr_handle::<EdgeKey, i32, Incompatible>("crease") {
+                m.remove_attr(&c).unwrap();
+            } else if let Ok(w) = m.attr_handle::<VertexKey, f64, Interpolate>("weight") {
+                m.remove_attr(&w).unwrap();
+            }
+        }
+        Op::RawRepoint(i) => {
+            // A user operator: point a vertex at another outgoing half-edge.
+            if let Some(v) = nth(m.vertices(), m.vertex_count(), i) {
+                let outs: Vec<_> = m.vertex(v).unwrap().outgoing().collect();
+                let h = outs[i % outs.len()];
+                let mut edit = m.raw_edit();
+                edit.set_vertex_halfedge(v, h).unwrap();
+                edit.finish().unwrap();
+            }
+        }
+    }
+}
+
+/// The canonical form "equal" compares (see the file docs).
+#[derive(Clone, Debug, PartialEq)]
+struct Canon {
+    halfedges: Vec<(u64, u64, u64, u64)>,
+    vertices: Vec<(VertexKey, u64)>,
+    edges: Vec<EdgeKey>,
+    faces: Vec<(FaceKey, u64, bool)>,
+    attrs: Vec<ColumnCanon>,
+}
+
+/// A column: kind, name, declared type, value per live element.
+type ColumnCanon = (ElementKind, String, String, BTreeMap<String, Option<Value>>);
+
+fn hk(k: meshloom::HalfedgeKey) -> u64 {
+    (k.index() as u64) << 32 | u64::from(k.generation())
+}
+
+fn canon(m: &Mesh) -> Canon {
+    m.validate().unwrap();
+    let mut attrs = Vec::new();
+    for kind in [
+        ElementKind::Vertex,
+        ElementKind::Halfedge,
+        ElementKind::Edge,
+        ElementKind::Face,
+    ] {
+        for info in m.attr_info(kind) {
+            let keys: Vec<AnyKey> = match kind {
+                ElementKind::Vertex => m.vertices().map(AnyKey::Vertex).collect(),
+                ElementKind::Halfedge => m.halfedges().map(AnyKey::Halfedge).collect(),
+                ElementKind::Edge => m.edges().map(AnyKey::Edge).collect(),
+                ElementKind::Face => m.faces_and_holes().map(AnyKey::Face).collect(),
+            };
+            let values = keys
+                .into_iter()
+                .map(|k| (format!("{k:?}"), m.attr_value_at(&info.name, k).unwrap()))
+                .collect();
+            attrs.push((
+                kind,
+                info.name.clone(),
+                format!("{:?}", info.value_type),
+                values,
+            ));
+        }
+    }
+    Canon {
+        halfedges: m
+            .halfedges()
+            .map(|h| {
+                let v = m.halfedge(h).unwrap();
+                let o = v.origin().key();
+                let f = v.face().key();
+                (
+                    hk(h),
+                    (o.index() as u64) << 32 | u64::from(o.generation()),
+                    hk(v.next().key()),
+                    (f.index() as u64) << 32 | u64::from(f.generation()),
+                )
+            })
+            .collect(),
+        vertices: m
+            .vertices()
+            .map(|v| (v, hk(m.vertex(v).unwrap().halfedge().key())))
+            .collect(),
+        edges: m.edges().collect(),
+        faces: m
+            .faces_and_holes()
+            .map(|f| {
+                let view = m.face(f).unwrap();
+                (f, hk(view.halfedge().key()), view.is_hole())
+            })
+            .collect(),
+        attrs,
+    }
+}
+
+/// Every key live in `c`.
+fn keys_of(c: &Canon) -> HashSet<AnyKey> {
+    let mut s = HashSet::new();
+    s.extend(c.vertices.iter().map(|v| AnyKey::Vertex(v.0)));
+    s.extend(c.edges.iter().map(|&e| AnyKey::Edge(e)));
+    s.extend(c.faces.iter().map(|f| AnyKey::Face(f.0)));
+    s
+}
+
+#[derive(Clone, Debug)]
+enum Act {
+    Edit(Op),
+    Undo,
+    Redo,
+}
+
+impl Arbitrary for Act {
+    fn arbitrary(g: &mut Gen) -> Act {
+        match u8::arbitrary(g) % 8 {
+            0 | 1 => Act::Undo,
+            2 => Act::Redo,
+            _ => Act::Edit(Op::arbitrary(g)),
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+struct Case {
+    shape: u8,
+    acts: Vec<Act>,
+}
+
+impl Arbitrary for Case {
+    fn arbitrary(g: &mut Gen) -> Case {
+        Case {
+            shape: u8::arbitrary(g),
+            acts: (0..(usize::arbitrary(g) % 30 + 1))
+                .map(|_| Act::arbitrary(g))
+                .collect(),
+        }
+    }
+
+    fn shrink(&self) -> Box<dyn Iterator<Item = Case>> {
+        let shape = self.shape;
+        Box::new(self.acts.shrink().map(move |acts| Case { shape, acts }))
+    }
+}
+
+/// One edit under the journal: either it recorded exactly one unit and the
+/// redo branch is gone, or it changed nothing.
+fn edit(m: &mut Mesh, op: &Op, before: &Canon) -> Option<Canon> {
+    let n = m.undo_len();
+    apply(m, op);
+    m.commit_writes();
+    let after = canon(m);
+    match m.undo_len() {
+        k if k == n => {
+            assert_eq!(
+                &after, before,
+                "{op:?} changed the mesh but recorded nothing"
+            );
+            None
+        }
+        k => {
+            assert_eq!(k, n + 1, "{op:?} recorded {} units", k - n);
+            assert_eq!(m.redo_len(), 0, "{op:?} kept the redo branch");
+            Some(after)
+        }
+    }
+}
+
+#[test]
+fn undo_all_and_redo_all_restore_the_snapshots() {
+    fn prop(shape: u8, ops: Vec<Op>) -> TestResult {
+        let mut m = shape_with_history(shape);
+        let mut states = vec![canon(&m)];
+        for op in &ops {
+            let before = states.last().unwrap().clone();
+            if let Some(c) = edit(&mut m, op, &before) {
+                states.push(c);
+            }
+        }
+        let final_keys = keys_of(states.last().unwrap());
+        // Undo all: every intermediate state, back to the start.
+        for s in states.iter().rev().skip(1) {
+            assert!(m.undo());
+            assert_eq!(&canon(&m), s);
+        }
+        assert!(!m.undo());
+        // Keys only the undone edits created are stale.
+        for k in final_keys.difference(&keys_of(&states[0])) {
+            assert!(!live(&m, *k), "{k:?} still valid after undo all");
+        }
+        // Redo all: every state again, with the same keys.
+        for s in states.iter().skip(1) {
+            assert!(m.redo());
+            assert_eq!(&canon(&m), s);
+        }
+        assert!(!m.redo());
+        TestResult::passed()
+    }
+    QuickCheck::new()
+        .tests(150)
+        .quickcheck(prop as fn(u8, Vec<Op>) -> TestResult);
+}
+
+fn shape_with_history(shape_i: u8) -> Mesh {
+    let mut m = shape(shape_i);
+    m.enable_history(HistoryLimits::default());
+    m
+}
+
+fn live(m: &Mesh, k: AnyKey) -> bool {
+    match k {
+        AnyKey::Vertex(v) => m.vertex(v).is_ok(),
+        AnyKey::Edge(e) => m.edge(e).is_ok(),
+        AnyKey::Face(f) => m.face(f).is_ok(),
+        AnyKey::Halfedge(h) => m.halfedge(h).is_ok(),
+    }
+}
+
+#[test]
+fn interleaved_undo_redo_and_edits_agree_with_the_snapshot_model() {
+    fn prop(case: Case) -> TestResult {
+        let mut m = shape_with_history(case.shape);
+        let mut undo = vec![canon(&m)];
+        let mut redo: Vec<Canon> = Vec::new();
+        // Keys that went stale with a dropped redo branch: never valid again.
+        let mut forbidden: HashSet<AnyKey> = HashSet::new();
+        for act in &case.acts {
+            match act {
+                Act::Edit(op) => {
+                    let before = undo.last().unwrap().clone();
+                    if let Some(c) = edit(&mut m, op, &before) {
+                        let now = keys_of(&c);
+                        for s in redo.drain(..) {
+                            forbidden.extend(keys_of(&s).difference(&now));
+                        }
+                        for s in &undo {
+                            forbidden.extend(keys_of(s).difference(&now));
+                        }
+                        // Keys of the kept history may come back by undo.
+                        for s in &undo {
+                            for k in keys_of(s) {
+                                forbidden.remove(&k);
+                            }
+                        }
+                        undo.push(c);
+                    }
+                }
+                Act::Undo => {
+                    if undo.len() > 1 {
+                        assert!(m.undo());
+                        redo.push(undo.pop().unwrap());
+                    } else {
+                        assert!(!m.undo());
+                    }
+                }
+                Act::Redo => {
+                    if let Some(c) = redo.pop() {
+                        assert!(m.redo());
+                        undo.push(c);
+                    } else {
+                        assert!(!m.redo());
+                    }
+                }
+            }
+            let c = canon(&m);
+            assert_eq!(&c, undo.last().unwrap(), "after {act:?}");
+            assert_eq!((m.undo_len(), m.redo_len()), (undo.len() - 1, redo.len()));
+            for k in keys_of(&c) {
+                assert!(
+                    !forbidden.contains(&k),
+                    "{k:?} came back after its edit was dropped"
+                );
+            }
+        }
+        TestResult::passed()
+    }
+    QuickCheck::new()
+        .tests(200)
+        .quickcheck(prop as fn(Case) -> TestResult);
+}
+
+#[test]
+fn failing_or_panicking_transactions_leave_the_snapshot() {
+    fn prop(shape_i: u8, ops: Vec<Op>, fail_at: usize, panic: bool, history: bool) -> TestResult {
+        let mut m = shape(shape_i);
+        if history {
+            m.enable_history(HistoryLimits::default());
+            apply(&mut m, &Op::Poke(0));
+        }
+        let before = canon(&m);
+        let undo_len = m.undo_len();
+        let stop = fail_at % (ops.len() + 1);
+        let run = |m: &mut Mesh| {
+            m.transaction(|m| {
+                for (n, op) in ops.iter().enumerate() {
+                    if n == stop {
+                        break;
+                    }
+                    apply(m, op);
+                    // A nested transaction that commits.
+                    if n % 3 == 0 {
+                        m.transaction(|m| {
+                            apply(m, &Op::SplitEdge(n, 5));
+                            Ok(())
+                        })?;
+                    }
+                }
+                if panic {
+                    panic!("the tool crashed");
+                }
+                Err::<(), _>(meshloom::Error::Cancelled { algorithm: "tool" })
+            })
+        };
+        if panic {
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(&mut m)));
+            assert!(r.is_err());
+        } else {
+            assert!(run(&mut m).is_err());
+        }
+        assert!(!m.in_transaction());
+        assert_eq!(canon(&m), before);
+        assert_eq!(m.undo_len(), undo_len);
+        assert_eq!(m.history_enabled(), history);
+        // The mesh goes on working: a committed transaction is one unit.
+        let r = m.transaction(|m| {
+            apply(m, &Op::Poke(1));
+            apply(m, &Op::SplitEdge(2, 3));
+            Ok(7)
+        });
+        assert_eq!(r.unwrap(), 7);
+        if history && canon(&m) != before {
+            assert_eq!(m.undo_len(), undo_len + 1);
+            assert!(m.undo());
+            assert_eq!(canon(&m), before);
+        }
+        TestResult::passed()
+    }
+    std::panic::set_hook(Box::new(|_| {}));
+    QuickCheck::new()
+        .tests(150)
+        .quickcheck(prop as fn(u8, Vec<Op>, usize, bool, bool) -> TestResult);
+    let _ = std::panic::take_hook();
+}
+
+/// The vertex loop of every live face, by key.
+fn loops(m: &Mesh) -> BTreeMap<FaceKey, Vec<VertexKey>> {
+    m.faces_and_holes()
+        .map(|f| (f, m.face(f).unwrap().vertices().collect()))
+        .collect()
+}
+
+fn positions(m: &Mesh) -> BTreeMap<VertexKey, Option<Value>> {
+    m.vertices()
+        .map(|v| (v, m.attr_value_at("position", AnyKey::Vertex(v)).unwrap()))
+        .collect()
+}
+
+#[test]
+fn change_sets_agree_with_snapshot_diffs() {
+    fn check<K: Ord + Copy + std::fmt::Debug>(
+        what: &str,
+        before: &BTreeSet<K>,
+        after: &BTreeSet<K>,
+        ch: &meshloom::journal::ElementChanges<K>,
+    ) {
+        let created: BTreeSet<K> = after.difference(before).copied().collect();
+        let removed: BTreeSet<K> = before.difference(after).copied().collect();
+        assert_eq!(
+            ch.created.iter().copied().collect::<BTreeSet<_>>(),
+            created,
+            "{what} created"
+        );
+        assert_eq!(
+            ch.removed.iter().copied().collect::<BTreeSet<_>>(),
+            removed,
+            "{what} removed"
+        );
+        for k in &ch.modified {
+            assert!(
+                before.contains(k) && after.contains(k),
+                "{what} modified {k:?} is not live at both"
+            );
+        }
+    }
+    fn prop(case: Case) -> TestResult {
+        let mut m = shape_with_history(case.shape);
+        m.track_changes(true);
+        for act in &case.acts {
+            let (c0, l0, p0) = (canon(&m), loops(&m), positions(&m));
+            match act {
+                Act::Edit(op) => apply(&mut m, op),
+                Act::Undo => {
+                    m.undo();
+                }
+                Act::Redo => {
+                    m.redo();
+                }
+            }
+            let ch = m.take_changes();
+            let (c1, l1, p1) = (canon(&m), loops(&m), positions(&m));
+            if ch.rebuilt {
+                continue;
+            }
+            let vs = |c: &Canon| c.vertices.iter().map(|v| v.0).collect::<BTreeSet<_>>();
+            let es = |c: &Canon| c.edges.iter().copied().collect::<BTreeSet<_>>();
+            let fs = |c: &Canon| c.faces.iter().map(|f| f.0).collect::<BTreeSet<_>>();
+            check("vertex", &vs(&c0), &vs(&c1), &ch.vertices);
+            check("edge", &es(&c0), &es(&c1), &ch.edges);
+            check("face", &fs(&c0), &fs(&c1), &ch.faces);
+            // Every face whose loop changed and every vertex that moved is
+            // reported modified.
+            let mf: BTreeSet<_> = ch.faces.modified.iter().copied().collect();
+            for (f, l) in &l1 {
+                if let Some(l_before) = l0.get(f) {
+                    if l_before != l {
+                        assert!(mf.contains(f), "face {f:?} changed its loop, not reported");
+                    }
+                }
+            }
+            let mv: BTreeSet<_> = ch.vertices.modified.iter().copied().collect();
+            for (v, p) in &p1 {
+                if p0.get(v).is_some_and(|q| q != p) {
+                    assert!(mv.contains(v), "vertex {v:?} moved, not reported");
+                }
+            }
+            // Columns: created, removed, or with a changed value: reported.
+            let cols = |c: &Canon| {
+                c.attrs
+                    .iter()
+                    .map(|a| ((a.0 as u8, a.1.clone()), a.3.clone()))
+                    .collect::<BTreeMap<_, _>>()
+            };
+            let (a0, a1) = (cols(&c0), cols(&c1));
+            for (k, v) in &a1 {
+                let want = match a0.get(k) {
+                    None => Some(ColumnChangeKind::Created),
+                    Some(w) if w != v => {
+                        // Values of elements live at both that differ.
+                        let differs = v.iter().any(|(e, x)| w.get(e).is_some_and(|y| y != x));
+                        differs.then_some(ColumnChangeKind::Modified)
+                    }
+                    _ => None,
+                };
+                if let Some(want) = want {
+                    assert!(
+                        ch.columns
+                            .iter()
+                            .any(|c| c.kind as u8 == k.0 && c.name == k.1 && c.change == want),
+                        "column {k:?} {want:?} not reported: {:?}",
+                        ch.columns
+                    );
+                }
+            }
+            for k in a0.keys() {
+                if !a1.contains_key(k) {
+                    assert!(ch.columns.iter().any(|c| c.kind as u8 == k.0
+                        && c.name == k.1
+                        && c.change == ColumnChangeKind::Removed));
+                }
+            }
+            if c0 == c1 {
+                assert!(ch.vertices.created.is_empty() && ch.faces.removed.is_empty());
+            }
+        }
+        TestResult::passed()
+    }
+    QuickCheck::new()
+        .tests(150)
+        .quickcheck(prop as fn(Case) -> TestResult);
+}
+
+#[test]
+fn named_steps_limits_and_clearing() {
+    let mut m = shape_with_history(3);
+    let f = m.faces().next().unwrap();
+    m.begin_step("Bevel");
+    m.poke_face(f).unwrap();
+    let e = m.edges().next().unwrap();
+    m.split_edge(e, 0.5).unwrap();
+    m.end_step();
+    assert_eq!((m.undo_len(), m.undo_name()), (1, Some("Bevel")));
+    let v = m.vertex_count();
+    assert!(m.undo());
+    assert_eq!(m.vertex_count(), v - 2);
+    assert_eq!(m.redo_name(), Some("Bevel"));
+    assert!(m.redo());
+    assert_eq!(m.vertex_count(), v);
+    // Depth limit: only the last three units stay.
+    m.enable_history(HistoryLimits {
+        max_steps: Some(3),
+        max_bytes: None,
+    });
+    for i in 0..6 {
+        let e = m.edges().nth(i).unwrap();
+        m.split_edge(e, 0.5).unwrap();
+    }
+    assert_eq!(m.undo_len(), 3);
+    while m.undo() {}
+    assert_eq!(m.vertex_count(), v + 3);
+    // Memory limit.
+    m.enable_history(HistoryLimits {
+        max_steps: None,
+        max_bytes: Some(200),
+    });
+    for i in 0..20 {
+        let e = m.edges().nth(i).unwrap();
+        m.split_edge(e, 0.5).unwrap();
+    }
+    assert!(m.history_bytes() < 200 + 4096, "{}", m.history_bytes());
+    assert!(m.undo_len() < 20 && m.undo_len() >= 1);
+    m.clear_history();
+    assert_eq!((m.undo_len(), m.redo_len()), (0, 0));
+    assert!(!m.undo());
+    m.disable_history();
+    assert!(!m.history_enabled());
+    let e = m.edges().next().unwrap();
+    m.split_edge(e, 0.5).unwrap();
+    assert!(!m.undo());
+}
+
+#[test]
+fn serde_and_clone_of_a_journaled_mesh_carry_no_history() {
+    let mut m = shape_with_history(4);
+    let f = m.faces().next().unwrap();
+    m.poke_face(f).unwrap();
+    assert!(m.undo());
+    let mut c = m.clone();
+    assert!(!c.history_enabled() && !c.redo());
+    assert_eq!(canon(&c), canon(&m));
+    // The slot the undo held for a redo is free in the copy: a new edit
+    // reuses it, at a generation that keeps the undone key stale.
+    let f2 = c.faces().next().unwrap();
+    c.poke_face(f2).unwrap();
+    c.validate().unwrap();
+    #[cfg(feature = "serde")]
+    {
+        let json = serde_json::to_string(&m).unwrap();
+        let back: Mesh = serde_json::from_str(&json).unwrap();
+        assert!(!back.history_enabled());
+        assert_eq!(canon(&back), canon(&m));
+    }
+    assert!(m.redo());
+}
