@@ -245,8 +245,11 @@ const WORKLOADS: &[(&str, Workload)] = &[
     // meshloom only: the journal (issue 15).
     ("journal", journal),
     ("transaction_vs_clone", transaction_vs_clone),
+    // The peers' normals rows: the library's call, and a user's own loops.
+    ("normals_lib", normals_lib),
+    ("normals_classic", normals_classic),
+    ("flip_all", flip_all),
     // not in meshloom yet (C++ names and count notes, see README.md):
-    // ("normals_lib", ...)           "angle-weighted"
     // ("uniform_remeshing", ...)     "-> V V, F F; target length L, 10 iterations"   (mean_edge_length)
     // ("fill_holes", ...)            "8 holes filled -> V V, F F; holed input V V, F F"   (holes)
 ];
@@ -561,6 +564,81 @@ fn flip_back(input: &Input) -> (Elapsed, String) {
         e,
         format!("{flipped} edges flipped and back, {refused_back} back-flips refused"),
     )
+}
+
+/// Every edge slot in order, flipped once where the checked flip allows
+/// it (the peers check `is_flip_ok` first; meshloom's flip checks itself).
+fn flip_all(input: &Input) -> (Elapsed, String) {
+    let mut m = input.mesh.clone();
+    let mut flipped = 0usize;
+    let t0 = stamp();
+    for i in 0..m.slot_counts()[2] {
+        if let Some(e) = m.edge_at(i) {
+            if m.flip_edge(e).is_ok() {
+                flipped += 1;
+            }
+        }
+    }
+    (since(t0), format!("{flipped} flips"))
+}
+
+/// The library's angle-weighted vertex normals, as the peers' library call
+/// (the same computation as `vertex_normals`; the peers list both rows).
+fn normals_lib(input: &Input) -> (Elapsed, String) {
+    let m = &input.mesh;
+    let opts = meshloom::algo::VertexNormalOptions::default();
+    let (e, n) = best_of_parallel(input.reps, || {
+        meshloom::algo::vertex_normals(m, &opts).expect("positions")
+    });
+    std::hint::black_box(&n);
+    (e, "angle-weighted".into())
+}
+
+/// A user's own loops through the public API, as the peers' classic row:
+/// a unit normal per face from its first three corners, then per vertex the
+/// normalised sum of its faces' normals.
+fn normals_classic(input: &Input) -> (Elapsed, String) {
+    let m = &input.mesh;
+    let pos = m.position_attr().expect("positions");
+    let view = m.attr_view(&pos).expect("live column");
+    let mut face_n = vec![[0.0f64; 3]; m.slot_counts()[3]];
+    let mut vertex_n = vec![[0.0f64; 3]; m.slot_counts()[0]];
+    let unit = |v: [f64; 3]| {
+        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        if l > 0.0 {
+            v.map(|c| c / l)
+        } else {
+            v
+        }
+    };
+    let (e, _) = best_of(input.reps, || {
+        for f in m.faces() {
+            let mut corners = m.face(f).expect("live").vertices();
+            let mut next = || {
+                *view
+                    .get(corners.next().expect("a corner"))
+                    .expect("position")
+            };
+            let (p0, p1, p2) = (next(), next(), next());
+            let a = [p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]];
+            let b = [p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]];
+            face_n[f.index()] = unit([
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]);
+        }
+        for v in m.vertices() {
+            let mut n = [0.0; 3];
+            for f in m.vertex(v).expect("live").faces() {
+                let q = face_n[f.index()];
+                n = [n[0] + q[0], n[1] + q[1], n[2] + q[2]];
+            }
+            vertex_n[v.index()] = unit(n);
+        }
+    });
+    std::hint::black_box(&vertex_n);
+    (e, "unweighted face average".into())
 }
 
 /// Best of reps: by thread CPU (as the peers), or by wall time when the
