@@ -77,6 +77,50 @@ impl Polygons {
                 .unwrap_or(&[])
         })
     }
+
+    /// The same buffers borrowed, for [`Mesh::from_buffers_ref`].
+    pub fn borrowed(&self) -> PolygonsRef<'_> {
+        PolygonsRef {
+            positions: &self.positions,
+            offsets: &self.offsets,
+            indices: &self.indices,
+        }
+    }
+}
+
+/// Compact buffers borrowed from the caller, with positions of any
+/// [`Point`] type: `[f64; 3]` (the default), `[f32; 3]`, and with the
+/// features `glam`, `nalgebra` or `mint` their points and vectors. Face `i`
+/// is `indices[offsets[i]..offsets[i + 1]]`, as in [`Polygons`]; nothing is
+/// copied or converted before the build (positions are converted to `f64`
+/// once, for the vertices some face uses, as they are stored).
+#[derive(Debug)]
+pub struct PolygonsRef<'a, P = [f64; 3]> {
+    /// One position per vertex (empty for a topology-only mesh).
+    pub positions: &'a [P],
+    /// `faces + 1` offsets into `indices`, starting at 0.
+    pub offsets: &'a [u32],
+    /// Vertex indices of every face, one face after the other.
+    pub indices: &'a [u32],
+}
+
+impl<P> Clone for PolygonsRef<'_, P> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<P> Copy for PolygonsRef<'_, P> {}
+
+impl<'a, P: Point> PolygonsRef<'a, P> {
+    /// Borrow positions, offsets and indices.
+    pub fn new(positions: &'a [P], offsets: &'a [u32], indices: &'a [u32]) -> Self {
+        PolygonsRef {
+            positions,
+            offsets,
+            indices,
+        }
+    }
 }
 
 /// Maps between a mesh's keys and the dense indices of [`Polygons`].
@@ -160,8 +204,7 @@ impl Mesh {
         F: AsRef<[I]>,
         I: VertexIndex,
     {
-        let positions = P::slice_xyz(positions);
-        Ok(build_lists(Some(&positions), positions.len(), faces, false)?.mesh)
+        Ok(build_lists(Some(positions), positions.len(), faces, false)?.mesh)
     }
 
     /// Build a topology-only mesh (no positions) over `vertex_count`
@@ -178,7 +221,7 @@ impl Mesh {
         F: AsRef<[I]>,
         I: VertexIndex,
     {
-        Ok(build_lists(None, vertex_count, faces, false)?.mesh)
+        Ok(build_lists::<[f64; 3], _, _>(None, vertex_count, faces, false)?.mesh)
     }
 
     /// Build from compact buffers, as [`Mesh::to_polygons`] returns them. A
@@ -207,7 +250,72 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn from_buffers(polygons: &Polygons) -> Result<Mesh> {
+        Ok(build_buffers(polygons.borrowed(), false)?.mesh)
+    }
+
+    /// [`Mesh::from_buffers`] over borrowed flat buffers whose positions
+    /// are any [`Point`] type: an engine's or a file's arrays go in as they
+    /// are, with no copy loop in the caller. Errors and complexity as
+    /// `from_buffers`; a non-finite position (also a NaN in `f32`) is
+    /// [`BuildError::NonFinitePosition`].
+    ///
+    /// ```
+    /// use meshloom::{Mesh, PolygonsRef};
+    /// let p: Vec<[f32; 3]> = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    /// let quad = Mesh::from_buffers_ref(PolygonsRef::new(&p, &[0, 4], &[0, 1, 2, 3]))?;
+    /// assert_eq!((quad.vertex_count(), quad.face_count()), (4, 1));
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    #[cfg_attr(
+        feature = "glam",
+        doc = r#"
+With the `glam` feature, `glam::Vec3` (or `DVec3`) positions:
+
+```
+use meshloom::{Mesh, PolygonsRef};
+use glam::Vec3;
+let p = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z];
+let offsets = [0, 3, 6, 9, 12];
+let indices = [0, 2, 1, 0, 1, 3, 1, 2, 3, 2, 0, 3];
+let tet = Mesh::from_buffers_ref(PolygonsRef::new(&p, &offsets, &indices))?;
+assert!(tet.is_closed());
+# Ok::<(), meshloom::Error>(())
+```
+"#
+    )]
+    pub fn from_buffers_ref<P: Point>(polygons: PolygonsRef<'_, P>) -> Result<Mesh> {
         Ok(build_buffers(polygons, false)?.mesh)
+    }
+
+    /// [`Mesh::from_buffers_ref`] with the three arrays given one by one:
+    /// positions of any [`Point`] type, `faces + 1` offsets starting at 0,
+    /// and the vertex indices of every face.
+    ///
+    /// # Errors
+    /// As [`Mesh::from_buffers`]: [`BuildError::MalformedOffsets`],
+    /// [`BuildError::IndexOutOfRange`] naming the face,
+    /// [`BuildError::NonFinitePosition`] naming the vertex, and the
+    /// topological errors of [`Mesh::from_polygons`].
+    ///
+    /// ```
+    /// use meshloom::{BuildError, Error, Mesh};
+    /// let p = [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    /// let tri = Mesh::from_flat_faces(&p, &[0, 3], &[0, 1, 2])?;
+    /// assert_eq!(tri.face_count(), 1);
+    ///
+    /// let bad = Mesh::from_flat_faces(&p, &[0, 3], &[0, 1, 7]).unwrap_err();
+    /// assert!(matches!(bad, Error::Build(BuildError::IndexOutOfRange { face: 0, index: 7, .. })));
+    /// let nan = [[0.0f32, 0.0, 0.0], [f32::NAN, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    /// let bad = Mesh::from_flat_faces(&nan, &[0, 3], &[0, 1, 2]).unwrap_err();
+    /// assert!(matches!(bad, Error::Build(BuildError::NonFinitePosition { vertex: 1, .. })));
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn from_flat_faces<P: Point>(
+        positions: &[P],
+        offsets: &[u32],
+        indices: &[u32],
+    ) -> Result<Mesh> {
+        Mesh::from_buffers_ref(PolygonsRef::new(positions, offsets, indices))
     }
 
     /// [`Mesh::from_buffers`], also returning the input's keys.
@@ -218,6 +326,14 @@ impl Mesh {
     /// indices (plus 64): the returned key map has an entry per input
     /// vertex, and would not be bounded by the input's size.
     pub fn build_buffers(polygons: &Polygons) -> Result<Built> {
+        build_buffers(polygons.borrowed(), true)
+    }
+
+    /// [`Mesh::from_buffers_ref`], also returning the input's keys.
+    ///
+    /// # Errors
+    /// As [`Mesh::build_buffers`].
+    pub fn build_buffers_ref<P: Point>(polygons: PolygonsRef<'_, P>) -> Result<Built> {
         build_buffers(polygons, true)
     }
 
@@ -237,7 +353,7 @@ impl Mesh {
         F: AsRef<[I]>,
         I: VertexIndex,
     {
-        build_lists(positions, vertex_count, faces, true)
+        build_lists::<[f64; 3], _, _>(positions, vertex_count, faces, true)
     }
 
     /// The mesh as compact buffers (vertices and faces numbered densely in
@@ -294,7 +410,7 @@ impl Mesh {
     }
 }
 
-fn build_buffers(polygons: &Polygons, want_keys: bool) -> Result<Built> {
+fn build_buffers<P: Point>(polygons: PolygonsRef<'_, P>, want_keys: bool) -> Result<Built> {
     let p = polygons;
     if p.offsets.first().is_some_and(|&o| o != 0)
         || p.offsets.windows(2).any(|w| w[1] < w[0])
@@ -320,24 +436,25 @@ fn build_buffers(polygons: &Polygons, want_keys: bool) -> Result<Built> {
         }
         (None, n)
     } else {
-        (Some(&p.positions[..]), p.positions.len())
+        (Some(p.positions), p.positions.len())
     };
     let offsets: &[u32] = if p.offsets.is_empty() {
         &[0]
     } else {
-        &p.offsets
+        p.offsets
     };
-    build_flat(positions, n, offsets, &p.indices, want_keys)
+    build_flat(positions, n, offsets, p.indices, want_keys)
 }
 
 /// Flatten face lists (checking index ranges) and build.
-fn build_lists<F, I>(
-    positions: Option<&[[f64; 3]]>,
+fn build_lists<P, F, I>(
+    positions: Option<&[P]>,
     vertex_count: usize,
     faces: &[F],
     want_keys: bool,
 ) -> Result<Built>
 where
+    P: Point,
     F: AsRef<[I]>,
     I: VertexIndex,
 {
@@ -427,8 +544,8 @@ impl<'a> Flat<'a> {
 
 /// The builder proper, over flat input: checks, then builds in linear
 /// time, one named stage after the other.
-fn build_flat(
-    positions: Option<&[[f64; 3]]>,
+fn build_flat<P: Point>(
+    positions: Option<&[P]>,
     n_in: usize,
     offsets: &[u32],
     indices: &[u32],
@@ -606,10 +723,10 @@ impl<'a> UsedVertices<'a> {
 }
 
 /// Every used vertex needs a finite position.
-fn check_positions(positions: Option<&[[f64; 3]]>, vertices: &UsedVertices<'_>) -> Result<()> {
+fn check_positions<P: Point>(positions: Option<&[P]>, vertices: &UsedVertices<'_>) -> Result<()> {
     if let Some(p) = positions {
         for slot in 0..vertices.count as u32 {
-            let q = p[vertices.input(slot)];
+            let q = p[vertices.input(slot)].xyz();
             if !q.iter().all(|c| c.is_finite()) {
                 return Err(BuildError::NonFinitePosition {
                     vertex: vertices.input(slot),
@@ -987,12 +1104,12 @@ fn check_vertex_rings(links: &Links, vertices: &UsedVertices<'_>) -> Result<()> 
 }
 
 /// The mesh from the links, with the positions of the used vertices.
-fn assemble(
+fn assemble<P: Point>(
     links: Links,
     edges: usize,
     f_halfedge: IdVec<Fid, FaceLink>,
     holes: usize,
-    positions: Option<&[[f64; 3]]>,
+    positions: Option<&[P]>,
     vertices: &UsedVertices<'_>,
 ) -> Mesh {
     let faces = f_halfedge.len();
@@ -1009,8 +1126,8 @@ fn assemble(
     };
     if let Some(p) = positions {
         let values: Vec<[f64; 3]> = match &vertices.input_of_slot {
-            None => p[..vertices.count].to_vec(),
-            Some(map) => map.iter().map(|&i| p[i as usize]).collect(),
+            None => P::slice_xyz(&p[..vertices.count]).into_owned(),
+            Some(map) => map.iter().map(|&i| p[i as usize].xyz()).collect(),
         };
         mesh.attrs.position = Some(mesh.attrs.vertex.push(
             POSITION,

@@ -63,7 +63,7 @@ pub mod traverse;
 pub mod validate;
 pub mod view;
 
-pub use build::{Built, IndexMaps, Polygons, VertexIndex};
+pub use build::{Built, IndexMaps, Polygons, PolygonsRef, VertexIndex};
 pub use error::{AnyError, BuildError, Error, Refusal, Result};
 pub use keys::{AnyKey, EdgeKey, ElementKey, ElementKind, FaceKey, HalfedgeKey, VertexKey};
 pub use mesh::Mesh;

@@ -4,7 +4,7 @@
 //! one, with the coordinates rounded as the type holds them.
 
 use meshloom::geometry::Point;
-use meshloom::Mesh;
+use meshloom::{BuildError, Error, Mesh, Polygons, PolygonsRef};
 
 /// An octahedron: positions that are exact in `f32`, and its faces.
 fn octahedron() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
@@ -29,14 +29,123 @@ fn octahedron() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     (p, f)
 }
 
-/// Build from `points` and compare with the `[f64; 3]` build.
-fn same_as_f64<P: Point>(points: &[P]) {
+/// The octahedron's faces as flat offsets and indices.
+fn flat_faces() -> (Vec<u32>, Vec<u32>) {
+    let (_, f) = octahedron();
+    let offsets = (0..=f.len() as u32).map(|i| 3 * i).collect();
+    (offsets, f.concat())
+}
+
+/// Build from `points` (face lists, and flat buffers borrowed as they are)
+/// and compare with the `[f64; 3]` build.
+fn same_as_f64<P: Point + std::fmt::Debug>(points: &[P]) {
     let (p, f) = octahedron();
     let want = Mesh::from_polygons(&p, &f).unwrap();
-    let got = Mesh::from_polygons(points, &f).unwrap();
-    assert_eq!(got.to_polygons().0, want.to_polygons().0);
-    assert!(got.is_closed());
-    assert_eq!(got.euler_characteristic(), 2);
+    let (offsets, indices) = flat_faces();
+    let flat = Mesh::from_flat_faces(points, &offsets, &indices).unwrap();
+    let by_ref = Mesh::from_buffers_ref(PolygonsRef::new(points, &offsets, &indices)).unwrap();
+    let built = Mesh::build_buffers_ref(PolygonsRef::new(points, &offsets, &indices)).unwrap();
+    assert_eq!(built.faces.len(), 8);
+    assert!(built.vertices.iter().all(Option::is_some));
+    for got in [
+        Mesh::from_polygons(points, &f).unwrap(),
+        flat,
+        by_ref,
+        built.mesh,
+    ] {
+        assert_eq!(got.to_polygons().0, want.to_polygons().0);
+        assert!(got.is_closed());
+        assert_eq!(got.euler_characteristic(), 2);
+    }
+}
+
+/// The error `from_buffers` gives for `[f64; 3]` buffers, and the one the
+/// flat builder gives for the same buffers in `f32`.
+fn both_errors(positions: &[[f64; 3]], offsets: &[u32], indices: &[u32]) -> (Error, Error) {
+    let poly = Polygons {
+        positions: positions.to_vec(),
+        offsets: offsets.to_vec(),
+        indices: indices.to_vec(),
+    };
+    let want = Mesh::from_buffers(&poly).unwrap_err();
+    let p32: Vec<[f32; 3]> = positions.iter().map(|q| q.map(|c| c as f32)).collect();
+    let got = Mesh::from_flat_faces(&p32, offsets, indices).unwrap_err();
+    (want, got)
+}
+
+#[test]
+fn flat_buffers_of_f32_give_the_errors_of_from_buffers() {
+    let (p, _) = octahedron();
+    let (offsets, indices) = flat_faces();
+    // An index past the positions, in face 2.
+    let mut bad = indices.clone();
+    bad[7] = 6;
+    let (want, got) = both_errors(&p, &offsets, &bad);
+    assert_eq!(got, want);
+    assert!(
+        matches!(
+            got,
+            Error::Build(BuildError::IndexOutOfRange {
+                face: 2,
+                index: 6,
+                vertex_count: 6
+            })
+        ),
+        "{got:?}"
+    );
+    // Offsets that go back, that do not start at 0, that miss the end.
+    for bent in [
+        vec![0, 3, 2, 9, 12, 15, 18, 21, 24],
+        vec![3, 6, 9, 12, 15, 18, 21, 24],
+        vec![0, 3, 6, 9, 12, 15, 18, 21],
+    ] {
+        let (want, got) = both_errors(&p, &bent, &indices);
+        assert_eq!(got, want);
+        assert!(
+            matches!(got, Error::Build(BuildError::MalformedOffsets { .. })),
+            "{got:?}"
+        );
+    }
+    // A NaN in a used vertex; in an unused one it is dropped with it.
+    let mut nan = p.clone();
+    nan[4][1] = f64::NAN;
+    let (want, got) = both_errors(&nan, &offsets, &indices);
+    assert!(
+        matches!(
+            got,
+            Error::Build(BuildError::NonFinitePosition { vertex: 4, .. })
+        ),
+        "{got:?}"
+    );
+    assert_eq!(got.to_string(), want.to_string());
+    let mut unused = p.iter().map(|q| q.map(|c| c as f32)).collect::<Vec<_>>();
+    unused.push([f32::NAN; 3]);
+    let m = Mesh::from_flat_faces(&unused, &offsets, &indices).unwrap();
+    assert_eq!(m.vertex_count(), 6);
+    // Topological errors too: a face with a repeated vertex.
+    let (want, got) = both_errors(&p, &[0, 3], &[0, 1, 0]);
+    assert_eq!(got, want);
+    assert!(
+        matches!(
+            got,
+            Error::Build(BuildError::RepeatedVertex { face: 0, vertex: 0 })
+        ),
+        "{got:?}"
+    );
+}
+
+#[test]
+fn flat_buffers_borrowed_from_polygons_build_the_same() {
+    let (p, f) = octahedron();
+    let poly = Mesh::from_polygons(&p, &f).unwrap().to_polygons().0;
+    let a = Mesh::from_buffers(&poly).unwrap();
+    let b = Mesh::from_buffers_ref(poly.borrowed()).unwrap();
+    assert_eq!(a.to_polygons().0, b.to_polygons().0);
+    // Empty positions: topology only, as from_buffers.
+    let topo = PolygonsRef::<[f32; 3]>::new(&[], &poly.offsets, &poly.indices);
+    let t = Mesh::from_buffers_ref(topo).unwrap();
+    assert!(!t.has_positions());
+    assert_eq!(t.face_count(), 8);
 }
 
 #[test]

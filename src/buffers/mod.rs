@@ -80,6 +80,8 @@ mod read;
 #[cfg(feature = "gltf")]
 pub(crate) use import::weld;
 pub use import::{FromBuffers, FromBuffersOptions, Weld};
+#[cfg(feature = "gltf")]
+pub(crate) use read::Reader;
 
 use crate::algo::normals::CornerNormalOptions;
 use crate::error::{BuildError, Error};

@@ -23,7 +23,11 @@
 //!   and custom attributes `_NAME` (column `NAME`) become vertex columns
 //!   where every copy of a welded vertex agrees, half-edge columns
 //!   otherwise. Primitives without an attribute leave it absent. The
-//!   material's name becomes the face column `material`. `TANGENT`,
+//!   material's name becomes the face column `material`. A custom
+//!   attribute `_FACE_NAME` (how meshloom writes a face column) becomes
+//!   the face column `NAME` when it has one value over each triangle (else
+//!   it is read as any custom attribute, as the column `FACE_NAME`).
+//!   `TANGENT`,
 //!   `JOINTS_n`, `WEIGHTS_n`, morph targets, skins, cameras and textures are
 //!   not read.
 //! - **Modes.** Triangles, triangle strips and fans; points and lines are
@@ -33,12 +37,28 @@
 //!   alone, [`read_gltf_with`] takes [`GltfOptions::mesh`] (the index in
 //!   the file's `meshes`).
 //!
-//! **Writing** makes one mesh, one primitive, one buffer: positions (with
-//! their bounds), the half-edge or vertex column `normal` as `NORMAL`,
-//! `texcoord`/`texcoordN` as `TEXCOORD_n`, `color`/`colorN` as `COLOR_n`,
-//! every other numeric vertex or half-edge column of one to four values as
-//! `_NAME`, split into glTF vertices where corner values differ
-//! ([`Mesh::to_triangle_buffers`]); polygons are triangulated for the file.
+//! **Writing** makes one mesh, one buffer, and one primitive per material:
+//! positions (with their bounds), the half-edge or vertex column `normal`
+//! as `NORMAL`, `texcoord`/`texcoordN` as `TEXCOORD_n`, `color`/`colorN`
+//! as `COLOR_n`, every other numeric vertex or half-edge column of one to
+//! four values as `_NAME`, split into glTF vertices where corner values
+//! differ ([`Mesh::to_triangle_buffers`]); polygons are triangulated for
+//! the file. Face columns are kept:
+//!
+//! - the text face column `material` makes the primitives: one per
+//!   distinct value, in order of first use, each with a material of that
+//!   name (faces without a value go to one more primitive with no
+//!   material); reading it back gives the same column and the same number
+//!   of faces per material. The primitives share the vertex attributes.
+//! - every other numeric face column of one to four values is written as
+//!   the custom vertex attribute `_FACE_NAME`, the glTF vertices split
+//!   where the faces around a vertex differ, so every triangle's three
+//!   corners carry its face's value (absent values are written as zeros).
+//!   meshloom reads it back as the face column `NAME`; other tools see an
+//!   ordinary per-vertex attribute. Do not name other columns `FACE_...`.
+//! - other text and boolean face columns (OBJ's `object` and `group`) are
+//!   not written.
+//!
 //! Values are stored as 32-bit floats. A `.gltf` holds its buffer as a
 //! base64 `data:` URI, so the file stands alone; `.glb` is binary.
 //!
@@ -65,6 +85,12 @@ use crate::mesh::Mesh;
 mod base64;
 mod read;
 mod write;
+
+/// The face column whose text values name the primitives' materials.
+const MATERIAL: &str = "material";
+/// Written before a face column's name in its custom attribute
+/// (`_FACE_NAME`), so that the reader knows it for a face column.
+const FACE_PREFIX: &str = "FACE_";
 
 /// How to read a glTF file beyond [`ReadOptions`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

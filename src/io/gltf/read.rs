@@ -11,7 +11,7 @@ use super::super::attrs::{Data, SoupColumn};
 use super::super::error::{Error, Location, Position};
 use super::super::soup::Soup;
 use super::super::{ReadOptions, RepairReport};
-use super::{at_byte, base64, GltfOptions};
+use super::{at_byte, base64, GltfOptions, FACE_PREFIX, MATERIAL};
 use crate::buffers::{weld, Weld};
 use crate::mesh::Mesh;
 
@@ -815,26 +815,19 @@ pub(super) fn read(
         soup.vertex_at = vertex_at;
     }
     for (name, g) in gathered {
+        if let Some(column) = face_column(&name, &g) {
+            soup.attrs.face.push(column);
+            continue;
+        }
         let vertex = g.vertex_kind && !g.disagree;
         let (values, present) = if vertex {
             (g.vertex, g.vertex_present)
         } else {
             (g.corner, g.corner_present)
         };
-        let data = match g.comps {
-            1 => Data::Scalar(values),
-            2 => Data::Vec2(values.chunks_exact(2).map(|c| [c[0], c[1]]).collect()),
-            3 => Data::Vec3(values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()),
-            _ => Data::Vec4(
-                values
-                    .chunks_exact(4)
-                    .map(|c| [c[0], c[1], c[2], c[3]])
-                    .collect(),
-            ),
-        };
         let column = SoupColumn {
             name,
-            data,
+            data: data_of(values, g.comps),
             present: (!present.iter().all(|&p| p)).then_some(present),
         };
         if vertex {
@@ -843,17 +836,67 @@ pub(super) fn read(
             soup.attrs.corner.push(column);
         }
     }
-    if materials.iter().any(Option::is_some) {
+    if materials.iter().any(Option::is_some) && !soup.attrs.face.iter().any(|c| c.name == MATERIAL)
+    {
         let present: Vec<bool> = materials.iter().map(Option::is_some).collect();
         let names: Vec<String> = materials
             .into_iter()
             .map(Option::unwrap_or_default)
             .collect();
         soup.attrs.face.push(SoupColumn {
-            name: "material".into(),
+            name: MATERIAL.into(),
             data: Data::Text(names),
             present: (!present.iter().all(|&p| p)).then_some(present),
         });
     }
     soup.finish(options)
+}
+
+/// Values of `comps` numbers apiece as soup data.
+fn data_of(values: Vec<f64>, comps: usize) -> Data {
+    match comps {
+        1 => Data::Scalar(values),
+        2 => Data::Vec2(values.chunks_exact(2).map(|c| [c[0], c[1]]).collect()),
+        3 => Data::Vec3(values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()),
+        _ => Data::Vec4(
+            values
+                .chunks_exact(4)
+                .map(|c| [c[0], c[1], c[2], c[3]])
+                .collect(),
+        ),
+    }
+}
+
+/// A custom attribute `_FACE_NAME` (as meshloom writes a face column) as
+/// the face column `NAME`, when its values are the same at the three
+/// corners of every triangle; `None` otherwise (it is then read as any
+/// other custom attribute, under the name `FACE_NAME`).
+fn face_column(name: &str, g: &Gathered) -> Option<SoupColumn> {
+    let face = name.strip_prefix(FACE_PREFIX).filter(|f| !f.is_empty())?;
+    if !g.vertex_kind {
+        return None;
+    }
+    let k = g.comps;
+    let corner = |c: usize| (g.corner_present[c], &g.corner[c * k..(c + 1) * k]);
+    let same = |a: (bool, &[f64]), b: (bool, &[f64])| {
+        a.0 == b.0 && a.1.iter().zip(b.1).all(|(x, y)| x.to_bits() == y.to_bits())
+    };
+    let triangles = g.corner_present.len() / 3;
+    let constant = (0..triangles)
+        .all(|t| same(corner(3 * t), corner(3 * t + 1)) && same(corner(3 * t), corner(3 * t + 2)));
+    if !constant {
+        return None;
+    }
+    let mut values = Vec::with_capacity(triangles * k);
+    let mut present = Vec::with_capacity(triangles);
+    for t in 0..triangles {
+        let (has, v) = corner(3 * t);
+        values.extend_from_slice(v);
+        present.push(has);
+    }
+    Some(SoupColumn {
+        name: face.to_owned(),
+        data: data_of(values, k),
+        present: (!present.iter().all(|&p| p)).then_some(present),
+    })
 }
