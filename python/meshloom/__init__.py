@@ -14,11 +14,13 @@ every edit.
 from ._meshloom import Edge, Face, Halfedge, Mesh, Vertex, __version__, read, read_with, write
 from .errors import (
     BuildError,
+    CancelledError,
     ColumnError,
     MeshloomError,
     ReadError,
     RefusedError,
     StaleKeyError,
+    UnsuitableError,
     ValidationError,
 )
 
@@ -38,5 +40,7 @@ __all__ = [
     "ValidationError",
     "ReadError",
     "ColumnError",
+    "CancelledError",
+    "UnsuitableError",
     "__version__",
 ]

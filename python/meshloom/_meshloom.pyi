@@ -10,6 +10,9 @@ __version__: str
 
 _Path = Union[str, PathLike[str]]
 _Kind = str  # "vertex", "halfedge" (or "corner"), "edge", "face"
+_Progress = Any  # a callable taking {"algorithm", "stage", "done", "total"}; returning False cancels
+_Keep = Union[bool, str]  # True / "slide", False / "free", "lock"
+_Mask = Union[str, npt.ArrayLike, None]  # a bool vertex column name or a bool array in vertex order
 
 class Rule(Protocol):
     """A Python attribute rule: called inside every operator."""
@@ -149,6 +152,31 @@ class Mesh:
     def to_arrays(self) -> Tuple[npt.NDArray[np.float64], Union[npt.NDArray[np.int64], List[List[int]]]]: ...
     def to_buffers(self) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.uint32], npt.NDArray[np.uint32]]: ...
     def triangle_buffers(self, normals: bool = True, corner_columns: Sequence[str] = ..., vertex_columns: Sequence[str] = ...) -> Dict[str, npt.NDArray[Any]]: ...
+    def to_triangle_buffers(
+        self,
+        *,
+        normals: bool = True,
+        crease_angle: Optional[float] = ...,
+        weight: str = "angle",
+        hard_edges: Optional[str] = None,
+        columns: Optional[Sequence[Union[str, Tuple[str, str]]]] = None,
+        index_type: str = "auto",
+        dtype: str = "float32",
+    ) -> Dict[str, Any]:
+        """Triangle buffers for a renderer: ``positions`` (v, 3), ``normals``
+        (v, 3), ``indices`` (t, 3) uint16 or uint32, ``columns`` (name ->
+        (v, c)), ``triangle_faces`` (t,), ``vertex_sources`` (v,)."""
+    @staticmethod
+    def from_triangle_buffers(
+        positions: npt.ArrayLike,
+        indices: npt.ArrayLike,
+        *,
+        normals: Optional[npt.ArrayLike] = None,
+        columns: Optional[Dict[str, Union[npt.ArrayLike, Tuple[npt.ArrayLike, str]]]] = None,
+        weld: Optional[float] = None,
+    ) -> Mesh:
+        """A mesh from triangle buffers, welded by position; corner columns
+        become half-edge columns, normals the half-edge column ``normal``."""
     @property
     def vertex_count(self) -> int: ...
     @property
@@ -231,11 +259,28 @@ class Mesh:
     def check_split_vertex(self, hc: Halfedge, hd: Halfedge) -> None: ...
     def cut_path(self, path: Sequence[Vertex]) -> List[Face]: ...
     def check_cut_path(self, path: Sequence[Vertex]) -> None: ...
+    # algorithms (angles in radians; reports are dicts)
+    def normals(self, kind: str = "vertex", *, weight: str = "angle", crease_angle: Optional[float] = ..., hard_edges: Optional[str] = None, store: bool = False) -> npt.NDArray[np.float64]:
+        """(n, 3) normals of "face", "vertex" or "corner" (half-edge) kind, in element order."""
+    def curvature(self, *, boundary: str = "from_interior", store: bool = False) -> Dict[str, npt.NDArray[np.float64]]:
+        """Per-vertex ``mean``, ``gaussian``, ``min``, ``max`` curvature and ``area``."""
+    def subdivide(self, scheme: str = "loop", levels: int = 1, *, boundary: str = "crease", corner_column: Optional[str] = None, crease_column: Optional[str] = None, linear_columns: Sequence[str] = ..., faces: str = "auto", progress: _Progress = None) -> Dict[str, Any]:
+        """Subdivide in place: "loop", "catmull_clark", "sqrt3" or "midpoint"."""
+    def smooth(self, method: str = "uniform", *, iterations: Optional[int] = None, step: Optional[float] = None, taubin_mu: Optional[float] = None, fix_boundary: bool = True, mask: _Mask = None, rescale: bool = False, progress: _Progress = None) -> Dict[str, Any]:
+        """Smooth positions in place: "uniform", "cotan", "taubin" or "implicit"."""
+    def fair(self, region: Union[_Mask, Sequence[Vertex]] = None, *, order: int = 2, weights: str = "cotan", progress: _Progress = None) -> Dict[str, Any]:
+        """The smoothest surface over a region with its surroundings fixed."""
+    def decimate(self, ratio: Optional[float] = None, *, vertices: Optional[int] = None, faces: Optional[int] = None, max_error: Optional[float] = None, max_normal_deviation: Optional[float] = ..., min_quality: Optional[float] = None, max_valence: Optional[int] = None, keep_boundary: Optional[_Keep] = None, keep_seams: Optional[_Keep] = None, material: Optional[str] = None, locked: Optional[str] = None, feature_angle: Optional[float] = None, feature_edges: Optional[str] = None, attributes: Optional[Dict[str, float]] = None, progress: _Progress = None) -> Dict[str, Any]:
+        """Quadric error decimation of a triangle mesh, in place."""
+    def lod_chain(self, targets: Optional[Sequence[Union[float, Dict[str, Union[int, float]]]]] = None, *, max_error: Optional[float] = None, max_normal_deviation: Optional[float] = ..., min_quality: Optional[float] = None, max_valence: Optional[int] = None, keep_boundary: Optional[_Keep] = None, keep_seams: Optional[_Keep] = None, material: Optional[str] = None, locked: Optional[str] = None, feature_angle: Optional[float] = None, feature_edges: Optional[str] = None, attributes: Optional[Dict[str, float]] = None, progress: _Progress = None) -> List[Dict[str, Any]]:
+        """Nested levels of detail (``mesh`` and ``report`` per level); the mesh is not changed."""
     # pickling and equality
     def __getstate__(self) -> Tuple[bytes, List[Tuple[str, str, Any, List[Tuple[int, Any]]]]]: ...
     def __setstate__(self, state: Tuple[bytes, Any]) -> None: ...
     def __eq__(self, other: object) -> bool: ...
 
-def read(path: _Path) -> Mesh: ...
+def read(path: _Path) -> Mesh:
+    """Read OBJ, OFF, PLY, STL (optionally .gz) or glTF (.gltf, .glb)."""
 def read_with(path: _Path, repair: Union[str, Sequence[str], None] = None, weld: bool = False, max_bytes: Optional[int] = None) -> Tuple[Mesh, Dict[str, Any]]: ...
-def write(mesh: Mesh, path: _Path, ascii: bool = False) -> None: ...
+def write(mesh: Mesh, path: _Path, ascii: bool = False) -> None:
+    """Write by extension: .obj, .off, .ply, .stl (optionally .gz), .gltf, .glb."""

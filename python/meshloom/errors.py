@@ -65,6 +65,24 @@ class ColumnError(MeshloomError, LookupError):
     or rule than asked."""
 
 
+class CancelledError(MeshloomError):
+    """An algorithm was cancelled by its progress callback (which returned
+    False); the mesh is unchanged. `algorithm` names it."""
+
+    algorithm: str = ""
+
+
+class UnsuitableError(MeshloomError, ValueError):
+    """An algorithm cannot run on this mesh or with these options (a face
+    that is not a triangle, a step out of range, a region with nothing
+    fixed, ...); the mesh is unchanged. `algorithm` names it, `reason` says
+    why, `element` is the key it names (or None)."""
+
+    algorithm: str = ""
+    reason: str = ""
+    element: Any = None
+
+
 __all__ = [
     "MeshloomError",
     "StaleKeyError",
@@ -73,4 +91,6 @@ __all__ = [
     "ValidationError",
     "ReadError",
     "ColumnError",
+    "CancelledError",
+    "UnsuitableError",
 ]

@@ -15,12 +15,13 @@
 //! `interpolate` (falling back to `merge`) or `split` method. The trait's
 //! functions cannot fail, so an exception raised by a Python rule is parked
 //! in a thread-local slot and the value is left absent; the caller of every
-//! edit ([`crate::mesh::PyMesh`]'s `edit`) takes a snapshot of the mesh
-//! before an edit when the mesh has a Python-rule column, and restores it
-//! and re-raises the exception when one was parked: all or nothing.
+//! edit ([`crate::mesh::PyMesh`]'s `edit`) runs the edit inside a journal
+//! transaction when the mesh has a Python-rule column, rolls it back and
+//! re-raises the exception when one was parked: all or nothing, at the cost
+//! of the edit. The values hold Python objects, so `Mesh` takes part in
+//! Python's garbage collection (`crate::gc`).
 
 use std::cell::RefCell;
-use std::sync::Arc;
 
 use meshloom::attr::Attribute;
 use meshloom::attr::{Element, Rule, Value};
@@ -46,6 +47,8 @@ pub enum Dtype {
     Vec2,
     /// `[f64; 3]`.
     Vec3,
+    /// `[f64; 4]` (colours read from files).
+    Vec4,
     /// `String`.
     Text,
     /// Any Python object, with a Python rule.
@@ -118,6 +121,7 @@ impl Dtype {
             Dtype::Bool => "bool",
             Dtype::Vec2 => "vec2",
             Dtype::Vec3 => "vec3",
+            Dtype::Vec4 => "vec4",
             Dtype::Text => "str",
             Dtype::Object => "object",
             Dtype::Dynamic => "dynamic",
@@ -142,16 +146,17 @@ impl Dtype {
             "bool" => Dtype::Bool,
             "vec2" => Dtype::Vec2,
             "vec3" => Dtype::Vec3,
+            "vec4" => Dtype::Vec4,
             "str" => Dtype::Text,
             "object" => Dtype::Object,
-            other => return Err(PyValueError::new_err(format!("unsupported dtype {other:?}: use float, int, bool, str, \"vec2\", \"vec3\", or object with a Python rule"))),
+            other => return Err(PyValueError::new_err(format!("unsupported dtype {other:?}: use float, int, bool, str, \"vec2\", \"vec3\", \"vec4\", or object with a Python rule"))),
         })
     }
 
     /// The rule a column of this type gets when none is named.
     pub fn default_rule(self) -> RuleName {
         match self {
-            Dtype::Float | Dtype::Vec2 | Dtype::Vec3 => RuleName::Interpolate,
+            Dtype::Float | Dtype::Vec2 | Dtype::Vec3 | Dtype::Vec4 => RuleName::Interpolate,
             Dtype::Int | Dtype::Text => RuleName::Incompatible,
             Dtype::Bool => RuleName::Contagion,
             Dtype::Object => RuleName::PyRule,
@@ -176,8 +181,23 @@ pub fn parse_kind(s: &str) -> PyResult<ElementKind> {
 }
 
 /// A Python value with the Python rule its column follows.
-#[derive(Clone, Default)]
-pub struct PyValue(pub Option<Arc<Carried>>);
+///
+/// Each `PyValue` owns its references (a clone takes new ones), so a mesh's
+/// `__traverse__` visits exactly the references its columns hold, even when
+/// a copy of the mesh holds the same objects.
+#[derive(Default)]
+pub struct PyValue(pub Option<Box<Carried>>);
+
+impl Clone for PyValue {
+    fn clone(&self) -> Self {
+        match &self.0 {
+            None => PyValue(None),
+            Some(c) => {
+                Python::attach(|py| PyValue::new(c.rule.clone_ref(py), c.value.clone_ref(py)))
+            }
+        }
+    }
+}
 
 /// What a [`PyValue`] holds.
 pub struct Carried {
@@ -190,7 +210,7 @@ pub struct Carried {
 impl PyValue {
     /// A value of a column with rule `rule`.
     pub fn new(rule: Py<PyAny>, value: Py<PyAny>) -> PyValue {
-        PyValue(Some(Arc::new(Carried { rule, value })))
+        PyValue(Some(Box::new(Carried { rule, value })))
     }
 }
 
@@ -210,7 +230,8 @@ pub fn take_rule_error() -> Option<PyErr> {
     RULE_ERROR.with(|e| e.borrow_mut().take())
 }
 
-fn rule_failed() -> bool {
+/// Whether a Python rule raised since the last [`take_rule_error`].
+pub fn rule_failed() -> bool {
     RULE_ERROR.with(|e| e.borrow().is_some())
 }
 
@@ -360,6 +381,11 @@ pub trait PyAttr: Attribute {
     fn dense_to_array(py: Python<'_>, values: &[Self]) -> PyResult<Py<PyAny>> {
         Self::to_array(py, values.iter().cloned().map(Some).collect(), None, "")
     }
+    /// A whole column from numpy with every value present, in element
+    /// order, when the type has a quick path (numbers); `None` otherwise.
+    fn dense_from_array(_ob: &Bound<'_, PyAny>, _n: usize) -> PyResult<Option<Vec<Self>>> {
+        Ok(None)
+    }
     /// A whole column from numpy (or a sequence), in element order.
     fn from_array(
         ob: &Bound<'_, PyAny>,
@@ -404,6 +430,10 @@ fn numeric_from<T: numpy::Element + Copy>(ob: &Bound<'_, PyAny>, n: usize) -> Py
 }
 
 impl PyAttr for f64 {
+    fn dense_from_array(ob: &Bound<'_, PyAny>, n: usize) -> PyResult<Option<Vec<Self>>> {
+        let v = numeric_from::<f64>(ob, n)?;
+        Ok((!v.iter().any(|x| x.is_nan())).then_some(v))
+    }
     fn dense_to_array(py: Python<'_>, values: &[Self]) -> PyResult<Py<PyAny>> {
         Ok(PyArray1::from_slice(py, values).into_any().unbind())
     }
@@ -436,6 +466,12 @@ impl PyAttr for f64 {
 }
 
 impl PyAttr for i64 {
+    fn dense_from_array(ob: &Bound<'_, PyAny>, n: usize) -> PyResult<Option<Vec<Self>>> {
+        numeric_from::<i64>(ob, n).map(Some)
+    }
+    fn dense_to_array(py: Python<'_>, values: &[Self]) -> PyResult<Py<PyAny>> {
+        Ok(PyArray1::from_slice(py, values).into_any().unbind())
+    }
     fn to_py(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         Ok(self.into_pyobject(py)?.into_any().unbind())
     }
@@ -463,6 +499,12 @@ impl PyAttr for i64 {
 }
 
 impl PyAttr for bool {
+    fn dense_from_array(ob: &Bound<'_, PyAny>, n: usize) -> PyResult<Option<Vec<Self>>> {
+        numeric_from::<bool>(ob, n).map(Some)
+    }
+    fn dense_to_array(py: Python<'_>, values: &[Self]) -> PyResult<Py<PyAny>> {
+        Ok(PyArray1::from_slice(py, values).into_any().unbind())
+    }
     fn to_py(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         Ok(pyo3::types::PyBool::new(py, *self)
             .to_owned()
@@ -495,6 +537,9 @@ impl PyAttr for bool {
 macro_rules! vec_attr {
     ($n:literal) => {
         impl PyAttr for [f64; $n] {
+            fn dense_from_array(ob: &Bound<'_, PyAny>, n: usize) -> PyResult<Option<Vec<Self>>> {
+                Ok(Self::from_array(ob, n, None)?.into_iter().collect())
+            }
             fn dense_to_array(py: Python<'_>, values: &[Self]) -> PyResult<Py<PyAny>> {
                 let flat: &[f64] = values.as_flattened();
                 Ok(PyArray1::from_slice(py, flat)
@@ -553,6 +598,7 @@ macro_rules! vec_attr {
 }
 vec_attr!(2);
 vec_attr!(3);
+vec_attr!(4);
 
 impl PyAttr for String {
     fn to_py(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
@@ -695,6 +741,15 @@ macro_rules! dispatch_types {
                 [f64; 3],
                 [Interpolate, Conserved, Incompatible, KeepFirst, Discard]
             ),
+            D::Vec4 => $crate::dispatch_rules!(
+                $dtype,
+                $rule,
+                $f,
+                $args,
+                $K,
+                [f64; 4],
+                [Interpolate, Conserved, Incompatible, KeepFirst, Discard]
+            ),
             D::Int => $crate::dispatch_rules!(
                 $dtype,
                 $rule,
@@ -780,6 +835,7 @@ pub const COMBOS: &[(Dtype, RuleName)] = &[
     (Dtype::Float, RuleName::Interpolate),
     (Dtype::Vec3, RuleName::Interpolate),
     (Dtype::Vec2, RuleName::Interpolate),
+    (Dtype::Vec4, RuleName::Interpolate),
     (Dtype::Int, RuleName::Incompatible),
     (Dtype::Bool, RuleName::Contagion),
     (Dtype::Text, RuleName::Incompatible),
@@ -798,6 +854,10 @@ pub const COMBOS: &[(Dtype, RuleName)] = &[
     (Dtype::Vec2, RuleName::Incompatible),
     (Dtype::Vec2, RuleName::KeepFirst),
     (Dtype::Vec2, RuleName::Discard),
+    (Dtype::Vec4, RuleName::Conserved),
+    (Dtype::Vec4, RuleName::Incompatible),
+    (Dtype::Vec4, RuleName::KeepFirst),
+    (Dtype::Vec4, RuleName::Discard),
     (Dtype::Int, RuleName::Contagion),
     (Dtype::Int, RuleName::KeepFirst),
     (Dtype::Int, RuleName::Discard),
@@ -896,12 +956,7 @@ pub fn get_all<K: FromAny, T: PyAttr, R: Rule<T>>(
         Ok(v) => v,
         Err(e) => return Ok(Err(e)),
     };
-    let count = match K::KIND {
-        ElementKind::Vertex => mesh.vertex_count(),
-        ElementKind::Halfedge => mesh.halfedge_count(),
-        ElementKind::Edge => mesh.edge_count(),
-        _ => mesh.face_count(),
-    };
+    let count = element_count::<K>(mesh);
     // Every slot live and valued, and no hole among them: one copy.
     if let Some(s) = view.dense_slice().filter(|s| s.len() == count) {
         return Ok(Ok(T::dense_to_array(py, s)?));
@@ -925,15 +980,41 @@ pub fn set_all<K: FromAny, T: PyAttr, R: Rule<T>>(
         Ok(h) => h,
         Err(e) => return Ok(Err(e)),
     };
-    let keys = K::all(mesh);
-    let vals = T::from_array(values, keys.len(), rule)?;
-    if vals.len() != keys.len() {
+    let count = element_count::<K>(mesh);
+    // Numbers with every value present: converted once, written with one
+    // copy when no slot is vacant.
+    if let Some(dense) = T::dense_from_array(values, count)? {
+        let mut view = match mesh.attr_view_mut(&h) {
+            Ok(v) => v,
+            Err(e) => return Ok(Err(e)),
+        };
+        match view.set_slots(&dense) {
+            Ok(true) => return Ok(Ok(())),
+            Ok(false) => {}
+            Err(e) => return Ok(Err(e)),
+        }
+    }
+    let vals = T::from_array(values, count, rule)?;
+    if vals.len() != count {
         return Err(PyValueError::new_err(format!(
-            "expected {} values, got {}",
-            keys.len(),
+            "expected {count} values, got {}",
             vals.len()
         )));
     }
+    let mut view = match mesh.attr_view_mut(&h) {
+        Ok(v) => v,
+        Err(e) => return Ok(Err(e)),
+    };
+    // Every value present, one per slot, no vacant slot: one copy.
+    if vals.iter().all(Option::is_some) {
+        let dense: Vec<T> = vals.iter().flatten().cloned().collect();
+        match view.set_slots(&dense) {
+            Ok(true) => return Ok(Ok(())),
+            Ok(false) => {}
+            Err(e) => return Ok(Err(e)),
+        }
+    }
+    let keys = K::all(mesh);
     let mut view = match mesh.attr_view_mut(&h) {
         Ok(v) => v,
         Err(e) => return Ok(Err(e)),
@@ -944,6 +1025,17 @@ pub fn set_all<K: FromAny, T: PyAttr, R: Rule<T>>(
         }
     }
     Ok(Ok(()))
+}
+
+/// The number of elements `attr_array` reads for `K` (faces: holes not
+/// counted).
+fn element_count<K: Element>(mesh: &Mesh) -> usize {
+    match K::KIND {
+        ElementKind::Vertex => mesh.vertex_count(),
+        ElementKind::Halfedge => mesh.halfedge_count(),
+        ElementKind::Edge => mesh.edge_count(),
+        _ => mesh.face_count(),
+    }
 }
 
 /// The rule object of a Python-rule column, from any of its values.

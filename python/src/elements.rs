@@ -31,6 +31,15 @@ macro_rules! key_class {
 
         #[pymethods]
         impl $name {
+            /// The key holds its mesh: the garbage collector must see it (a
+            /// key stored in a Python-rule column of its own mesh is a cycle).
+            fn __traverse__(
+                &self,
+                visit: pyo3::gc::PyVisit<'_>,
+            ) -> Result<(), pyo3::PyTraverseError> {
+                visit.call(&self.mesh)
+            }
+
             /// The slot index (dense after `Mesh.compact()`, reused after removal).
             #[getter]
             fn index(&self) -> usize {

@@ -101,6 +101,35 @@ pub fn mesh_err(py: Python<'_>, mesh: &Py<PyMesh>, e: Error) -> PyErr {
         | Error::AttributeMissing { .. }
         | Error::AttributeType { .. }
         | Error::AttributeHandle { .. } => raise(py, "ColumnError", msg, &[]),
+        Error::Cancelled { algorithm } => raise(
+            py,
+            "CancelledError",
+            msg,
+            &[(
+                "algorithm",
+                algorithm.into_pyobject(py).unwrap().into_any().unbind(),
+            )],
+        ),
+        Error::Unsuitable {
+            algorithm,
+            key: k,
+            reason,
+        } => raise(
+            py,
+            "UnsuitableError",
+            msg,
+            &[
+                (
+                    "algorithm",
+                    algorithm.into_pyobject(py).unwrap().into_any().unbind(),
+                ),
+                (
+                    "reason",
+                    reason.into_pyobject(py).unwrap().into_any().unbind(),
+                ),
+                ("element", k.map(key).unwrap_or_else(|| py.None())),
+            ],
+        ),
         _ => raise(py, "MeshloomError", msg, &[]),
     }
 }

@@ -8,8 +8,9 @@ use pyo3::prelude::*;
 use crate::errors::io_err;
 use crate::mesh::PyMesh;
 
-/// Read a mesh file strictly (OBJ, OFF, PLY, STL, optionally `.gz`; glTF
-/// is not built into the Python package). Raises `ReadError` naming the
+/// Read a mesh file strictly: OBJ, OFF, PLY, STL (optionally `.gz`) or
+/// glTF 2.0 (`.gltf`, `.glb`; every mesh of the scene, texture coordinates
+/// as the corner column `texcoord`). Raises `ReadError` naming the
 /// file and line (or byte) for anything a half-edge mesh cannot hold.
 #[pyfunction]
 pub fn read(py: Python<'_>, path: std::path::PathBuf) -> PyResult<PyMesh> {
@@ -96,7 +97,8 @@ pub fn read_with(
 }
 
 /// Write a mesh; the format comes from the extension (`.obj`, `.off`,
-/// `.ply`, `.stl`, optionally `.gz`). PLY and STL are binary unless
+/// `.ply`, `.stl`, optionally `.gz`; `.gltf` (JSON with the buffer inside)
+/// or `.glb`). PLY and STL are binary unless
 /// `ascii=True`. Raises `ReadError` (with `file`) when it cannot.
 #[pyfunction]
 #[pyo3(signature = (mesh, path, ascii = false))]

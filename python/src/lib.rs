@@ -11,9 +11,12 @@
 
 use pyo3::prelude::*;
 
+pub mod algo;
 pub mod attrs;
+pub mod buffers;
 pub mod elements;
 pub mod errors;
+pub mod gc;
 pub mod io;
 pub mod mesh;
 

@@ -14,12 +14,20 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList, PyTuple};
 
 use crate::attrs::{
-    add, column_type, get_all, get_one, parse_kind, remove, set_all, set_one, take_rule_error,
-    Dtype, FromAny, PyAttr, RuleName,
+    add, column_type, get_all, get_one, parse_kind, remove, rule_failed, set_all, set_one,
+    take_rule_error, Dtype, FromAny, PyAttr, RuleName,
 };
 use crate::dispatch;
 use crate::elements::{self, key_object, PyEdge, PyFace, PyHalfedge, PyVertex};
 use crate::errors::{build_err, mesh_err};
+
+/// The element kinds, by `ElementKind as usize`.
+pub const KINDS: [ElementKind; 4] = [
+    ElementKind::Vertex,
+    ElementKind::Halfedge,
+    ElementKind::Edge,
+    ElementKind::Face,
+];
 
 /// A Python-rule column's values by slot, as pickled.
 type SlotValues = Vec<(u32, Py<PyAny>)>;
@@ -27,7 +35,7 @@ type SlotValues = Vec<(u32, Py<PyAny>)>;
 type PickledColumn = (String, String, Py<PyAny>, SlotValues);
 
 /// A polygon mesh as a half-edge graph whose attributes follow every edit.
-#[pyclass(module = "meshloom", name = "Mesh")]
+#[pyclass(module = "meshloom", name = "Mesh", weakref)]
 pub struct PyMesh {
     /// The Rust mesh.
     pub mesh: Mesh,
@@ -54,39 +62,52 @@ impl PyMesh {
         }
     }
 
-    fn has_python_rules(&self) -> bool {
-        [
-            ElementKind::Vertex,
-            ElementKind::Halfedge,
-            ElementKind::Edge,
-            ElementKind::Face,
-        ]
-        .into_iter()
-        .any(|kind| {
-            self.mesh
-                .attr_info(kind)
-                .iter()
-                .any(|i| i.type_name.ends_with("PyValue"))
-        })
+    /// Whether the mesh has a Python-rule column (whose rules may raise).
+    pub fn has_python_rules(&self) -> bool {
+        !self.py_rules.is_empty()
+    }
+
+    /// A mesh made from this one (a copy, an LOD level): the Python-rule
+    /// columns it holds keep their rule objects.
+    pub fn wrap_like(&self, py: Python<'_>, mesh: Mesh) -> PyMesh {
+        let py_rules = self
+            .py_rules
+            .iter()
+            .filter(|((kind, name), _)| {
+                mesh.attr_info(KINDS[*kind]).iter().any(|i| &i.name == name)
+            })
+            .map(|(k, v)| (k.clone(), v.clone_ref(py)))
+            .collect();
+        PyMesh { mesh, py_rules }
     }
 }
 
 /// Run an edit all-or-nothing: the Rust operators refuse before changing
-/// anything; a Python rule that raises is undone from a snapshot taken
-/// first (only when the mesh has a Python-rule column).
-fn edit<T>(
+/// anything; on a mesh with a Python-rule column the edit runs inside a
+/// journal transaction (`Mesh::transaction`), which a Python rule that
+/// raised rolls back: the cost is the size of the edit, not of the mesh.
+pub(crate) fn edit<T>(
     slf: &Bound<'_, PyMesh>,
     op: impl FnOnce(&mut Mesh) -> meshloom::Result<T>,
 ) -> PyResult<T> {
     let py = slf.py();
     let mut this = slf.borrow_mut();
-    let snapshot = this.has_python_rules().then(|| this.mesh.clone());
     let _ = take_rule_error();
-    let result = op(&mut this.mesh);
+    let result = if this.has_python_rules() {
+        this.mesh.transaction(|m| {
+            let out = op(m);
+            if rule_failed() {
+                // Roll back; the parked exception is raised below.
+                return Err(meshloom::Error::Cancelled {
+                    algorithm: "a Python attribute rule",
+                });
+            }
+            out
+        })
+    } else {
+        op(&mut this.mesh)
+    };
     if let Some(err) = take_rule_error() {
-        if let Some(s) = snapshot {
-            this.mesh = s;
-        }
         let note =
             "raised by a Python attribute rule inside a meshloom edit; the mesh is unchanged";
         let _ = err.value(py).call_method1("add_note", (note,));
@@ -1197,7 +1218,7 @@ impl PyMesh {
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
         let jb: serde_json::Value = serde_json::from_slice(&b.get_item(0)?.extract::<Vec<u8>>()?)
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
-        if ja != jb {
+        if canonical(ja) != canonical(jb) {
             return Ok(false);
         }
         let sort = py.import("builtins")?.getattr("sorted")?;
@@ -1230,6 +1251,65 @@ impl PyMesh {
         }
         Ok(true)
     }
+}
+
+/// The serde form without what no key can reach: the content and
+/// generation of vacant slots, and vacant slots past the last live one. Two
+/// meshes equal in this form have the same elements under the same keys,
+/// the same links and the same values; they may differ in slots left
+/// vacant (an undone or rolled-back birth leaves its slot vacant at a
+/// higher generation).
+fn canonical(mut j: serde_json::Value) -> serde_json::Value {
+    use serde_json::Value as J;
+    fn live(j: &J, field: &str) -> Vec<bool> {
+        j[field]
+            .as_array()
+            .map(|g| {
+                g.iter()
+                    .map(|g| g.as_u64().is_some_and(|g| g & 1 == 1))
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+    /// Null the entries of vacant slots (`per` entries per slot), then cut
+    /// the array after the last live slot.
+    fn scrub(a: &mut J, live: &[bool], per: usize) {
+        let Some(a) = a.as_array_mut() else { return };
+        for (i, x) in a.iter_mut().enumerate() {
+            if !live.get(i / per).copied().unwrap_or(false) {
+                *x = J::Null;
+            }
+        }
+        let keep = live.iter().rposition(|&l| l).map_or(0, |i| (i + 1) * per);
+        a.truncate(keep);
+    }
+    fn scrub_attrs(j: &mut J, field: &str, live: &[bool], per: usize) {
+        if let Some(cols) = j[field].as_array_mut() {
+            for c in cols {
+                scrub(&mut c["values"], live, per);
+            }
+        }
+    }
+    let (v, e, f) = (
+        live(&j, "vertex_generations"),
+        live(&j, "edge_generations"),
+        live(&j, "face_generations"),
+    );
+    for (field, live, per) in [
+        ("vertex_halfedge", &v, 1),
+        ("vertex_generations", &v, 1),
+        ("halfedges", &e, 2),
+        ("edge_generations", &e, 1),
+        ("face_halfedge", &f, 1),
+        ("face_generations", &f, 1),
+    ] {
+        scrub(&mut j[field], live, per);
+    }
+    scrub_attrs(&mut j, "vertex_attrs", &v, 1);
+    scrub_attrs(&mut j, "halfedge_attrs", &e, 2);
+    scrub_attrs(&mut j, "edge_attrs", &e, 1);
+    scrub_attrs(&mut j, "face_attrs", &f, 1);
+    j
 }
 
 /// The present values of a Python-rule column by slot.

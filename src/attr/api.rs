@@ -451,6 +451,7 @@ impl Mesh {
         Ok(AttrViewMut {
             values: &mut col.values,
             present: &mut col.present,
+            absent: &mut col.absent,
             slots,
             shift,
             value_type,

@@ -103,4 +103,36 @@ mod tests {
         assert_eq!(mesh.attr(&w, k).unwrap(), None);
         assert!(mesh.attr(&name, v).is_err());
     }
+
+    #[test]
+    fn a_column_written_key_by_key_is_dense_again() {
+        let mut mesh = crate::shapes::icosahedron();
+        let w = mesh.add_vertex_attr::<f64>("w").unwrap();
+        let keys: Vec<_> = mesh.vertices().collect();
+        assert!(mesh.attr_view(&w).unwrap().dense_slice().is_none());
+        for (i, &v) in keys.iter().enumerate() {
+            mesh.set_attr(&w, v, i as f64).unwrap();
+        }
+        let want: Vec<f64> = (0..12).map(f64::from).collect();
+        assert_eq!(mesh.attr_view(&w).unwrap().dense_slice(), Some(&want[..]));
+        // A gap makes it sparse; filling the gap makes it dense again.
+        mesh.clear_attr(&w, keys[3]).unwrap();
+        assert!(mesh.attr_view(&w).unwrap().dense_slice().is_none());
+        mesh.set_attr(&w, keys[3], 3.0).unwrap();
+        assert_eq!(mesh.attr_view(&w).unwrap().dense_slice(), Some(&want[..]));
+        // Through a mutable view, as bulk writers do.
+        {
+            let mut view = mesh.attr_view_mut(&w).unwrap();
+            view.set(keys[0], None).unwrap();
+            view.set(keys[0], Some(0.0)).unwrap();
+        }
+        assert_eq!(mesh.attr_view(&w).unwrap().dense_slice(), Some(&want[..]));
+        // A rolled-back clear leaves it dense.
+        let r = mesh.transaction(|m| {
+            m.clear_attr(&w, keys[5])?;
+            Err::<(), _>(crate::Error::Cancelled { algorithm: "test" })
+        });
+        assert!(r.is_err());
+        assert_eq!(mesh.attr_view(&w).unwrap().dense_slice(), Some(&want[..]));
+    }
 }

@@ -214,6 +214,8 @@ impl<'m, K: Element, T> AttrView<'m, K, T> {
 pub struct AttrViewMut<'m, K, T> {
     pub(crate) values: &'m mut Vec<T>,
     pub(crate) present: &'m mut Option<Vec<u64>>,
+    /// The column's count of clear presence bits (see `Column::absent`).
+    pub(crate) absent: &'m mut usize,
     pub(crate) slots: &'m Slots,
     pub(crate) shift: u32,
     pub(crate) value_type: Option<ValueType>,
@@ -227,13 +229,9 @@ impl<K: Element, T: Attribute> AttrViewMut<'_, K, T> {
     /// Drop the presence bits when every slot of the arena has a value (a
     /// filled column on an arena with no vacant slot): the column is dense
     /// again, so bulk reads ([`AttrView::dense_slice`]) take it whole.
+    /// Writes keep the count of absent slots, so this is a test.
     pub(crate) fn drop_full_presence(&mut self) {
-        let len = self.values.len();
-        let full = match self.present.as_ref() {
-            Some(bits) => (0..len).all(|i| bits[i / 64] & (1 << (i % 64)) != 0),
-            None => false,
-        };
-        if full {
+        if *self.absent == 0 {
             *self.present = None;
         }
     }
@@ -293,22 +291,58 @@ impl<K: Element, T: Attribute> AttrViewMut<'_, K, T> {
             }
         }
         let len = self.values.len();
-        match value {
-            Some(v) => {
-                self.values[i] = v;
-                if let Some(bits) = self.present.as_mut() {
-                    bits[i / 64] |= 1 << (i % 64);
+        let has = value.is_some();
+        self.values[i] = value.unwrap_or_default();
+        // The last absent value set makes the column dense again.
+        crate::store::mark(self.present, self.absent, len, i, has);
+        Ok(())
+    }
+
+    /// Write the whole column at once from `values`, one per slot in slot
+    /// order, when every slot of the arena holds a live element (no element
+    /// removed since the mesh was built or compacted) and `values` has one
+    /// value per slot: the column is then dense ([`AttrView::dense_slice`]).
+    /// Returns `false`, writing nothing, when the arena has a vacant slot or
+    /// the length differs (write by key then). On the face arena the slots
+    /// include the hole faces'.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let t = mesh.add_vertex_attr::<f64>("t")?;
+    /// assert!(mesh.attr_view_mut(&t)?.set_slots(&[1.0, 2.0, 3.0, 4.0])?);
+    /// assert_eq!(mesh.attr_view(&t)?.dense_slice(), Some(&[1.0, 2.0, 3.0, 4.0][..]));
+    /// assert!(!mesh.attr_view_mut(&t)?.set_slots(&[1.0])?);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::AttributeType`] for a value of another type than a dynamic
+    /// column declares; [`Error::NonFinitePosition`] on the position
+    /// column. Nothing is written then.
+    pub fn set_slots(&mut self, values: &[T]) -> Result<bool> {
+        if values.len() != self.values.len() || !self.slots.intact() {
+            return Ok(false);
+        }
+        for (i, v) in values.iter().enumerate() {
+            if let Some(ty) = self.value_type {
+                check_dynamic(K::KIND, self.name, ty, v)?;
+            }
+            if self.finite {
+                if let Some(p) = (v as &dyn Any).downcast_ref::<[f64; 3]>() {
+                    if !p.iter().all(|c| c.is_finite()) {
+                        let g = self.slots.generation(i >> self.shift).unwrap_or(1);
+                        return Err(Error::NonFinitePosition {
+                            key: K::from_parts(i as u32, g).any_key(),
+                            position: *p,
+                        });
+                    }
                 }
             }
-            None => {
-                self.values[i] = T::default();
-                let bits = self
-                    .present
-                    .get_or_insert_with(|| vec![u64::MAX; len.div_ceil(64)]);
-                bits[i / 64] &= !(1 << (i % 64));
-            }
         }
-        Ok(())
+        self.values.clone_from_slice(values);
+        *self.present = None;
+        *self.absent = 0;
+        Ok(true)
     }
 
     /// Every live element that has a value, with it, in slot order.

@@ -24,6 +24,11 @@ pub struct Column<T, R> {
     pub(crate) values: Vec<T>,
     /// Bit `i` set = slot `i` has a value. `None` = every slot has one.
     pub(crate) present: Option<Vec<u64>>,
+    /// While `present` exists: how many of slots `0..len` have their bit
+    /// clear. The bits are dropped when it reaches zero, so a column whose
+    /// every slot got a value again (key by key, in bulk or by undo) is
+    /// dense again and bulk reads take it whole.
+    pub(crate) absent: usize,
     /// While a journal records: the old values of the open step's writes,
     /// oldest first, one entry per write ([`journal`](crate::journal)).
     pub(crate) saved: Vec<Saved<T>>,
@@ -55,6 +60,7 @@ impl<T: Clone, R> Clone for Column<T, R> {
         Column {
             values: self.values.clone(),
             present: self.present.clone(),
+            absent: self.absent,
             saved: Vec::new(),
             bulk: Vec::new(),
             rule: PhantomData,
@@ -67,7 +73,8 @@ impl<T: Default + Clone, R> Column<T, R> {
     pub(crate) fn absent(len: usize) -> Self {
         Column {
             values: vec![T::default(); len],
-            present: Some(vec![0; len.div_ceil(64)]),
+            present: (len > 0).then(|| vec![0; len.div_ceil(64)]),
+            absent: len,
             saved: Vec::new(),
             bulk: Vec::new(),
             rule: PhantomData,
@@ -79,6 +86,7 @@ impl<T: Default + Clone, R> Column<T, R> {
         Column {
             values,
             present: None,
+            absent: 0,
             saved: Vec::new(),
             bulk: Vec::new(),
             rule: PhantomData,
@@ -118,18 +126,46 @@ impl<T: Default + Clone, R> Column<T, R> {
         let i = e.slot as usize;
         let was = self.has(i);
         std::mem::swap(&mut self.values[i], &mut e.value);
-        if e.present {
-            if let Some(bits) = &mut self.present {
-                bits[i / 64] |= 1 << (i % 64);
-            }
-        } else {
-            let len = self.values.len();
-            let bits = self
-                .present
-                .get_or_insert_with(|| vec![u64::MAX; len.div_ceil(64)]);
-            bits[i / 64] &= !(1 << (i % 64));
-        }
+        let len = self.values.len();
+        mark(&mut self.present, &mut self.absent, len, i, e.present);
         e.present = was;
+    }
+}
+
+/// Set (`present`) or clear slot `i`'s presence bit in a column of `len`
+/// slots, keeping `absent` (the count of clear bits) exact: clearing a bit
+/// of a dense column makes its bits (all set but `i`); setting the last
+/// clear bit drops them (every slot has a value: dense again).
+#[inline]
+pub(crate) fn mark(
+    bits: &mut Option<Vec<u64>>,
+    absent: &mut usize,
+    len: usize,
+    i: usize,
+    present: bool,
+) {
+    let (word, bit) = (i / 64, 1u64 << (i % 64));
+    match bits {
+        Some(b) => {
+            let was = b[word] & bit != 0;
+            if present && !was {
+                b[word] |= bit;
+                *absent -= 1;
+                if *absent == 0 {
+                    *bits = None;
+                }
+            } else if !present && was {
+                b[word] &= !bit;
+                *absent += 1;
+            }
+        }
+        None if !present => {
+            let mut b = vec![u64::MAX; len.div_ceil(64)];
+            b[word] &= !bit;
+            *bits = Some(b);
+            *absent = 1;
+        }
+        None => {}
     }
 }
 
@@ -168,22 +204,13 @@ impl<T: Default + Clone, R> Column<T, R> {
     /// Set or clear slot `i`'s value.
     #[inline]
     pub(crate) fn set(&mut self, i: usize, value: Option<T>) {
+        let has = value.is_some();
         match value {
-            Some(v) => {
-                self.values[i] = v;
-                if let Some(bits) = &mut self.present {
-                    bits[i / 64] |= 1 << (i % 64);
-                }
-            }
-            None => {
-                self.values[i] = T::default();
-                let len = self.values.len();
-                let bits = self
-                    .present
-                    .get_or_insert_with(|| vec![u64::MAX; len.div_ceil(64)]);
-                bits[i / 64] &= !(1 << (i % 64));
-            }
+            Some(v) => self.values[i] = v,
+            None => self.values[i] = T::default(),
         }
+        let len = self.values.len();
+        mark(&mut self.present, &mut self.absent, len, i, has);
     }
 
     /// The raw values, indexed by slot (vacant and absent slots hold
@@ -422,8 +449,9 @@ where
             // A dense column stays dense: a vacant slot's presence is never
             // read (keys to it are stale), and every operation that reuses
             // the slot runs the rule on it.
-            if let Some(bits) = &mut self.present {
-                bits[i / 64] &= !(1 << (i % 64));
+            if self.present.is_some() {
+                let len = self.values.len();
+                mark(&mut self.present, &mut self.absent, len, i, false);
             }
         }
     }
@@ -475,14 +503,19 @@ where
             bits
         });
         self.values = values;
-        self.present = present;
+        self.absent = present.as_ref().map_or(0, |bits| {
+            (0..order.len())
+                .filter(|&i| bits[i / 64] >> (i % 64) & 1 == 0)
+                .count()
+        });
+        self.present = present.filter(|_| self.absent > 0);
     }
 
     fn rebuilt(&self, plan: &ColumnPlan) -> Box<dyn ErasedColumn> {
         let n = plan.sources.len();
         let mut values = Vec::with_capacity(n);
         let mut bits = vec![0u64; n.div_ceil(64)];
-        let mut all = true;
+        let mut absent = 0usize;
         let entries = &plan.entries;
         for (i, source) in plan.sources.iter().enumerate() {
             let value = match *source {
@@ -511,13 +544,14 @@ where
                 }
                 None => {
                     values.push(T::default());
-                    all = false;
+                    absent += 1;
                 }
             }
         }
         Box::new(Column::<T, R> {
             values,
-            present: (!all).then_some(bits),
+            present: (absent > 0).then_some(bits),
+            absent,
             rule: PhantomData,
             saved: Vec::new(),
             bulk: Vec::new(),
@@ -628,6 +662,41 @@ mod tests {
         assert_eq!(c.get(1), None);
         c.set(1, Some(5.0));
         assert_eq!(c.get(1), Some(&5.0));
+    }
+
+    #[test]
+    fn presence_bits_go_when_every_slot_has_a_value_again() {
+        let mut c: Column<f64, Interpolate> = Column::absent(130);
+        assert_eq!(c.absent, 130);
+        for i in 0..130 {
+            assert!(c.present.is_some(), "slot {i}");
+            c.set(i, Some(i as f64));
+        }
+        assert!(c.present.is_none());
+        assert_eq!(c.absent, 0);
+        c.set(7, None);
+        c.set(7, None); // clearing twice counts once
+        c.clear(9);
+        assert_eq!(c.absent, 2);
+        assert_eq!((c.get(7), c.get(9), c.get(8)), (None, None, Some(&8.0)));
+        c.set(7, Some(1.0));
+        assert!(c.present.is_some());
+        c.copy(8, 9);
+        assert!(c.present.is_none());
+        // Undoing a clear through a saved value is a write like any other.
+        let mut saved = c.saved_of(3);
+        c.set(3, None);
+        c.swap_in(&mut saved);
+        assert_eq!((c.get(3), c.absent), (Some(&3.0), 0));
+        assert!(c.present.is_none());
+        // Permuting and growing keep the count.
+        c.set(0, None);
+        c.permute(&[1, 0, 2]);
+        assert_eq!((c.absent, c.get(1)), (1, None));
+        c.ensure_len(200);
+        assert_eq!(c.absent, 1);
+        c.set(1, Some(0.5));
+        assert!(c.present.is_none());
     }
 
     #[test]

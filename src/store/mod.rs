@@ -24,6 +24,7 @@ pub mod rules;
 mod value;
 
 pub use attribute::Attribute;
+pub(crate) use column::mark;
 pub use column::Column;
 pub(crate) use column::{ErasedColumn, Record};
 pub use value::{Dynamic, Value, ValueType};

@@ -1,0 +1,868 @@
+//! The geometry algorithms from Python: normals, curvature, subdivision,
+//! smoothing, fairing, decimation and level-of-detail chains. Keyword
+//! options mirror the Rust options structs (angles in radians, as there);
+//! results are numpy arrays in element order (`mesh.vertices`,
+//! `mesh.halfedges`, `mesh.faces`) and reports are dicts. Every algorithm
+//! that changes the mesh runs through the same all-or-nothing door as the
+//! operators (`mesh::edit`): an error, a cancellation or a Python rule that
+//! raised leaves the mesh as it was, and attribute columns follow by rule.
+
+use std::cell::RefCell;
+
+use meshloom::algo::curvature::{add_curvature, curvature, BoundaryCurvature, CurvatureOptions};
+use meshloom::algo::decimate::{decimate, lod_chain, Keep, LodOptions, Target};
+use meshloom::algo::fair::{fair, FairOptions, FairRegion};
+use meshloom::algo::laplacian::LaplaceWeights;
+use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
+use meshloom::algo::subdivision::SubdivisionReport;
+use meshloom::algo::{
+    add_corner_normals, add_face_normals, add_vertex_normals, catmull_clark, corner_normals,
+    face_normals, loop_subdivide, midpoint_subdivide, sqrt3_subdivide, vertex_normals, Boundary,
+    CornerNormalOptions, DecimateOptions, DecimateReport, Flow, MidpointFaces, MidpointOptions,
+    NormalWeight, Progress, ProgressInfo, SubdivisionOptions, VertexInterpolation,
+    VertexNormalOptions,
+};
+use meshloom::attr::{Contagion, Element, VertexAttr};
+use meshloom::{EdgeKey, Mesh, VertexKey};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::elements::PyVertex;
+use crate::mesh::{edit, PyMesh};
+
+/// A temporary boolean vertex column made from a numpy mask, removed again
+/// inside the same edit.
+const TEMP_MASK: &str = "__meshloom_mask";
+
+/// A progress callback from Python: called with a dict (`algorithm`,
+/// `stage`, `done`, `total`); returning `False` cancels. An exception it
+/// raises cancels too and is kept here to be raised instead of
+/// `CancelledError`.
+struct Callback<'py> {
+    f: Option<Bound<'py, PyAny>>,
+    raised: RefCell<Option<PyErr>>,
+}
+
+impl<'py> Callback<'py> {
+    fn new(f: Option<Bound<'py, PyAny>>) -> PyResult<Self> {
+        if let Some(f) = &f {
+            if !f.is_callable() {
+                return Err(PyTypeError::new_err(
+                    "progress must be a callable taking a dict and returning False to cancel",
+                ));
+            }
+        }
+        Ok(Callback {
+            f,
+            raised: RefCell::new(None),
+        })
+    }
+
+    fn call(&self, info: &ProgressInfo<'_>) -> Flow {
+        let Some(f) = &self.f else {
+            return Flow::Continue;
+        };
+        let py = f.py();
+        let answer = (|| -> PyResult<bool> {
+            let d = PyDict::new(py);
+            d.set_item("algorithm", info.algorithm)?;
+            d.set_item("stage", info.stage)?;
+            d.set_item("done", info.done)?;
+            d.set_item("total", info.total)?;
+            let r = f.call1((d,))?;
+            Ok(!r.is_instance_of::<pyo3::types::PyBool>() || r.is_truthy()?)
+        })();
+        match answer {
+            Ok(true) => Flow::Continue,
+            Ok(false) => Flow::Cancel,
+            Err(e) => {
+                self.raised.borrow_mut().get_or_insert(e);
+                Flow::Cancel
+            }
+        }
+    }
+
+    /// Run `f` with a `Progress` that calls back (or none).
+    fn run<R>(&self, f: impl FnOnce(Progress<'_>) -> meshloom::Result<R>) -> meshloom::Result<R> {
+        if self.f.is_none() {
+            return f(Progress::none());
+        }
+        let mut cb = |info: &ProgressInfo<'_>| self.call(info);
+        f(Progress::new(&mut cb))
+    }
+
+    /// The callback's own exception, if it raised, in place of `result`'s.
+    fn finish<R>(&self, result: PyResult<R>) -> PyResult<R> {
+        match (result, self.raised.borrow_mut().take()) {
+            (Err(_), Some(e)) => Err(e),
+            (r, _) => r,
+        }
+    }
+}
+
+fn weight_of(s: &str) -> PyResult<NormalWeight> {
+    Ok(match s {
+        "angle" => NormalWeight::Angle,
+        "area" => NormalWeight::Area,
+        "uniform" => NormalWeight::Uniform,
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "weight is \"angle\", \"area\" or \"uniform\", not {other:?}"
+            )))
+        }
+    })
+}
+
+fn laplace_weights(s: &str) -> PyResult<LaplaceWeights> {
+    Ok(match s {
+        "cotan" => LaplaceWeights::Cotan,
+        "uniform" => LaplaceWeights::Uniform,
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "weights is \"cotan\" or \"uniform\", not {other:?}"
+            )))
+        }
+    })
+}
+
+/// `(n, 3)` float64 array of `values[slot]` for each element's slot.
+fn rows_by_slot<'py>(
+    py: Python<'py>,
+    values: &[[f64; 3]],
+    slots: impl Iterator<Item = u32>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let flat: Vec<f64> = slots
+        .flat_map(|s| values.get(s as usize).copied().unwrap_or([f64::NAN; 3]))
+        .collect();
+    let n = flat.len() / 3;
+    Ok(PyArray1::from_vec(py, flat).reshape([n, 3])?.into_any())
+}
+
+fn by_slot<'py>(
+    py: Python<'py>,
+    values: &[f64],
+    slots: impl Iterator<Item = u32>,
+) -> Bound<'py, PyAny> {
+    let v: Vec<f64> = slots
+        .map(|s| values.get(s as usize).copied().unwrap_or(f64::NAN))
+        .collect();
+    PyArray1::from_vec(py, v).into_any()
+}
+
+/// A bool vertex column named by `mask`: a column name, or a numpy bool
+/// array in vertex order (written to a temporary column).
+enum Mask {
+    None,
+    Column(String),
+    Array(Vec<bool>),
+}
+
+fn mask_of(mask: Option<&Bound<'_, PyAny>>) -> PyResult<Mask> {
+    let Some(m) = mask else {
+        return Ok(Mask::None);
+    };
+    if m.is_none() {
+        return Ok(Mask::None);
+    }
+    if let Ok(s) = m.extract::<String>() {
+        return Ok(Mask::Column(s));
+    }
+    let np = m.py().import("numpy")?;
+    let arr = np.call_method1("asarray", (m, "bool"))?;
+    let v: Vec<bool> = arr.call_method0("tolist")?.extract()?;
+    Ok(Mask::Array(v))
+}
+
+/// The mask's column handle, adding the temporary column for an array.
+fn mask_handle(mesh: &mut Mesh, mask: &Mask) -> meshloom::Result<Option<VertexAttr<bool>>> {
+    match mask {
+        Mask::None => Ok(None),
+        Mask::Column(name) => mesh
+            .attr_handle::<VertexKey, bool, Contagion>(name)
+            .map(Some),
+        Mask::Array(values) => {
+            let keys: Vec<VertexKey> = mesh.vertices().collect();
+            if values.len() != keys.len() {
+                return Err(meshloom::Error::Unsuitable {
+                    algorithm: "mask",
+                    key: None,
+                    reason: format!(
+                        "a mask of {} values for {} vertices",
+                        values.len(),
+                        keys.len()
+                    ),
+                });
+            }
+            let h = mesh.add_vertex_attr::<bool>(TEMP_MASK)?;
+            let mut view = mesh.attr_view_mut(&h)?;
+            for (k, &b) in keys.iter().zip(values) {
+                view.set(*k, Some(b))?;
+            }
+            Ok(Some(h))
+        }
+    }
+}
+
+fn drop_mask(mesh: &mut Mesh, h: Option<VertexAttr<bool>>, mask: &Mask) {
+    if let (Some(h), Mask::Array(_)) = (h, mask) {
+        let _ = mesh.remove_attr(&h);
+    }
+}
+
+fn counts_dict<'py>(py: Python<'py>, c: &meshloom::algo::Counts) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("vertices", c.vertices)?;
+    d.set_item("edges", c.edges)?;
+    d.set_item("faces", c.faces)?;
+    d.set_item("holes", c.holes)?;
+    Ok(d)
+}
+
+fn subdivision_report<'py>(py: Python<'py>, r: &SubdivisionReport) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("scheme", r.scheme)?;
+    d.set_item("input", counts_dict(py, &r.input)?)?;
+    d.set_item("output", counts_dict(py, &r.output())?)?;
+    let levels = PyList::empty(py);
+    for l in &r.levels {
+        let ld = counts_dict(py, &l.counts)?;
+        ld.set_item("sharp_edges", l.sharp_edges)?;
+        ld.set_item("crease_vertices", l.crease_vertices)?;
+        ld.set_item("corner_vertices", l.corner_vertices)?;
+        ld.set_item("blended_vertices", l.blended_vertices)?;
+        levels.append(ld)?;
+    }
+    d.set_item("levels", levels)?;
+    Ok(d)
+}
+
+fn decimate_report<'py>(py: Python<'py>, r: &DecimateReport) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let stopped = match r.stopped_by {
+        meshloom::algo::decimate::StopReason::Target => "target",
+        meshloom::algo::decimate::StopReason::MaxError => "max_error",
+        meshloom::algo::decimate::StopReason::NoCollapses => "no_collapses",
+    };
+    d.set_item("stopped_by", stopped)?;
+    d.set_item("error", r.error)?;
+    d.set_item("vertices_before", r.vertices_before)?;
+    d.set_item("faces_before", r.faces_before)?;
+    d.set_item("vertices", r.vertices)?;
+    d.set_item("faces", r.faces)?;
+    d.set_item("collapses", r.collapses)?;
+    d.set_item("passes", r.passes)?;
+    let refused = PyDict::new(py);
+    refused.set_item("topology", r.refused.topology)?;
+    refused.set_item("normal", r.refused.normal)?;
+    refused.set_item("quality", r.refused.quality)?;
+    refused.set_item("valence", r.refused.valence)?;
+    d.set_item("refused", refused)?;
+    d.set_item("fixed_vertices", r.fixed_vertices)?;
+    Ok(d)
+}
+
+fn keep_of(ob: &Bound<'_, PyAny>, what: &str) -> PyResult<Keep> {
+    if let Ok(b) = ob.extract::<bool>() {
+        return Ok(if b { Keep::Slide } else { Keep::Free });
+    }
+    match ob.extract::<String>()?.as_str() {
+        "free" => Ok(Keep::Free),
+        "slide" => Ok(Keep::Slide),
+        "lock" => Ok(Keep::Lock),
+        other => Err(PyValueError::new_err(format!(
+            "{what} is True, False, \"free\", \"slide\" or \"lock\", not {other:?}"
+        ))),
+    }
+}
+
+/// A decimation target: one of `ratio`, `vertices`, `faces`, or none
+/// (then `max_error` alone stops).
+fn target_of(
+    ratio: Option<f64>,
+    vertices: Option<usize>,
+    faces: Option<usize>,
+    max_error: Option<f64>,
+) -> PyResult<Target> {
+    match (ratio, vertices, faces) {
+        (Some(r), None, None) => Ok(Target::Ratio(r)),
+        (None, Some(v), None) => Ok(Target::Vertices(v)),
+        (None, None, Some(f)) => Ok(Target::Faces(f)),
+        (None, None, None) if max_error.is_some() => Ok(Target::None),
+        (None, None, None) => Ok(Target::Ratio(0.5)),
+        _ => Err(PyValueError::new_err(
+            "give at most one of ratio, vertices and faces",
+        )),
+    }
+}
+
+/// Decimation options from the keywords shared by `decimate` and
+/// `lod_chain` (columns by name; their handles are looked up on the mesh).
+struct DecimateKw {
+    max_error: Option<f64>,
+    max_normal_deviation: Option<f64>,
+    min_quality: Option<f64>,
+    max_valence: Option<usize>,
+    boundary: Keep,
+    seams: Keep,
+    material: Option<String>,
+    locked: Option<String>,
+    feature_angle: Option<f64>,
+    feature_edges: Option<String>,
+    attributes: Vec<(String, f64)>,
+}
+
+impl DecimateKw {
+    fn options(&self, mesh: &Mesh, target: Target) -> meshloom::Result<DecimateOptions> {
+        Ok(DecimateOptions {
+            target,
+            max_error: self.max_error,
+            max_normal_deviation: self.max_normal_deviation,
+            min_quality: self.min_quality,
+            max_valence: self.max_valence,
+            boundary: self.boundary,
+            seams: self.seams,
+            material: self.material.clone(),
+            locked: self
+                .locked
+                .as_deref()
+                .map(|n| mesh.attr_handle::<VertexKey, bool, Contagion>(n))
+                .transpose()?,
+            feature_angle: self.feature_angle,
+            feature_edges: self
+                .feature_edges
+                .as_deref()
+                .map(|n| mesh.attr_handle::<EdgeKey, bool, Contagion>(n))
+                .transpose()?,
+            attributes: self
+                .attributes
+                .iter()
+                .map(|(name, weight)| meshloom::algo::decimate::AttributeWeight {
+                    name: name.clone(),
+                    weight: *weight,
+                })
+                .collect(),
+        })
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn decimate_kw(
+    max_error: Option<f64>,
+    max_normal_deviation: Option<f64>,
+    min_quality: Option<f64>,
+    max_valence: Option<usize>,
+    keep_boundary: &Bound<'_, PyAny>,
+    keep_seams: &Bound<'_, PyAny>,
+    material: Option<String>,
+    locked: Option<String>,
+    feature_angle: Option<f64>,
+    feature_edges: Option<String>,
+    attributes: Option<&Bound<'_, PyDict>>,
+) -> PyResult<DecimateKw> {
+    let attributes = match attributes {
+        Some(d) => d
+            .iter()
+            .map(|(k, v)| Ok((k.extract::<String>()?, v.extract::<f64>()?)))
+            .collect::<PyResult<Vec<_>>>()?,
+        None => Vec::new(),
+    };
+    Ok(DecimateKw {
+        max_error,
+        max_normal_deviation,
+        min_quality,
+        max_valence,
+        boundary: keep_of(keep_boundary, "keep_boundary")?,
+        seams: keep_of(keep_seams, "keep_seams")?,
+        material,
+        locked,
+        feature_angle,
+        feature_edges,
+        attributes,
+    })
+}
+
+const DEFAULT_NORMAL_DEVIATION: f64 = 75.0 * std::f64::consts::PI / 180.0;
+const DEFAULT_CREASE: f64 = 30.0 * std::f64::consts::PI / 180.0;
+
+#[pymethods]
+impl PyMesh {
+    /// Normals as an (n, 3) float64 array. `kind`: `"face"` (one per face,
+    /// in the order of `faces`), `"vertex"` (in the order of `vertices`,
+    /// faces weighted by `weight`: `"angle"`, `"area"` or `"uniform"`) or
+    /// `"corner"` (one per half-edge, in the order of `halfedges`, split
+    /// where faces meet at more than `crease_angle` radians (None: never)
+    /// or along the edges where the bool edge column `hard_edges` is
+    /// true). `store=True` also writes them to the column `"normal"` of
+    /// that kind (half-edges for corners), which then follows edits by
+    /// interpolation.
+    #[pyo3(signature = (kind = "vertex", *, weight = "angle", crease_angle = Some(DEFAULT_CREASE), hard_edges = None, store = false))]
+    fn normals(
+        slf: &Bound<'_, Self>,
+        kind: &str,
+        weight: &str,
+        crease_angle: Option<f64>,
+        hard_edges: Option<String>,
+        store: bool,
+    ) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        let weight = weight_of(weight)?;
+        let corner = |m: &Mesh| -> meshloom::Result<CornerNormalOptions> {
+            Ok(CornerNormalOptions {
+                weight,
+                crease_angle,
+                hard_edges: hard_edges
+                    .as_deref()
+                    .map(|n| m.attr_handle::<EdgeKey, bool, Contagion>(n))
+                    .transpose()?,
+            })
+        };
+        let vertex = VertexNormalOptions { weight };
+        if store {
+            match kind {
+                "face" => edit(slf, |m| add_face_normals(m).map(drop))?,
+                "vertex" => edit(slf, |m| add_vertex_normals(m, &vertex).map(drop))?,
+                "corner" | "halfedge" => edit(slf, |m| {
+                    let o = corner(m)?;
+                    add_corner_normals(m, &o).map(drop)
+                })?,
+                _ => {}
+            }
+        }
+        let this = slf.borrow();
+        let m = &this.mesh;
+        let err = |e| crate::errors::mesh_err(py, &slf.clone().unbind(), e);
+        let out = match kind {
+            "face" => {
+                let n = face_normals(m).map_err(err)?;
+                rows_by_slot(py, &n, m.faces().map(|k| k.slot()))?
+            }
+            "vertex" => {
+                let n = vertex_normals(m, &vertex).map_err(err)?;
+                rows_by_slot(py, &n, m.vertices().map(|k| k.slot()))?
+            }
+            "corner" | "halfedge" => {
+                let o = corner(m).map_err(err)?;
+                let n = corner_normals(m, &o).map_err(err)?;
+                rows_by_slot(py, &n, m.halfedges().map(|k| k.slot()))?
+            }
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "kind is \"face\", \"vertex\" or \"corner\", not {other:?}"
+                )))
+            }
+        };
+        Ok(out.unbind())
+    }
+
+    /// Mean, Gaussian and principal curvatures of every vertex (cotangent
+    /// Laplacian and angle defect): a dict of (n,) float64 arrays `mean`,
+    /// `gaussian`, `min`, `max` and `area` (the mixed Voronoi area), in the
+    /// order of `vertices`. `boundary`: `"from_interior"` (boundary vertices
+    /// get their interior neighbours' average) or `"one_sided"`.
+    /// `store=True` also writes the vertex columns `mean_curvature`,
+    /// `gaussian_curvature`, `min_curvature` and `max_curvature`.
+    #[pyo3(signature = (*, boundary = "from_interior", store = false))]
+    fn curvature(slf: &Bound<'_, Self>, boundary: &str, store: bool) -> PyResult<Py<PyDict>> {
+        let py = slf.py();
+        let options = CurvatureOptions {
+            boundary: match boundary {
+                "from_interior" => BoundaryCurvature::FromInterior,
+                "one_sided" => BoundaryCurvature::OneSided,
+                other => {
+                    return Err(PyValueError::new_err(format!(
+                        "boundary is \"from_interior\" or \"one_sided\", not {other:?}"
+                    )))
+                }
+            },
+        };
+        if store {
+            edit(slf, |m| add_curvature(m, &options).map(drop))?;
+        }
+        let this = slf.borrow();
+        let m = &this.mesh;
+        let c = curvature(m, &options)
+            .map_err(|e| crate::errors::mesh_err(py, &slf.clone().unbind(), e))?;
+        let slots: Vec<u32> = m.vertices().map(|k| k.slot()).collect();
+        let d = PyDict::new(py);
+        d.set_item("mean", by_slot(py, &c.mean, slots.iter().copied()))?;
+        d.set_item("gaussian", by_slot(py, &c.gaussian, slots.iter().copied()))?;
+        d.set_item("min", by_slot(py, &c.min, slots.iter().copied()))?;
+        d.set_item("max", by_slot(py, &c.max, slots.iter().copied()))?;
+        d.set_item("area", by_slot(py, &c.area, slots.iter().copied()))?;
+        Ok(d.unbind())
+    }
+
+    /// Subdivide in place; returns the report (a dict: `scheme`, `input`
+    /// and `output` counts, one dict per level). `scheme`: `"loop"`
+    /// (triangles), `"catmull_clark"` (any polygons), `"sqrt3"` (triangles)
+    /// or `"midpoint"` (linear: triangles 1-to-4, else quads; `faces` =
+    /// `"auto"`, `"quads"` or `"triangles"`). `boundary`: `"crease"` or
+    /// `"crease_and_corners"`; `corner_column` (bool vertex column of
+    /// fixed vertices) and `crease_column` (float edge column of crease
+    /// sharpness; not for sqrt3); `linear_columns`: vertex columns refined
+    /// linearly instead of with the scheme's stencil. `progress`: a
+    /// callable taking a dict and returning False to cancel
+    /// (`CancelledError`; the mesh is unchanged).
+    #[pyo3(signature = (scheme = "loop", levels = 1, *, boundary = "crease", corner_column = None, crease_column = None, linear_columns = Vec::new(), faces = "auto", progress = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn subdivide(
+        slf: &Bound<'_, Self>,
+        scheme: &str,
+        levels: u32,
+        boundary: &str,
+        corner_column: Option<String>,
+        crease_column: Option<String>,
+        linear_columns: Vec<String>,
+        faces: &str,
+        progress: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyDict>> {
+        let py = slf.py();
+        let boundary = match boundary {
+            "crease" => Boundary::Crease,
+            "crease_and_corners" => Boundary::CreaseAndCorners,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "boundary is \"crease\" or \"crease_and_corners\", not {other:?}"
+                )))
+            }
+        };
+        let mut options = SubdivisionOptions {
+            levels,
+            boundary,
+            corner_column,
+            crease_column,
+            ..SubdivisionOptions::default()
+        };
+        for c in &linear_columns {
+            options.vertex_data = options
+                .vertex_data
+                .clone()
+                .with(c, VertexInterpolation::Linear);
+        }
+        let cb = Callback::new(progress)?;
+        let report = match scheme {
+            "loop" => cb.finish(edit(slf, |m| cb.run(|p| loop_subdivide(m, &options, p))))?,
+            "catmull_clark" => {
+                cb.finish(edit(slf, |m| cb.run(|p| catmull_clark(m, &options, p))))?
+            }
+            "sqrt3" => cb.finish(edit(slf, |m| cb.run(|p| sqrt3_subdivide(m, &options, p))))?,
+            "midpoint" => {
+                let faces = match faces {
+                    "auto" => MidpointFaces::Auto,
+                    "quads" => MidpointFaces::Quads,
+                    "triangles" => MidpointFaces::Triangles,
+                    other => {
+                        return Err(PyValueError::new_err(format!(
+                            "faces is \"auto\", \"quads\" or \"triangles\", not {other:?}"
+                        )))
+                    }
+                };
+                let o = MidpointOptions { levels, faces };
+                cb.finish(edit(slf, |m| cb.run(|p| midpoint_subdivide(m, &o, p))))?
+            }
+            other => {
+                return Err(PyValueError::new_err(format!(
+                "scheme is \"loop\", \"catmull_clark\", \"sqrt3\" or \"midpoint\", not {other:?}"
+            )))
+            }
+        };
+        Ok(subdivision_report(py, &report)?.unbind())
+    }
+
+    /// Smooth the positions in place; returns the report (a dict: `moved`,
+    /// `fixed`, `iterations`, `max_displacement`, `stale`: the columns,
+    /// such as stored normals, that no longer match). `method`:
+    /// `"uniform"`, `"cotan"`, `"taubin"` or `"implicit"` (backward Euler
+    /// mean-curvature flow). `iterations` (default 10, implicit 1); `step`
+    /// (explicit and Taubin: lambda in (0, 1], default 0.5; implicit: the
+    /// time step, default 0.001); `taubin_mu`; `fix_boundary`; `mask`: the
+    /// vertices that may move, as a bool vertex column name or a bool array
+    /// in vertex order; `rescale` (implicit: keep area and centroid).
+    #[pyo3(signature = (method = "uniform", *, iterations = None, step = None, taubin_mu = None, fix_boundary = true, mask = None, rescale = false, progress = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn smooth(
+        slf: &Bound<'_, Self>,
+        method: &str,
+        iterations: Option<u32>,
+        step: Option<f64>,
+        taubin_mu: Option<f64>,
+        fix_boundary: bool,
+        mask: Option<&Bound<'_, PyAny>>,
+        rescale: bool,
+        progress: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyDict>> {
+        let py = slf.py();
+        let method = match method {
+            "uniform" => SmoothMethod::Uniform,
+            "cotan" => SmoothMethod::Cotan,
+            "taubin" => SmoothMethod::Taubin,
+            "implicit" => SmoothMethod::Implicit,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "method is \"uniform\", \"cotan\", \"taubin\" or \"implicit\", not {other:?}"
+                )))
+            }
+        };
+        let mut options = SmoothOptions::with_method(method);
+        if let Some(i) = iterations {
+            options.iterations = i;
+        }
+        options.step = step;
+        options.taubin_mu = taubin_mu;
+        options.fix_boundary = fix_boundary;
+        options.rescale = rescale;
+        let mask = mask_of(mask)?;
+        let cb = Callback::new(progress)?;
+        let r = cb.finish(edit(slf, |m| {
+            let h = mask_handle(m, &mask)?;
+            let o = SmoothOptions {
+                mask: h.clone(),
+                ..options.clone()
+            };
+            let out = cb.run(|p| smooth(m, &o, p));
+            drop_mask(m, h, &mask);
+            out
+        }))?;
+        let d = PyDict::new(py);
+        d.set_item("moved", r.moved)?;
+        d.set_item("fixed", r.fixed)?;
+        d.set_item("iterations", r.iterations)?;
+        d.set_item("max_displacement", r.max_displacement)?;
+        d.set_item("stale", r.stale)?;
+        Ok(d.unbind())
+    }
+
+    /// Fair a region in place: the smoothest surface (k-harmonic, `order`
+    /// 1 to 3, default 2) over the region with its surroundings fixed.
+    /// `region`: None (every vertex but the boundary rings), a bool vertex
+    /// column name, a bool array in vertex order, or a list of `Vertex`
+    /// keys. `weights`: `"cotan"` or `"uniform"`. Returns the report (a
+    /// dict: `moved`, `constraints`, `max_displacement`).
+    #[pyo3(signature = (region = None, *, order = 2, weights = "cotan", progress = None))]
+    fn fair(
+        slf: &Bound<'_, Self>,
+        region: Option<&Bound<'_, PyAny>>,
+        order: u32,
+        weights: &str,
+        progress: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyDict>> {
+        let py = slf.py();
+        let weights = laplace_weights(weights)?;
+        let keys: Option<Vec<VertexKey>> = match region {
+            Some(r) if r.cast::<PyList>().is_ok() || r.is_instance_of::<pyo3::types::PyTuple>() => {
+                let mut out = Vec::new();
+                for item in r.try_iter()? {
+                    let item = item?;
+                    match item.cast::<PyVertex>() {
+                        Ok(v) => {
+                            let v = v.get();
+                            if !v.mesh.is(slf) {
+                                return Err(PyValueError::new_err(format!(
+                                    "{:?} belongs to another mesh",
+                                    v.key
+                                )));
+                            }
+                            out.push(v.key);
+                        }
+                        Err(_) => {
+                            out.clear();
+                            break;
+                        }
+                    }
+                }
+                (!out.is_empty()).then_some(out)
+            }
+            _ => None,
+        };
+        let mask = if keys.is_some() {
+            Mask::None
+        } else {
+            mask_of(region)?
+        };
+        let cb = Callback::new(progress)?;
+        let r = cb.finish(edit(slf, |m| {
+            let h = mask_handle(m, &mask)?;
+            let region = match (&keys, &h) {
+                (Some(k), _) => FairRegion::Vertices(k.clone()),
+                (None, Some(h)) => FairRegion::Mask(h.clone()),
+                (None, None) => FairRegion::All,
+            };
+            let o = FairOptions {
+                region,
+                order,
+                weights,
+            };
+            let out = cb.run(|p| fair(m, &o, p));
+            drop_mask(m, h, &mask);
+            out
+        }))?;
+        let d = PyDict::new(py);
+        d.set_item("moved", r.moved)?;
+        d.set_item("constraints", r.constraints)?;
+        d.set_item("max_displacement", r.max_displacement)?;
+        Ok(d.unbind())
+    }
+
+    /// Decimate a triangle mesh in place by quadric error edge collapse;
+    /// returns the report (a dict: `stopped_by` (`"target"`, `"max_error"`,
+    /// `"no_collapses"`), `error`, counts before and after, `collapses`,
+    /// `passes`, `refused` by guard, `fixed_vertices`). The target is one
+    /// of `ratio` (share of the vertices; default 0.5), `vertices`,
+    /// `faces`, or none with `max_error` (a distance in mesh units).
+    /// Guards: `max_normal_deviation` (radians, default 75 degrees; None:
+    /// off), `min_quality`, `max_valence`. `keep_boundary` and `keep_seams`
+    /// (UV seams and every other corner-column discontinuity): True/"slide"
+    /// (the default), False/"free" or "lock". `material`: a face column
+    /// whose borders are kept like seams; `locked`: a bool vertex column
+    /// of vertices that never move; `feature_angle` (radians) and
+    /// `feature_edges` (a bool edge column): edges whose vertices never
+    /// move; `attributes`: {column name: weight} of vertex or corner
+    /// float columns taking part in the error. Attribute columns follow
+    /// every collapse by rule.
+    #[pyo3(signature = (ratio = None, *, vertices = None, faces = None, max_error = None, max_normal_deviation = Some(DEFAULT_NORMAL_DEVIATION), min_quality = None, max_valence = None, keep_boundary = None, keep_seams = None, material = None, locked = None, feature_angle = None, feature_edges = None, attributes = None, progress = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn decimate(
+        slf: &Bound<'_, Self>,
+        ratio: Option<f64>,
+        vertices: Option<usize>,
+        faces: Option<usize>,
+        max_error: Option<f64>,
+        max_normal_deviation: Option<f64>,
+        min_quality: Option<f64>,
+        max_valence: Option<usize>,
+        keep_boundary: Option<&Bound<'_, PyAny>>,
+        keep_seams: Option<&Bound<'_, PyAny>>,
+        material: Option<String>,
+        locked: Option<String>,
+        feature_angle: Option<f64>,
+        feature_edges: Option<String>,
+        attributes: Option<&Bound<'_, PyDict>>,
+        progress: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyDict>> {
+        let py = slf.py();
+        let target = target_of(ratio, vertices, faces, max_error)?;
+        let slide = pyo3::types::PyString::new(py, "slide").into_any();
+        let kw = decimate_kw(
+            max_error,
+            max_normal_deviation,
+            min_quality,
+            max_valence,
+            keep_boundary.unwrap_or(&slide),
+            keep_seams.unwrap_or(&slide),
+            material,
+            locked,
+            feature_angle,
+            feature_edges,
+            attributes,
+        )?;
+        let cb = Callback::new(progress)?;
+        let r = cb.finish(edit(slf, |m| {
+            let o = kw.options(m, target)?;
+            cb.run(|p| decimate(m, &o, p))
+        }))?;
+        Ok(decimate_report(py, &r)?.unbind())
+    }
+
+    /// A level-of-detail chain: one decimation through several targets,
+    /// coarser and coarser; the mesh itself is not changed. `targets`: a
+    /// list of ratios (floats) or dicts `{"vertices": n}` / `{"faces": n}`
+    /// (default `[0.5, 0.25, 0.1]`). The other keywords are `decimate`'s.
+    /// Returns one dict per level: `mesh` (a new `Mesh`, with the
+    /// attribute columns, Python-rule columns included) and `report`.
+    #[pyo3(signature = (targets = None, *, max_error = None, max_normal_deviation = Some(DEFAULT_NORMAL_DEVIATION), min_quality = None, max_valence = None, keep_boundary = None, keep_seams = None, material = None, locked = None, feature_angle = None, feature_edges = None, attributes = None, progress = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn lod_chain(
+        slf: &Bound<'_, Self>,
+        targets: Option<&Bound<'_, PyAny>>,
+        max_error: Option<f64>,
+        max_normal_deviation: Option<f64>,
+        min_quality: Option<f64>,
+        max_valence: Option<usize>,
+        keep_boundary: Option<&Bound<'_, PyAny>>,
+        keep_seams: Option<&Bound<'_, PyAny>>,
+        material: Option<String>,
+        locked: Option<String>,
+        feature_angle: Option<f64>,
+        feature_edges: Option<String>,
+        attributes: Option<&Bound<'_, PyDict>>,
+        progress: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyList>> {
+        let py = slf.py();
+        let targets: Vec<Target> = match targets {
+            None => LodOptions::default().targets,
+            Some(t) => t
+                .try_iter()?
+                .map(|item| {
+                    let item = item?;
+                    if let Ok(r) = item.extract::<f64>() {
+                        return Ok(Target::Ratio(r));
+                    }
+                    let d = item.cast::<PyDict>().map_err(|_| {
+                        PyTypeError::new_err(
+                            "a target is a ratio or a dict {\"vertices\": n} or {\"faces\": n}",
+                        )
+                    })?;
+                    if let Some(v) = d.get_item("vertices")? {
+                        return Ok(Target::Vertices(v.extract()?));
+                    }
+                    if let Some(f) = d.get_item("faces")? {
+                        return Ok(Target::Faces(f.extract()?));
+                    }
+                    if let Some(r) = d.get_item("ratio")? {
+                        return Ok(Target::Ratio(r.extract()?));
+                    }
+                    Err(PyValueError::new_err(
+                        "a target dict has \"vertices\", \"faces\" or \"ratio\"",
+                    ))
+                })
+                .collect::<PyResult<_>>()?,
+        };
+        let slide = pyo3::types::PyString::new(py, "slide").into_any();
+        let kw = decimate_kw(
+            max_error,
+            max_normal_deviation,
+            min_quality,
+            max_valence,
+            keep_boundary.unwrap_or(&slide),
+            keep_seams.unwrap_or(&slide),
+            material,
+            locked,
+            feature_angle,
+            feature_edges,
+            attributes,
+        )?;
+        let cb = Callback::new(progress)?;
+        let chain = {
+            let this = slf.borrow();
+            let m = &this.mesh;
+            let result = kw.options(m, Target::Ratio(0.5)).and_then(|decimate| {
+                let o = LodOptions {
+                    targets,
+                    decimate,
+                    meshes: true,
+                    record: false,
+                };
+                cb.run(|p| lod_chain(m, &o, p))
+            });
+            let result = result.map_err(|e| crate::errors::mesh_err(py, &slf.clone().unbind(), e));
+            if let Some(e) = crate::attrs::take_rule_error() {
+                return Err(e);
+            }
+            cb.finish(result)?
+        };
+        let out = PyList::empty(py);
+        let this = slf.borrow();
+        for level in chain.levels {
+            let d = PyDict::new(py);
+            match level.mesh {
+                Some(m) => d.set_item("mesh", Py::new(py, this.wrap_like(py, m))?)?,
+                None => d.set_item("mesh", py.None())?,
+            }
+            d.set_item("report", decimate_report(py, &level.report)?)?;
+            out.append(d)?;
+        }
+        Ok(out.unbind())
+    }
+}
