@@ -39,30 +39,18 @@ fn fit_plane(points: &[V3]) -> (V3, V3, f64) {
     let n = points.len() as f64;
     let mut c = [0.0; 3];
     for p in points {
-        for k in 0..3 {
-            c[k] += p[k] / n;
-        }
+        c = std::array::from_fn(|k| c[k] + p[k] / n);
     }
     let mut m = [[0.0; 3]; 3];
     for p in points {
         let d = sub(*p, c);
-        for i in 0..3 {
-            for j in 0..3 {
-                m[i][j] += d[i] * d[j];
-            }
-        }
+        m = std::array::from_fn(|i| std::array::from_fn(|j| m[i][j] + d[i] * d[j]));
     }
     let size = points.iter().map(|p| norm(sub(*p, c))).fold(0.0, f64::max);
     // Shift so that the smallest eigenvalue becomes the largest of
     // (trace·I − M), then power-iterate.
     let tr = m[0][0] + m[1][1] + m[2][2];
-    let shifted = |x: V3| {
-        let mut y = [0.0; 3];
-        for i in 0..3 {
-            y[i] = tr * x[i] - (m[i][0] * x[0] + m[i][1] * x[1] + m[i][2] * x[2]);
-        }
-        y
-    };
+    let shifted = |x: V3| -> V3 { std::array::from_fn(|i| tr * x[i] - dot(m[i], x)) };
     let mut x = [0.3, 0.5, 0.8];
     for _ in 0..500 {
         let y = shifted(x);
@@ -278,17 +266,15 @@ fn attributes_come_from_the_rim_without_a_seam() {
     let mut hi = [f32::NEG_INFINITY; 3];
     for &v in &rim_vertices {
         let c = mesh.attr(&colour, v).unwrap().unwrap();
-        for k in 0..3 {
-            lo[k] = lo[k].min(c[k]);
-            hi[k] = hi[k].max(c[k]);
-        }
+        lo = std::array::from_fn(|k| lo[k].min(c[k]));
+        hi = std::array::from_fn(|k| hi[k].max(c[k]));
     }
     let report = fill_hole(&mut mesh, hole, &FillHoleOptions::default()).unwrap();
     assert!(report.vertices_added > 0);
     for &v in &report.vertices {
         let c = mesh.attr(&colour, v).unwrap().expect("a colour");
-        for k in 0..3 {
-            assert!(c[k] >= lo[k] - 1e-6 && c[k] <= hi[k] + 1e-6, "{c:?}");
+        for ((x, l), h) in c.iter().zip(lo).zip(hi) {
+            assert!(*x >= l - 1e-6 && *x <= h + 1e-6, "{c:?}");
         }
     }
     for &f in &report.faces {
