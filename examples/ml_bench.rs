@@ -203,7 +203,6 @@ fn mean_edge_length(input: &Input) -> f64 {
 /// 64 input faces [s_k, s_k + 64), s_k = 64 * floor(k * F / (64 * 9)); fill
 /// from the border halfedge that ran from corner 0 to corner 1 of face s_k.
 /// Returns (s_k, corner 0, corner 1) per hole.
-#[allow(dead_code)]
 fn holes(input: &Input) -> Vec<(usize, u32, u32)> {
     let nf = input.tri.len();
     (1..=8usize)
@@ -240,6 +239,7 @@ const WORKLOADS: &[(&str, Workload)] = &[
     ("curvature", curvature),
     ("implicit_smoothing", implicit_smoothing),
     ("decimate_10pct", decimate_10pct),
+    ("fill_holes", fill_holes),
     // meshloom only (no peer row): engine buffers.
     ("triangle_buffers", triangle_buffers),
     // meshloom only: the journal (issue 15).
@@ -251,8 +251,53 @@ const WORKLOADS: &[(&str, Workload)] = &[
     ("flip_all", flip_all),
     // not in meshloom yet (C++ names and count notes, see README.md):
     // ("uniform_remeshing", ...)     "-> V V, F F; target length L, 10 iterations"   (mean_edge_length)
-    // ("fill_holes", ...)            "8 holes filled -> V V, F F; holed input V V, F F"   (holes)
 ];
+
+/// Remove the faces of the kit's 8 holes (untimed), then fill each with
+/// `algo::fill_hole::fill_hole_at` (optimal triangulation, refinement to the
+/// rim's edge length, bi-Laplacian fairing) from its border half-edge, as
+/// pmp's `fill_hole` and CGAL's `triangulate_refine_and_fair_hole`.
+fn fill_holes(input: &Input) -> (Elapsed, String) {
+    use meshloom::algo::fill_hole::{fill_hole_at, FillHoleOptions};
+    let mut m = input.mesh.clone();
+    let hs = holes(input);
+    for &(s, _, _) in &hs {
+        for i in s..s + 64 {
+            let f = m.face_at(i).expect("hole face");
+            m.remove_face(f).expect("remove_face");
+        }
+    }
+    let border: Vec<_> = hs
+        .iter()
+        .map(|&(s, a, b)| {
+            let (va, vb) = (m.vertex_at(a as usize), m.vertex_at(b as usize));
+            let h = m
+                .find_halfedge(va.expect("corner 0"), vb.expect("corner 1"))
+                .expect("live")
+                .unwrap_or_else(|| panic!("fill_holes: no border halfedge at face {s}"));
+            assert!(m.halfedge(h).expect("live").face().is_hole());
+            h
+        })
+        .collect();
+    let before = format!("{} V, {} F", m.vertex_count(), m.face_count());
+    let options = FillHoleOptions::default();
+    let mut filled = 0;
+    let t0 = stamp();
+    for h in border {
+        if fill_hole_at(&mut m, h, &options).is_ok() {
+            filled += 1;
+        }
+    }
+    let e = since(t0);
+    (
+        e,
+        format!(
+            "{filled} holes filled -> {} V, {} F; holed input {before}",
+            m.vertex_count(),
+            m.face_count()
+        ),
+    )
+}
 
 /// meshloom's own OBJ reader (parses files >= 4 MiB on two threads; the
 /// table uses the process CPU of this line).

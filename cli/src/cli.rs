@@ -101,11 +101,17 @@ Example:
     /// Close holes with new faces.
     ///
     /// Each hole (boundary loop) of at most --max-sides sides becomes one
-    /// polygon, cut into triangles with --triangulate. Holes whose loop
-    /// passes a vertex twice are left open and counted.
+    /// polygon, cut into triangles with --triangulate. With --refine, each
+    /// hole gets Liepa's patch instead: the triangulation of least dihedral
+    /// angle and area, refined to the rim's edge length; --fair also fairs
+    /// it (bi-Laplacian by default, --fair-order), so it continues the
+    /// surface around the hole. Attributes (UVs, colours, materials) are
+    /// taken from the rim. Holes whose loop passes a vertex twice are left
+    /// open and counted.
     #[command(after_help = "\
 Example:
   meshloom fill-holes scan.ply closed.ply --triangulate
+  meshloom fill-holes scan.ply closed.ply --fair
   meshloom fill-holes part.off part-filled.off --max-sides 12 --json")]
     FillHoles(FillHolesArgs),
     /// Smooth the vertex positions and write the result.
@@ -373,6 +379,17 @@ pub struct FillHolesArgs {
     /// Cut each new face into triangles.
     #[arg(long)]
     pub triangulate: bool,
+    /// Fill with Liepa's patch: the optimal triangulation, refined to the
+    /// rim's edge length (new vertices inside the hole).
+    #[arg(long)]
+    pub refine: bool,
+    /// As --refine, then fair the patch's new vertices (implies --refine).
+    #[arg(long)]
+    pub fair: bool,
+    /// The power of the Laplacian in --fair: 1 membrane, 2 thin plate
+    /// (default), 3 minimum variation.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=3), requires = "fair")]
+    pub fair_order: Option<u32>,
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,

@@ -1547,3 +1547,64 @@ fn lod_writes_nested_levels() {
     let o = run(&["lod", BUNDLED, path_str(&prefix), "--ratios", "0.1,0.5"]);
     assert_eq!(code(&o), 1, "{}", stderr(&o));
 }
+
+#[test]
+fn fill_holes_fair_patches_every_hole() {
+    let dir = scratch("fill-fair");
+    let rel = "boundary/cgal_holes.off";
+    let m = manifest(rel);
+    let loops: i64 = m["boundary_loops"].parse().unwrap();
+    let chi: i64 = m["euler_char"].parse().unwrap();
+    let out = dir.join("faired.off");
+    let o = run(&[
+        "fill-holes",
+        &shared(rel),
+        path_str(&out),
+        "--fair",
+        "--json",
+    ]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let j = json(&o);
+    assert_eq!(j["method"], "fair");
+    assert_eq!(j["filled"].as_i64(), Some(loops));
+    assert_eq!(j["holes"], 0);
+    assert!(j["vertices_added"].as_i64().unwrap() > 0);
+    let s = json(&run(&["stats", "--json", path_str(&out)]));
+    assert_eq!(s["closed"], true);
+    assert_eq!(s["euler_characteristic"].as_i64(), Some(chi + loops));
+    assert_eq!(s["face_degrees"].as_object().map(|h| h.len()), Some(1));
+    // --refine alone, and small holes only: the bigger ones stay.
+    let o = run(&[
+        "fill-holes",
+        &shared(rel),
+        path_str(&out),
+        "--refine",
+        "--max-sides",
+        "3",
+    ]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("have more than 3 sides"),
+        "{}",
+        stdout(&o)
+    );
+    // --fair-order needs --fair, and 1..=3.
+    let o = run(&[
+        "fill-holes",
+        &shared(rel),
+        path_str(&out),
+        "--fair-order",
+        "2",
+    ]);
+    assert_eq!(code(&o), 2);
+    let o = run(&[
+        "fill-holes",
+        &shared(rel),
+        path_str(&out),
+        "--fair",
+        "--fair-order",
+        "4",
+    ]);
+    assert_eq!(code(&o), 2);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -8,6 +8,7 @@
 //! | [`laplacian`] | the cotangent (or uniform) Laplacian and the mixed-Voronoi mass matrix, the building blocks below | [`laplacian::Laplacian`] (sparse, by vertex slot), `Vec` of areas |
 //! | [`curvature`] | mean, Gaussian and principal curvatures (cotangent Laplacian, angle defect) | `Vec`s by slot, or vertex columns |
 //! | [`smooth`] | explicit (uniform, cotangent), Taubin and implicit smoothing, with a boundary and a vertex mask kept fixed | the mesh's positions, [`smooth::SmoothReport`] |
+//! | [`fill_hole`] | Liepa's hole filling: the least-weight triangulation of each hole, refined to the rim's edge length and faired (k-harmonic) over the patch | the mesh, [`FillHoleReport`] |
 //! | [`fair`] | the smoothest (k-harmonic, k = 1..3) surface over a region with its surroundings fixed | the mesh's positions, [`fair::FairReport`] |
 //! | [`subdivision`] | what the schemes share: options (levels, boundary, creases, per-column vertex/varying data), the report | [`SubdivisionOptions`], [`SubdivisionReport`] |
 //! | [`loop_subdivision`] | Loop subdivision of triangle meshes, semi-sharp creases | the mesh, rebuilt wholesale |
@@ -32,6 +33,7 @@ pub mod catmull_clark;
 pub mod curvature;
 pub mod decimate;
 pub mod fair;
+pub mod fill_hole;
 pub mod laplacian;
 pub mod loop_subdivision;
 pub mod midpoint;
@@ -45,6 +47,7 @@ pub mod subdivision;
 
 pub use catmull_clark::catmull_clark;
 pub use decimate::{decimate, DecimateOptions, DecimateReport};
+pub use fill_hole::{fill_hole, fill_holes, FillHoleOptions, FillHoleReport};
 pub use loop_subdivision::loop_subdivide;
 pub use midpoint::{midpoint_subdivide, MidpointFaces, MidpointOptions};
 pub use normals::{

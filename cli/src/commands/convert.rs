@@ -180,6 +180,9 @@ pub fn triangulate(args: &TriangulateArgs) -> Result<(), Failure> {
 
 /// Read, fill the holes asked for (and triangulate the new faces), write.
 pub fn fill_holes(args: &FillHolesArgs) -> Result<(), Failure> {
+    if args.refine || args.fair {
+        return fill_holes_liepa(args);
+    }
     let (mut mesh, _) = input::read(&args.input, args.read, false)?;
     let holes_before = mesh.hole_count();
     let max = args.max_sides.unwrap_or(u64::MAX);
@@ -232,6 +235,76 @@ pub fn fill_holes(args: &FillHolesArgs) -> Result<(), Failure> {
     if untriangulated > 0 {
         text.push_str(&format!(
             "{untriangulated} new faces could not be triangulated (every cut needs an existing edge)\n"
+        ));
+    }
+    text.push_str(&format!("wrote {}\n", args.output.display()));
+    output::print(&text)
+}
+
+/// `fill-holes --refine` / `--fair`: `algo::fill_hole::fill_holes`.
+fn fill_holes_liepa(args: &FillHolesArgs) -> Result<(), Failure> {
+    use meshloom::algo::fill_hole::{fill_holes, FillHoleOptions};
+    let (mut mesh, _) = input::read(&args.input, args.read, false)?;
+    let holes_before = mesh.hole_count();
+    let max = args
+        .max_sides
+        .map(|m| usize::try_from(m).unwrap_or(usize::MAX));
+    let too_big = mesh
+        .holes()
+        .filter(|&h| max.is_some_and(|m| mesh.face(h).map_or(0, |f| f.degree()) > m))
+        .count();
+    let options = FillHoleOptions {
+        max_rim: max,
+        refine: true,
+        fair: args.fair,
+        fair_order: args.fair_order.unwrap_or(2),
+        ..Default::default()
+    };
+    let report = {
+        let _progress = Progress::spinner("filling holes");
+        fill_holes(&mut mesh, &options, meshloom::algo::Progress::none()).map_err(Failure::input)?
+    };
+    let refused = report.skipped.len() - too_big;
+    input::write(&mesh, &args.output, false, false)?;
+    let method = if args.fair { "fair" } else { "refine" };
+    if args.json {
+        return output::json(&json!({
+            "input": args.input.display().to_string(),
+            "output": args.output.display().to_string(),
+            "method": method,
+            "holes_before": holes_before,
+            "filled": report.holes_filled,
+            "larger_than_max_sides": too_big,
+            "refused": refused,
+            "left_untriangulated": 0,
+            "faces_added": report.faces_added,
+            "vertices_added": report.vertices_added,
+            "ear_clipped": report.ear_clipped,
+            "holes": mesh.hole_count(),
+        }));
+    }
+    let mut text = format!(
+        "filled {} of {holes_before} holes ({method}): {} faces and {} vertices added; {} left\n",
+        report.holes_filled,
+        report.faces_added,
+        report.vertices_added,
+        mesh.hole_count()
+    );
+    if too_big > 0 {
+        text.push_str(&format!(
+            "{too_big} holes have more than {} sides\n",
+            args.max_sides.unwrap_or(0)
+        ));
+    }
+    if refused > 0 {
+        text.push_str(&format!(
+            "{refused} holes pass a vertex twice (bowtie) and were left open\n"
+        ));
+    }
+    if report.ear_clipped > 0 {
+        text.push_str(&format!(
+            "{} holes were cut by ear clipping (too long for the optimal triangulation)\n",
+            report.ear_clipped
         ));
     }
     text.push_str(&format!("wrote {}\n", args.output.display()));

@@ -1,0 +1,1237 @@
+//! Hole filling with fairing (Liepa, "Filling holes in meshes", 2003; as
+//! pmp-library's `fill_hole` and CGAL's `triangulate_refine_and_fair_hole`):
+//! close a hole with triangles that continue the surface around it.
+//!
+//! **Three steps.**
+//! 1. *Triangulate.* The triangulation of the hole's polygon (its rim, the
+//!    corners in loop order) of least weight, by dynamic programming over
+//!    the rim: a triangle's weight is the pair (the largest dihedral angle
+//!    with its neighbours, as `1 − cos`, including the faces across the
+//!    rim; the sum of squared triangle areas), compared lexicographically.
+//!    The area term is squared, as in pmp-library: on a planar hole every
+//!    triangulation has the same plain area, and the squares prefer even
+//!    triangles to long fans. A diagonal that is already an edge of the
+//!    mesh (joining two rim corners round the outside) is never used.
+//!    Cost O(n³) time and `44 n²` bytes for a rim of n edges; above
+//!    [`FillHoleOptions::max_optimal_rim`] (default 1000 edges, 44 MB), or
+//!    when every triangulation needs an existing edge, the hole is cut by
+//!    ear clipping instead ([`Mesh::triangulate`]; counted in
+//!    [`FillHoleReport::ear_clipped`]).
+//! 2. *Refine* ([`FillHoleOptions::refine`]), inside the patch only, up to
+//!    ten rounds as pmp-library: split edges longer than 1.5 l at their
+//!    midpoint (then the two quads beside the new vertex into triangles),
+//!    collapse new vertices along edges shorter than 0.7 l (unless an edge
+//!    would grow past 1.5 l or a triangle turn over), flip edges that bring
+//!    the four valences nearer 6, and relax the new vertices (a few sweeps
+//!    of the uniform Laplacian). `l` is the mean length of the rim's edges.
+//! 3. *Fair* ([`FillHoleOptions::fair`]): the new vertices solve the
+//!    `k`-harmonic equation of [`fair`](super::fair) (`k` =
+//!    [`FillHoleOptions::fair_order`], default 2: bi-Laplacian, cotangent
+//!    weights clamped at zero, mixed-Voronoi masses), with every other
+//!    vertex fixed, so the patch meets the surface around it with the same
+//!    tangent plane (`k = 2`) or curvature too (`k = 3`). The system is
+//!    built over the patch and its `k` rings only (not the whole mesh, as
+//!    [`fair`](super::fair::fair) does), so the cost does not grow with the
+//!    mesh. With the `sparse` feature it is solved by faer's sparse
+//!    Cholesky factorisation; without it by conjugate gradients on the same
+//!    system (the same surface to solver precision; slower on large
+//!    patches). New vertices within `k − 1` rings of another hole keep
+//!    their refined positions (their Laplacian would be one-sided).
+//!
+//! **Attributes.** Everything runs through the operators
+//! ([`Mesh::fill_hole`], [`Mesh::split_face`], [`Mesh::split_edge`],
+//! [`Mesh::collapse_edge`], [`Mesh::flip_edge`], [`Mesh::set_position`]),
+//! so every column follows its rule. Before the first split, the new face
+//! takes its values from the face across the most rim edges by that
+//! column's rule (`interpolate` from that one face: a copy for
+//! interpolated colours and for material ids, nothing for conserved
+//! quantities), and each of its corners copies the corner of the same rim
+//! vertex in the face across the rim edge leaving that vertex: a UV map
+//! continues into the patch with no new seam (where the rim crosses a seam,
+//! the patch takes one side's values). New vertices and their corners get
+//! their values where they are born: the midpoint of the edge they split
+//! (`split_edge` at ½), so every value in the patch is a convex combination
+//! of rim values, within the rim's range. They are not re-interpolated when
+//! relaxation and fairing move the vertex (the values follow the
+//! triangulation, not the final positions).
+//!
+//! **All or nothing.** Each call runs in a [transaction](Mesh::transaction):
+//! a refused hole, a failed solve or a cancelled [`fill_holes`] leaves the
+//! mesh exactly as it was. Holes [`fill_holes`] does not fill (a rim longer
+//! than [`FillHoleOptions::max_rim`], a rim that passes a vertex twice) are
+//! listed in [`FillHoleReport::skipped`]; [`fill_hole`] refuses them.
+//!
+//! ```
+//! use meshloom::algo::fill_hole::{fill_hole, FillHoleOptions};
+//! // A sphere with a cap cut out: the patch follows the sphere.
+//! let mut mesh = meshloom::shapes::icosphere(3);
+//! let cap: Vec<_> = mesh
+//!     .faces()
+//!     .filter(|&f| mesh.face_centroid(f).unwrap()[2] > 0.8)
+//!     .collect();
+//! for f in cap {
+//!     mesh.remove_face(f)?;
+//! }
+//! let hole = mesh.holes().next().unwrap();
+//! let report = fill_hole(&mut mesh, hole, &FillHoleOptions::default())?;
+//! assert!(mesh.is_closed());
+//! assert!(report.vertices_added > 0);
+//! for &v in &report.vertices {
+//!     let p = mesh.position(v)?;
+//!     let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+//!     assert!((r - 1.0).abs() < 0.1, "radius {r}");
+//! }
+//! mesh.validate()?;
+//! # Ok::<(), meshloom::Error>(())
+//! ```
+
+use std::collections::{BTreeSet, HashMap, HashSet};
+
+use super::laplacian::{cross, dot, norm, polygon, sub, triangle, V3};
+use super::progress::Progress;
+use super::sparse::{solve_spd, LowerCsc, AVAILABLE};
+use crate::error::{Error, Refusal, Result};
+use crate::keys::{FaceKey, HalfedgeKey, VertexKey};
+use crate::layout::{Eid, Fid, Hid, Vid};
+use crate::mesh::Mesh;
+use crate::ops::refuse;
+
+const ALGORITHM: &str = "fill_hole";
+const ALGORITHM_ALL: &str = "fill_holes";
+
+/// Refinement rounds (as pmp-library).
+const ROUNDS: usize = 10;
+/// Split edges longer than this times the rim's mean edge length.
+const LONG: f64 = 1.5;
+/// Collapse edges shorter than this times the rim's mean edge length.
+const SHORT: f64 = 0.7;
+/// Sweeps of uniform Laplacian relaxation per round.
+const RELAX_SWEEPS: usize = 3;
+/// Dihedral terms closer than this count as equal (rounding on flat holes).
+const ANGLE_TIE: f64 = 1e-12;
+
+/// Options of [`fill_hole`] and [`fill_holes`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct FillHoleOptions {
+    /// Holes whose rim has more edges than this are not filled:
+    /// [`fill_holes`] skips them (listed in the report), [`fill_hole`]
+    /// refuses. Default: none (every hole).
+    pub max_rim: Option<usize>,
+    /// Refine the patch to the rim's edge length (default `true`). Without
+    /// it the patch is the triangulation alone and has no new vertices.
+    pub refine: bool,
+    /// Fair the new vertices (default `true`; needs `refine` to have made
+    /// any).
+    pub fair: bool,
+    /// The power `k` of the Laplacian in fairing, 1 to 3 (default 2).
+    pub fair_order: u32,
+    /// The largest rim (in edges) triangulated by the O(n³) optimal
+    /// triangulation; longer rims are cut by ear clipping (default 1000).
+    pub max_optimal_rim: usize,
+}
+
+impl Default for FillHoleOptions {
+    fn default() -> Self {
+        FillHoleOptions {
+            max_rim: None,
+            refine: true,
+            fair: true,
+            fair_order: 2,
+            max_optimal_rim: 1000,
+        }
+    }
+}
+
+/// What [`fill_hole`] or [`fill_holes`] did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FillHoleReport {
+    /// Holes closed.
+    pub holes_filled: usize,
+    /// Faces the mesh gained (every face of every patch).
+    pub faces_added: usize,
+    /// Vertices the mesh gained (refinement).
+    pub vertices_added: usize,
+    /// Holes triangulated by ear clipping instead of the optimal
+    /// triangulation (rim over [`FillHoleOptions::max_optimal_rim`], or no
+    /// triangulation without an existing edge).
+    pub ear_clipped: usize,
+    /// The patches' faces.
+    pub faces: Vec<FaceKey>,
+    /// The new vertices.
+    pub vertices: Vec<VertexKey>,
+    /// Holes left open by [`fill_holes`]: a rim longer than
+    /// [`FillHoleOptions::max_rim`], or one that passes a vertex twice.
+    pub skipped: Vec<FaceKey>,
+}
+
+fn unsuitable(key: Option<crate::keys::AnyKey>, reason: impl Into<String>) -> Error {
+    Error::Unsuitable {
+        algorithm: ALGORITHM,
+        key,
+        reason: reason.into(),
+    }
+}
+
+fn check_options(options: &FillHoleOptions) -> Result<()> {
+    let k = options.fair_order;
+    if !(1..=3).contains(&k) {
+        return Err(unsuitable(None, format!("fair order {k} is not 1, 2 or 3")));
+    }
+    Ok(())
+}
+
+/// Fill hole `hole` (see the module docs), its rim starting at the hole's
+/// own half-edge.
+///
+/// # Errors
+/// [`Error::StaleKey`]; [`Error::NoPositions`]; as
+/// [`Mesh::check_fill_hole`] ([`Refusal::NotHole`], [`Refusal::Degenerate`]
+/// below three rim edges, [`Refusal::NonManifold`] for a rim that passes a
+/// vertex twice); [`Error::Unsuitable`] for a fair order outside 1..=3, a
+/// rim longer than [`FillHoleOptions::max_rim`], or a fairing system that
+/// cannot be solved; a refusal of [`Mesh::triangulate`] when even ear
+/// clipping needs an existing edge. The mesh is unchanged after any error.
+///
+/// # Complexity
+/// O(n³) for a rim of n edges (the triangulation), plus the refinement and
+/// one sparse factorisation over the patch; nothing over the whole mesh.
+///
+/// ```
+/// use meshloom::algo::fill_hole::{fill_hole, FillHoleOptions};
+/// let mut mesh = meshloom::shapes::grid(6, 6, meshloom::shapes::GridFaces::Triangles);
+/// let middle: Vec<_> = mesh
+///     .faces()
+///     .filter(|&f| {
+///         let c = mesh.face_centroid(f).unwrap();
+///         (c[0] - 3.0).abs() < 1.2 && (c[1] - 3.0).abs() < 1.2
+///     })
+///     .collect();
+/// for f in middle {
+///     mesh.remove_face(f)?;
+/// }
+/// assert_eq!(mesh.hole_count(), 2); // the grid's outline and the new hole
+/// let hole = mesh.holes().min_by_key(|&h| mesh.face(h).unwrap().degree()).unwrap();
+/// let report = fill_hole(&mut mesh, hole, &FillHoleOptions::default())?;
+/// assert_eq!((report.holes_filled, mesh.hole_count()), (1, 1));
+/// // A flat hole is filled flat.
+/// assert!(report.vertices.iter().all(|&v| mesh.position(v).unwrap()[2].abs() < 1e-9));
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+pub fn fill_hole(
+    mesh: &mut Mesh,
+    hole: FaceKey,
+    options: &FillHoleOptions,
+) -> Result<FillHoleReport> {
+    let h = mesh.check_face(hole)?;
+    if !mesh.is_hole(h) {
+        return Err(refuse(ALGORITHM, hole, Refusal::NotHole));
+    }
+    let start = mesh.face_halfedge(h);
+    fill_from(mesh, start, options)
+}
+
+/// As [`fill_hole`], for the hole on the side of `border` (a half-edge
+/// in a hole), with the rim starting at `border`: the triangulation's ties
+/// are broken in rim order, so the start can matter (pmp-library and CGAL
+/// take a border half-edge too).
+///
+/// # Errors
+/// As [`fill_hole`]; [`Refusal::NotHole`] when `border` is not in a hole.
+pub fn fill_hole_at(
+    mesh: &mut Mesh,
+    border: HalfedgeKey,
+    options: &FillHoleOptions,
+) -> Result<FillHoleReport> {
+    let h = mesh.check_halfedge(border)?;
+    if !mesh.in_hole(h) {
+        return Err(refuse(ALGORITHM, border, Refusal::NotHole));
+    }
+    fill_from(mesh, h, options)
+}
+
+fn fill_from(mesh: &mut Mesh, start: Hid, options: &FillHoleOptions) -> Result<FillHoleReport> {
+    check_options(options)?;
+    if !mesh.has_positions() {
+        return Err(Error::NoPositions);
+    }
+    let hole = mesh.fkey(mesh.face_of(start));
+    mesh.check_fill_hole(hole)?;
+    let n = mesh.face_loop_from(start).count();
+    if options.max_rim.is_some_and(|max| n > max) {
+        return Err(unsuitable(
+            Some(hole.into()),
+            format!("the rim has {n} edges, more than max_rim"),
+        ));
+    }
+    mesh.transaction(|m| {
+        let mut report = FillHoleReport::default();
+        let patch = fill_one(m, start, options)?;
+        report.add(patch);
+        Ok(report)
+    })
+}
+
+/// Fill every hole of `mesh` (see the module docs) but those over
+/// [`FillHoleOptions::max_rim`] and those whose rim passes a vertex twice
+/// (listed in [`FillHoleReport::skipped`]). `progress` hears of each hole
+/// and may cancel.
+///
+/// # Errors
+/// [`Error::NoPositions`]; [`Error::Unsuitable`] for a fair order outside
+/// 1..=3 or a hole whose fairing system cannot be solved; a refusal of
+/// [`Mesh::triangulate`] when even ear clipping needs an existing edge;
+/// [`Error::Cancelled`]. The mesh is unchanged after any error (every hole
+/// filled so far is undone).
+///
+/// # Complexity
+/// The sum of [`fill_hole`]'s over the holes.
+///
+/// ```
+/// use meshloom::algo::fill_hole::{fill_holes, FillHoleOptions};
+/// use meshloom::algo::Progress;
+/// let mut mesh = meshloom::shapes::icosphere(2);
+/// let faces: Vec<_> = mesh.faces().step_by(40).collect();
+/// for f in faces {
+///     mesh.remove_face(f)?;
+/// }
+/// let holes = mesh.hole_count();
+/// let report = fill_holes(&mut mesh, &FillHoleOptions::default(), Progress::none())?;
+/// assert_eq!(report.holes_filled, holes);
+/// assert!(mesh.is_closed());
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+pub fn fill_holes(
+    mesh: &mut Mesh,
+    options: &FillHoleOptions,
+    mut progress: Progress<'_>,
+) -> Result<FillHoleReport> {
+    check_options(options)?;
+    if !mesh.has_positions() {
+        return Err(Error::NoPositions);
+    }
+    let holes: Vec<FaceKey> = mesh.holes().collect();
+    let total = holes.len() as u64;
+    mesh.transaction(|m| {
+        let mut report = FillHoleReport::default();
+        for (i, &hole) in holes.iter().enumerate() {
+            progress.report(ALGORITHM_ALL, "holes", i as u64, total)?;
+            let h = m.check_face(hole)?;
+            let n = m.face_loop(h).count();
+            if options.max_rim.is_some_and(|max| n > max) || m.check_fill_hole(hole).is_err() {
+                report.skipped.push(hole);
+                continue;
+            }
+            let start = m.face_halfedge(h);
+            let patch = fill_one(m, start, options)?;
+            report.add(patch);
+        }
+        progress.report(ALGORITHM_ALL, "holes", total, total)?;
+        Ok(report)
+    })
+}
+
+impl FillHoleReport {
+    fn add(&mut self, patch: Patch) {
+        self.holes_filled += 1;
+        self.faces_added += patch.faces.len();
+        self.vertices_added += patch.vertices.len();
+        self.ear_clipped += usize::from(patch.ear_clipped);
+        self.faces.extend(patch.faces);
+        self.vertices.extend(patch.vertices);
+    }
+}
+
+/// One filled hole.
+struct Patch {
+    faces: Vec<FaceKey>,
+    vertices: Vec<VertexKey>,
+    ear_clipped: bool,
+}
+
+/// The elements of a patch while it is refined.
+struct Work {
+    /// Edges inside the patch (not the rim).
+    edges: BTreeSet<Eid>,
+    /// Vertices made by refinement.
+    new: BTreeSet<Vid>,
+}
+
+/// Fill the hole through `start` (checked fillable); inside a transaction.
+fn fill_one(mesh: &mut Mesh, start: Hid, options: &FillHoleOptions) -> Result<Patch> {
+    let rim: Vec<Hid> = mesh.face_loop_from(start).collect();
+    let corners: Vec<Vid> = rim.iter().map(|&h| mesh.origin(h)).collect();
+    let n = rim.len();
+    let p = mesh.position_slots().ok_or(Error::NoPositions)?;
+    let mean_length = rim
+        .iter()
+        .map(|&h| norm(sub(p[mesh.dest(h).index()], p[mesh.origin(h).index()])))
+        .sum::<f64>()
+        / n as f64;
+    let plan = if n == 3 {
+        Some(Vec::new())
+    } else if n <= options.max_optimal_rim {
+        optimal_triangulation(mesh, &rim, p)
+    } else {
+        None
+    };
+    let neighbour = most_common_outer_face(mesh, &rim);
+
+    // Commit: the hole becomes a face with its neighbours' values.
+    let hole = mesh.fkey(mesh.face_of(start));
+    mesh.fill_hole(hole)?;
+    let f = hole.id();
+    for &h in &rim {
+        let across = mesh.next(h.twin());
+        mesh.attrs.halfedge.copy(across.index(), h.index());
+    }
+    mesh.attrs
+        .face
+        .interpolate(f.index(), &[(neighbour.index(), 1.0)]);
+
+    let mut work = Work {
+        edges: BTreeSet::new(),
+        new: BTreeSet::new(),
+    };
+    let ear_clipped = plan.is_none();
+    match plan {
+        Some(diagonals) => cut_by_plan(mesh, hole, &corners, &diagonals, &mut work)?,
+        None => {
+            let rim_edges: HashSet<Eid> = rim.iter().map(|h| h.edge()).collect();
+            for g in mesh.triangulate(hole)? {
+                for h in mesh.face_loop(g.id()) {
+                    if !rim_edges.contains(&h.edge()) {
+                        work.edges.insert(h.edge());
+                    }
+                }
+            }
+        }
+    }
+    if options.refine {
+        refine(mesh, &mut work, mean_length)?;
+    }
+    if options.fair && !work.new.is_empty() {
+        fair_patch(mesh, &work.new, options.fair_order)?;
+    }
+    let mut faces: BTreeSet<Fid> = BTreeSet::new();
+    for &e in &work.edges {
+        for h in e.halfedges() {
+            faces.insert(mesh.face_of(h));
+        }
+    }
+    if faces.is_empty() {
+        faces.insert(f);
+    }
+    Ok(Patch {
+        faces: faces.into_iter().map(|f| mesh.fkey(f)).collect(),
+        vertices: work.new.iter().map(|&v| mesh.vkey(v)).collect(),
+        ear_clipped,
+    })
+}
+
+/// The face across the most rim edges (the first such in rim order).
+fn most_common_outer_face(mesh: &Mesh, rim: &[Hid]) -> Fid {
+    let mut count: HashMap<Fid, usize> = HashMap::new();
+    let mut best = (0, mesh.face_of(rim[0].twin()));
+    for &h in rim {
+        let g = mesh.face_of(h.twin());
+        let c = count.entry(g).or_insert(0);
+        *c += 1;
+        if *c > best.0 {
+            best = (*c, g);
+        }
+    }
+    best.1
+}
+
+// ---------------------------------------------------------------------------
+// 1. The optimal triangulation
+// ---------------------------------------------------------------------------
+
+/// `(largest dihedral term, sum of squared areas)`, compared
+/// lexicographically.
+#[derive(Clone, Copy)]
+struct Weight {
+    angle: f64,
+    area: f64,
+}
+
+impl Weight {
+    const NONE: Weight = Weight {
+        angle: f64::INFINITY,
+        area: f64::INFINITY,
+    };
+
+    fn is_none(self) -> bool {
+        self.angle == f64::INFINITY
+    }
+
+    fn better_than(self, other: Weight) -> bool {
+        if other.is_none() {
+            return !self.is_none();
+        }
+        if self.angle < other.angle - ANGLE_TIE {
+            return true;
+        }
+        self.angle <= other.angle + ANGLE_TIE && self.area < other.area
+    }
+}
+
+fn unit(v: V3) -> V3 {
+    let l = norm(v);
+    if l > 0.0 && l.is_finite() {
+        [v[0] / l, v[1] / l, v[2] / l]
+    } else {
+        [0.0; 3]
+    }
+}
+
+/// The diagonals of the least-weight triangulation of the rim, as pairs of
+/// rim indices `(i, k)` with the split corner `m` (`(i, m, k)` a triangle),
+/// in the order to cut them; `None` when every triangulation needs an edge
+/// the mesh has already.
+fn optimal_triangulation(mesh: &Mesh, rim: &[Hid], p: &[V3]) -> Option<Vec<(u32, u32, u32)>> {
+    let n = rim.len();
+    let pos: Vec<V3> = rim.iter().map(|&h| p[mesh.origin(h).index()]).collect();
+    // The normals of the faces across the rim edges.
+    let outer: Vec<V3> = rim
+        .iter()
+        .map(|&h| unit(mesh.loop_normal(h.twin()).unwrap_or([0.0; 3])))
+        .collect();
+    let blocked = existing_diagonals(mesh, rim);
+    let at = |i: usize, k: usize| i * n + k;
+    let mut weight = vec![Weight::NONE; n * n];
+    let mut split = vec![u32::MAX; n * n];
+    let mut normal = vec![[0.0; 3]; n * n];
+    for i in 0..n - 1 {
+        weight[at(i, i + 1)] = Weight {
+            angle: 0.0,
+            area: 0.0,
+        };
+    }
+    for len in 2..n {
+        for i in 0..n - len {
+            let k = i + len;
+            let closing = i == 0 && k == n - 1;
+            if !closing && blocked.contains(&(i as u32, k as u32)) {
+                continue;
+            }
+            let mut best = Weight::NONE;
+            let (mut best_m, mut best_n) = (u32::MAX, [0.0; 3]);
+            for m in i + 1..k {
+                let (left, right) = (weight[at(i, m)], weight[at(m, k)]);
+                if left.is_none() || right.is_none() {
+                    continue;
+                }
+                let c = cross(sub(pos[m], pos[i]), sub(pos[k], pos[i]));
+                let area2 = dot(c, c);
+                let tri = unit(c);
+                let n_left = if m == i + 1 {
+                    outer[i]
+                } else {
+                    normal[at(i, m)]
+                };
+                let n_right = if k == m + 1 {
+                    outer[m]
+                } else {
+                    normal[at(m, k)]
+                };
+                let mut angle = left
+                    .angle
+                    .max(right.angle)
+                    .max(1.0 - dot(tri, n_left))
+                    .max(1.0 - dot(tri, n_right));
+                if closing {
+                    angle = angle.max(1.0 - dot(tri, outer[n - 1]));
+                }
+                let w = Weight {
+                    angle,
+                    area: left.area + right.area + area2,
+                };
+                if w.better_than(best) {
+                    best = w;
+                    best_m = m as u32;
+                    best_n = tri;
+                }
+            }
+            weight[at(i, k)] = best;
+            split[at(i, k)] = best_m;
+            normal[at(i, k)] = best_n;
+        }
+    }
+    if weight[at(0, n - 1)].is_none() {
+        return None;
+    }
+    let mut out = Vec::with_capacity(n - 2);
+    let mut stack = vec![(0usize, n - 1)];
+    while let Some((i, k)) = stack.pop() {
+        if k < i + 2 {
+            continue;
+        }
+        let m = split[at(i, k)];
+        out.push((i as u32, m, k as u32));
+        stack.push((i, m as usize));
+        stack.push((m as usize, k));
+    }
+    Some(out)
+}
+
+/// Pairs of rim indices `(i, j)`, `i < j`, not neighbours on the rim, that
+/// an edge of the mesh joins already.
+fn existing_diagonals(mesh: &Mesh, rim: &[Hid]) -> HashSet<(u32, u32)> {
+    let n = rim.len();
+    let index: HashMap<Vid, u32> = rim
+        .iter()
+        .enumerate()
+        .map(|(i, &h)| (mesh.origin(h), i as u32))
+        .collect();
+    let mut out = HashSet::new();
+    for (i, &h) in rim.iter().enumerate() {
+        for g in mesh.outgoing(mesh.origin(h)) {
+            if let Some(&j) = index.get(&mesh.dest(g)) {
+                let (a, b) = (i.min(j as usize), i.max(j as usize));
+                let neighbours = b == a + 1 || (a == 0 && b == n - 1);
+                if !neighbours {
+                    out.insert((a as u32, b as u32));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Cut the new face `face` (the rim `corners`, in loop order) into the
+/// planned triangles `(i, m, k)`: each cuts `[i..=k]` into `[i..=m]`,
+/// `[m..=k]` and the triangle.
+fn cut_by_plan(
+    mesh: &mut Mesh,
+    face: FaceKey,
+    corners: &[Vid],
+    plan: &[(u32, u32, u32)],
+    work: &mut Work,
+) -> Result<()> {
+    // The face holding polygon [i..=k], by (i, k).
+    let n = corners.len();
+    let mut holder: HashMap<(u32, u32), FaceKey> = HashMap::new();
+    holder.insert((0, n as u32 - 1), face);
+    for &(i, m, k) in plan {
+        let f = holder[&(i, k)];
+        let [vi, vm, vk] = [i, m, k].map(|x| mesh.vkey(corners[x as usize]));
+        if m > i + 1 {
+            // The new half-edge v_m -> v_i lies in the part from v_i to v_m.
+            let h = mesh.split_face(f, vm, vi)?;
+            let h = mesh.check_halfedge(h)?;
+            work.edges.insert(h.edge());
+            holder.insert((i, m), mesh.fkey(mesh.face_of(h)));
+        }
+        if k > m + 1 {
+            let h = mesh.split_face(f, vk, vm)?;
+            let h = mesh.check_halfedge(h)?;
+            work.edges.insert(h.edge());
+            holder.insert((m, k), mesh.fkey(mesh.face_of(h)));
+        }
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------
+// 2. Refinement
+// ---------------------------------------------------------------------------
+
+fn live_edge(mesh: &Mesh, e: Eid) -> bool {
+    mesh.e_slots.is_live(e.index())
+}
+
+fn point(mesh: &Mesh, v: Vid) -> V3 {
+    mesh.position_slots().map_or([0.0; 3], |p| p[v.index()])
+}
+
+fn length(mesh: &Mesh, e: Eid) -> f64 {
+    let h = e.halfedge(0);
+    norm(sub(point(mesh, mesh.dest(h)), point(mesh, mesh.origin(h))))
+}
+
+fn refine(mesh: &mut Mesh, work: &mut Work, l: f64) -> Result<()> {
+    let (lmin, lmax) = (SHORT * l, LONG * l);
+    for _ in 0..ROUNDS {
+        let mut changed = split_long_edges(mesh, work, lmax)?;
+        changed += collapse_short_edges(mesh, work, lmin, lmax);
+        changed += flip_edges(mesh, work);
+        relax(mesh, work)?;
+        if changed == 0 {
+            break;
+        }
+    }
+    Ok(())
+}
+
+fn split_long_edges(mesh: &mut Mesh, work: &mut Work, lmax: f64) -> Result<usize> {
+    let mut count = 0;
+    let list: Vec<Eid> = work.edges.iter().copied().collect();
+    for e in list {
+        if !live_edge(mesh, e) || length(mesh, e) <= lmax {
+            continue;
+        }
+        let m = mesh.split_edge(mesh.ekey(e), 0.5)?;
+        let mv = m.id();
+        work.new.insert(mv);
+        count += 1;
+        let out: Vec<Hid> = mesh.outgoing(mv).collect();
+        for h in out {
+            work.edges.insert(h.edge());
+            let f = mesh.face_of(h);
+            if mesh.is_hole(f) || mesh.face_degree(f) <= 3 {
+                continue;
+            }
+            let opposite = mesh.origin(mesh.next(mesh.next(h)));
+            let cut = mesh.split_face(mesh.fkey(f), m, mesh.vkey(opposite))?;
+            work.edges.insert(mesh.check_halfedge(cut)?.edge());
+        }
+    }
+    Ok(count)
+}
+
+fn collapse_short_edges(mesh: &mut Mesh, work: &mut Work, lmin: f64, lmax: f64) -> usize {
+    let mut count = 0;
+    let list: Vec<Eid> = work.edges.iter().copied().collect();
+    for e in list {
+        if !live_edge(mesh, e) || length(mesh, e) >= lmin {
+            continue;
+        }
+        let [h, t] = e.halfedges();
+        // Remove a new vertex: h runs from the removed vertex to the kept.
+        let h = if work.new.contains(&mesh.origin(h)) {
+            h
+        } else if work.new.contains(&mesh.origin(t)) {
+            t
+        } else {
+            continue;
+        };
+        if !collapse_keeps_shape(mesh, h, lmax) {
+            continue;
+        }
+        let gone = mesh.origin(h);
+        if mesh.collapse_edge(mesh.hkey(h)).is_ok() {
+            work.new.remove(&gone);
+            count += 1;
+        }
+    }
+    work.edges.retain(|&e| live_edge(mesh, e));
+    count
+}
+
+/// Whether collapsing `origin(h)` into `dest(h)` keeps every new edge at
+/// most `lmax` long and turns no triangle over.
+fn collapse_keeps_shape(mesh: &Mesh, h: Hid, lmax: f64) -> bool {
+    let (a, b) = (mesh.origin(h), mesh.dest(h));
+    let pb = point(mesh, b);
+    let pa = point(mesh, a);
+    for g in mesh.outgoing(a) {
+        let x = mesh.dest(g);
+        if x != b && norm(sub(point(mesh, x), pb)) > lmax {
+            return false;
+        }
+        let f = mesh.face_of(g);
+        if mesh.is_hole(f) {
+            continue;
+        }
+        let y = mesh.dest(mesh.next(g));
+        if x == b || y == b {
+            continue;
+        }
+        let (px, py) = (point(mesh, x), point(mesh, y));
+        let before = cross(sub(px, pa), sub(py, pa));
+        let after = cross(sub(px, pb), sub(py, pb));
+        if dot(before, after) <= 0.0 {
+            return false;
+        }
+    }
+    true
+}
+
+fn valence(mesh: &Mesh, v: Vid) -> i64 {
+    mesh.outgoing(v).count() as i64
+}
+
+fn flip_edges(mesh: &mut Mesh, work: &mut Work) -> usize {
+    let mut count = 0;
+    let list: Vec<Eid> = work.edges.iter().copied().collect();
+    for e in list {
+        if !live_edge(mesh, e) {
+            continue;
+        }
+        let [h, t] = e.halfedges();
+        let (fh, ft) = (mesh.face_of(h), mesh.face_of(t));
+        if mesh.is_hole(fh) || mesh.is_hole(ft) {
+            continue;
+        }
+        if mesh.face_degree(fh) != 3 || mesh.face_degree(ft) != 3 {
+            continue;
+        }
+        let (a, b) = (mesh.origin(h), mesh.dest(h));
+        let c = mesh.dest(mesh.next(h));
+        let d = mesh.dest(mesh.next(t));
+        let target = |v: Vid| if mesh.on_boundary(v) { 4 } else { 6 };
+        let dev = |v: Vid, change: i64| {
+            let x = valence(mesh, v) + change - target(v);
+            x * x
+        };
+        let before = dev(a, 0) + dev(b, 0) + dev(c, 0) + dev(d, 0);
+        let after = dev(a, -1) + dev(b, -1) + dev(c, 1) + dev(d, 1);
+        if after >= before || !flip_keeps_shape(mesh, [a, b, c, d]) {
+            continue;
+        }
+        if mesh.flip_edge(mesh.ekey(e)).is_ok() {
+            count += 1;
+        }
+    }
+    count
+}
+
+/// Whether flipping the edge `a–b` of triangles `(a, b, c)` and `(b, a, d)`
+/// to `c–d` gives triangles `(c, a, d)` and `(d, b, c)` facing the same way
+/// as before.
+fn flip_keeps_shape(mesh: &Mesh, [a, b, c, d]: [Vid; 4]) -> bool {
+    let [pa, pb, pc, pd] = [a, b, c, d].map(|v| point(mesh, v));
+    let n1 = cross(sub(pb, pa), sub(pc, pa));
+    let n2 = cross(sub(pa, pb), sub(pd, pb));
+    let old = [n1[0] + n2[0], n1[1] + n2[1], n1[2] + n2[2]];
+    let m1 = cross(sub(pa, pc), sub(pd, pc));
+    let m2 = cross(sub(pb, pd), sub(pc, pd));
+    dot(m1, old) > 0.0 && dot(m2, old) > 0.0 && dot(m1, m2) > 0.0
+}
+
+/// Move each new vertex to the mean of its neighbours, a few sweeps.
+fn relax(mesh: &mut Mesh, work: &Work) -> Result<()> {
+    for _ in 0..RELAX_SWEEPS {
+        for &v in &work.new {
+            let mut sum = [0.0; 3];
+            let mut count = 0.0;
+            for g in mesh.outgoing(v) {
+                let q = point(mesh, mesh.dest(g));
+                sum = [sum[0] + q[0], sum[1] + q[1], sum[2] + q[2]];
+                count += 1.0;
+            }
+            if count > 0.0 {
+                let key = mesh.vkey(v);
+                mesh.set_position(key, sum.map(|c| c / count))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------
+// 3. Fairing over the patch
+// ---------------------------------------------------------------------------
+
+/// The cotangent Laplacian row of `v` (neighbours with clamped weights) and
+/// its mixed-Voronoi mass, from the faces around it (as
+/// [`laplacian_at`](super::laplacian::laplacian_at) and
+/// [`mass_matrix_at`](super::laplacian::mass_matrix_at) compute them for
+/// the whole mesh).
+fn laplacian_row(mesh: &Mesh, p: &[V3], v: Vid, row: &mut Vec<(Vid, f64)>) -> f64 {
+    row.clear();
+    let mut mass = 0.0;
+    let (mut ps, mut ring, mut pairs, mut area) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for h in mesh.outgoing(v) {
+        let f = mesh.face_of(h);
+        if mesh.is_hole(f) {
+            continue;
+        }
+        let h1 = mesh.next(h);
+        let h2 = mesh.next(h1);
+        if mesh.next(h2) == h {
+            let (b, c) = (mesh.origin(h1), mesh.origin(h2));
+            let (t, _, _) = triangle([p[v.index()], p[b.index()], p[c.index()]]);
+            // Edge v-b is opposite corner c; edge c-v opposite corner b.
+            row.push((b, t.half_cot[2]));
+            row.push((c, t.half_cot[1]));
+            mass += t.area[0];
+            continue;
+        }
+        ring.clear();
+        ring.extend(mesh.face_loop_from(h).map(|g| mesh.origin(g)));
+        ps.clear();
+        ps.extend(ring.iter().map(|u| p[u.index()]));
+        polygon(&ps, &mut pairs, &mut area);
+        for &(k, m, w) in &pairs {
+            if k == 0 {
+                row.push((ring[m], w));
+            }
+        }
+        mass += area[0];
+    }
+    row.sort_unstable_by_key(|&(u, _)| u);
+    row.dedup_by(|later, first| {
+        if later.0 == first.0 {
+            first.1 += later.1;
+            true
+        } else {
+            false
+        }
+    });
+    for (_, w) in row.iter_mut() {
+        *w = w.max(0.0);
+    }
+    mass
+}
+
+/// Solve the `k`-harmonic equation for the vertices `new` (those not
+/// within `k − 1` rings of a boundary), everything else fixed, and move
+/// them there.
+fn fair_patch(mesh: &mut Mesh, new: &BTreeSet<Vid>, k: u32) -> Result<()> {
+    let free: Vec<Vid> = new
+        .iter()
+        .copied()
+        .filter(|&v| !near_boundary(mesh, v, k - 1))
+        .collect();
+    if free.is_empty() {
+        return Ok(());
+    }
+    let p = mesh.position_slots().ok_or(Error::NoPositions)?;
+    // Local numbering: the free vertices first, then their k rings.
+    let mut local: HashMap<Vid, u32> = HashMap::new();
+    let mut order: Vec<Vid> = Vec::new();
+    for &v in &free {
+        local.insert(v, order.len() as u32);
+        order.push(v);
+    }
+    let mut ring_end = vec![order.len()];
+    let mut begin = 0;
+    for _ in 0..k {
+        let end = order.len();
+        for i in begin..end {
+            for g in mesh.outgoing(order[i]) {
+                let w = mesh.dest(g);
+                if let std::collections::hash_map::Entry::Vacant(slot) = local.entry(w) {
+                    slot.insert(order.len() as u32);
+                    order.push(w);
+                }
+            }
+        }
+        begin = end;
+        ring_end.push(order.len());
+    }
+    // Laplacian rows and inverse masses of the vertices within k − 1 rings.
+    let with_rows = ring_end[k as usize - 1];
+    let mut rows: Vec<Vec<(u32, f64)>> = Vec::with_capacity(with_rows);
+    let mut diagonal: Vec<f64> = Vec::with_capacity(with_rows);
+    let mut inv_mass: Vec<f64> = Vec::with_capacity(with_rows);
+    let mut scratch = Vec::new();
+    for &v in &order[..with_rows] {
+        let mass = laplacian_row(mesh, p, v, &mut scratch);
+        let row: Vec<(u32, f64)> = scratch.iter().map(|&(u, w)| (local[&u], w)).collect();
+        diagonal.push(-row.iter().map(|&(_, w)| w).sum::<f64>());
+        rows.push(row);
+        inv_mass.push(if mass > 0.0 { 1.0 / mass } else { 0.0 });
+    }
+    // Row v of A = (−1)^k L (M⁻¹ L)^(k−1), restricted to the free columns;
+    // the fixed columns go to the right-hand side.
+    let nf = free.len();
+    let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+    let mut acc = SparseVec::new(order.len());
+    let mut columns: Vec<Vec<(u32, f64)>> = Vec::with_capacity(nf);
+    let mut rhs: Vec<V3> = Vec::with_capacity(nf);
+    for me in 0..nf {
+        acc.reset_to(me as u32);
+        acc.apply(&rows, &diagonal);
+        for _ in 1..k {
+            acc.scale(&inv_mass);
+            acc.apply(&rows, &diagonal);
+        }
+        let mut b = [0.0; 3];
+        let mut column = Vec::new();
+        for &(j, val) in &acc.list {
+            let w = sign * val;
+            if (j as usize) < nf {
+                if j as usize >= me {
+                    column.push((j, w));
+                }
+            } else {
+                let q = p[order[j as usize].index()];
+                b = [b[0] - w * q[0], b[1] - w * q[1], b[2] - w * q[2]];
+            }
+        }
+        column.sort_unstable_by_key(|&(j, _)| j);
+        columns.push(column);
+        rhs.push(b);
+    }
+    solve(&columns, &mut rhs).map_err(|reason| {
+        unsuitable(
+            Some(mesh.vkey(free[0]).into()),
+            format!("fairing the patch: {reason}"),
+        )
+    })?;
+    if let Some(i) = rhs.iter().position(|q| !q.iter().all(|c| c.is_finite())) {
+        return Err(unsuitable(
+            Some(mesh.vkey(free[i]).into()),
+            "the faired position is not finite",
+        ));
+    }
+    for (&v, &q) in free.iter().zip(&rhs) {
+        let key = mesh.vkey(v);
+        mesh.set_position(key, q)?;
+    }
+    Ok(())
+}
+
+/// Whether a boundary vertex lies within `rings` edges of `v`.
+fn near_boundary(mesh: &Mesh, v: Vid, rings: u32) -> bool {
+    let mut front = vec![v];
+    let mut seen: HashSet<Vid> = HashSet::from([v]);
+    for step in 0..=rings {
+        let mut next = Vec::new();
+        for &u in &front {
+            if mesh.on_boundary(u) {
+                return true;
+            }
+            if step < rings {
+                for g in mesh.outgoing(u) {
+                    let w = mesh.dest(g);
+                    if seen.insert(w) {
+                        next.push(w);
+                    }
+                }
+            }
+        }
+        front = next;
+    }
+    false
+}
+
+/// A sparse vector over the local numbering.
+struct SparseVec {
+    value: Vec<f64>,
+    seen: Vec<bool>,
+    list: Vec<(u32, f64)>,
+    scratch: Vec<(u32, f64)>,
+}
+
+impl SparseVec {
+    fn new(n: usize) -> SparseVec {
+        SparseVec {
+            value: vec![0.0; n],
+            seen: vec![false; n],
+            list: Vec::new(),
+            scratch: Vec::new(),
+        }
+    }
+
+    fn reset_to(&mut self, i: u32) {
+        self.list.clear();
+        self.list.push((i, 1.0));
+    }
+
+    fn scale(&mut self, d: &[f64]) {
+        for (i, x) in &mut self.list {
+            *x *= d[*i as usize];
+        }
+    }
+
+    fn add(&mut self, i: u32, x: f64) {
+        let s = i as usize;
+        if !self.seen[s] {
+            self.seen[s] = true;
+            self.scratch.push((i, 0.0));
+        }
+        self.value[s] += x;
+    }
+
+    /// Replace the vector by `L` times it (`L` symmetric; only rows of the
+    /// vector's support are read).
+    fn apply(&mut self, rows: &[Vec<(u32, f64)>], diagonal: &[f64]) {
+        let input = std::mem::take(&mut self.list);
+        self.scratch.clear();
+        for &(m, x) in &input {
+            let mi = m as usize;
+            self.add(m, diagonal[mi] * x);
+            for &(c, w) in &rows[mi] {
+                self.add(c, w * x);
+            }
+        }
+        let mut out = std::mem::take(&mut self.scratch);
+        for (i, x) in &mut out {
+            let s = *i as usize;
+            *x = self.value[s];
+            self.value[s] = 0.0;
+            self.seen[s] = false;
+        }
+        self.scratch = input;
+        self.list = out;
+    }
+}
+
+/// Solve the symmetric positive definite system given by its lower
+/// columns (rows sorted, diagonal first), for the three columns of `rhs`:
+/// faer's sparse Cholesky with the `sparse` feature, conjugate gradients
+/// without.
+fn solve(columns: &[Vec<(u32, f64)>], rhs: &mut [V3]) -> std::result::Result<(), String> {
+    if AVAILABLE {
+        let nnz = columns.iter().map(Vec::len).sum();
+        let mut a = LowerCsc::with_capacity(columns.len(), nnz);
+        for column in columns {
+            for &(j, w) in column {
+                a.push(j as usize, w);
+            }
+            a.end_column();
+        }
+        solve_spd(&a, rhs).map_err(|e| e.to_string())
+    } else {
+        conjugate_gradients(columns, rhs)
+    }
+}
+
+/// Jacobi-preconditioned conjugate gradients, one coordinate at a time, to
+/// a relative residual of 1e-12.
+fn conjugate_gradients(
+    columns: &[Vec<(u32, f64)>],
+    rhs: &mut [V3],
+) -> std::result::Result<(), String> {
+    let n = columns.len();
+    let multiply = |x: &[f64], y: &mut [f64]| {
+        y.iter_mut().for_each(|v| *v = 0.0);
+        for (j, column) in columns.iter().enumerate() {
+            for &(i, w) in column {
+                let i = i as usize;
+                y[i] += w * x[j];
+                if i != j {
+                    y[j] += w * x[i];
+                }
+            }
+        }
+    };
+    let diag: Vec<f64> = columns
+        .iter()
+        .enumerate()
+        .map(|(j, c)| {
+            c.iter()
+                .find(|&&(i, _)| i as usize == j)
+                .map_or(0.0, |&(_, w)| w)
+        })
+        .collect();
+    if diag.iter().any(|&d| d <= 0.0 || !d.is_finite()) {
+        return Err("the system matrix is not positive definite".into());
+    }
+    for c in 0..3 {
+        let b: Vec<f64> = rhs.iter().map(|r| r[c]).collect();
+        let b_norm = b.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let mut x = vec![0.0; n];
+        let mut r = b.clone();
+        let mut z: Vec<f64> = r.iter().zip(&diag).map(|(r, d)| r / d).collect();
+        let mut d = z.clone();
+        let mut rz: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
+        let mut q = vec![0.0; n];
+        if b_norm > 0.0 {
+            for _ in 0..10 * n + 100 {
+                multiply(&d, &mut q);
+                let dq: f64 = d.iter().zip(&q).map(|(a, b)| a * b).sum();
+                if dq <= 0.0 || !dq.is_finite() {
+                    return Err("the system matrix is not positive definite".into());
+                }
+                let alpha = rz / dq;
+                for (xi, di) in x.iter_mut().zip(&d) {
+                    *xi += alpha * di;
+                }
+                for (ri, qi) in r.iter_mut().zip(&q) {
+                    *ri -= alpha * qi;
+                }
+                if r.iter().map(|v| v * v).sum::<f64>().sqrt() <= 1e-12 * b_norm {
+                    break;
+                }
+                for ((zi, ri), di) in z.iter_mut().zip(&r).zip(&diag) {
+                    *zi = ri / di;
+                }
+                let rz_next: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
+                let beta = rz_next / rz;
+                rz = rz_next;
+                for (di, zi) in d.iter_mut().zip(&z) {
+                    *di = zi + beta * *di;
+                }
+            }
+        }
+        for (out, v) in rhs.iter_mut().zip(x) {
+            out[c] = v;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    type Columns = Vec<Vec<(u32, f64)>>;
+
+    fn small_system() -> (Columns, Vec<V3>, Vec<V3>) {
+        // [4 1 0; 1 3 1; 0 1 2] x = b
+        let columns = vec![
+            vec![(0, 4.0), (1, 1.0)],
+            vec![(1, 3.0), (2, 1.0)],
+            vec![(2, 2.0)],
+        ];
+        let x: Vec<V3> = vec![[1.0, 2.0, 3.0], [-1.0, 0.5, 0.0], [2.0, 0.0, 1.0]];
+        let b = vec![
+            std::array::from_fn(|k| 4.0 * x[0][k] + x[1][k]),
+            std::array::from_fn(|k| x[0][k] + 3.0 * x[1][k] + x[2][k]),
+            std::array::from_fn(|k| x[1][k] + 2.0 * x[2][k]),
+        ];
+        (columns, b, x)
+    }
+
+    #[test]
+    fn conjugate_gradients_solve_a_small_system() {
+        let (columns, mut b, x) = small_system();
+        conjugate_gradients(&columns, &mut b).unwrap();
+        for (got, want) in b.iter().zip(&x) {
+            for (g, w) in got.iter().zip(want) {
+                assert!((g - w).abs() < 1e-10);
+            }
+        }
+    }
+
+    #[test]
+    fn conjugate_gradients_refuse_a_non_positive_diagonal() {
+        let columns = vec![vec![(0, -1.0)]];
+        let mut b = vec![[1.0; 3]];
+        assert!(conjugate_gradients(&columns, &mut b).is_err());
+    }
+
+    #[test]
+    fn weights_compare_angle_first() {
+        let a = Weight {
+            angle: 0.1,
+            area: 5.0,
+        };
+        let b = Weight {
+            angle: 0.2,
+            area: 1.0,
+        };
+        assert!(a.better_than(b));
+        assert!(!b.better_than(a));
+        assert!(a.better_than(Weight::NONE));
+        assert!(!Weight::NONE.better_than(a));
+    }
+
+    #[test]
+    fn local_rows_match_the_global_laplacian() {
+        let mesh = crate::shapes::icosphere(2);
+        let p = mesh.position_slots().unwrap();
+        let global = super::super::laplacian::laplacian(
+            &mesh,
+            &super::super::laplacian::LaplacianOptions::default(),
+        )
+        .unwrap();
+        let masses = super::super::laplacian::mass_matrix(&mesh).unwrap();
+        let mut row = Vec::new();
+        for v in mesh.vids().take(20) {
+            let mass = laplacian_row(&mesh, p, v, &mut row);
+            assert!((mass - masses[v.index()]).abs() < 1e-12);
+            let expect: Vec<(usize, f64)> = global.row(v.index()).collect();
+            assert_eq!(row.len(), expect.len());
+            for (&(u, w), &(c, x)) in row.iter().zip(&expect) {
+                assert_eq!(u.index(), c);
+                assert!((w - x).abs() < 1e-12);
+            }
+        }
+    }
+}
