@@ -180,7 +180,6 @@ pub struct Input {
 
 /// Mean length of the input's undirected edges, from the soup in f64
 /// (bench::mean_edge_length): the target of uniform_remeshing.
-#[allow(dead_code)]
 fn mean_edge_length(input: &Input) -> f64 {
     let mut e: Vec<(u32, u32)> = input
         .tri
@@ -240,6 +239,7 @@ const WORKLOADS: &[(&str, Workload)] = &[
     ("implicit_smoothing", implicit_smoothing),
     ("decimate_10pct", decimate_10pct),
     ("fill_holes", fill_holes),
+    ("uniform_remeshing", uniform_remeshing),
     // meshloom only (no peer row): engine buffers.
     ("triangle_buffers", triangle_buffers),
     // meshloom only: the journal (issue 15).
@@ -249,8 +249,6 @@ const WORKLOADS: &[(&str, Workload)] = &[
     ("normals_lib", normals_lib),
     ("normals_classic", normals_classic),
     ("flip_all", flip_all),
-    // not in meshloom yet (C++ names and count notes, see README.md):
-    // ("uniform_remeshing", ...)     "-> V V, F F; target length L, 10 iterations"   (mean_edge_length)
 ];
 
 /// Remove the faces of the kit's 8 holes (untimed), then fill each with
@@ -870,6 +868,37 @@ fn decimate_10pct(input: &Input) -> (Elapsed, String) {
             r.refused,
             (peak - before) as f64 / nv as f64,
             kept as f64 / nv as f64
+        ),
+    )
+}
+
+/// Isotropic remeshing to the input's mean edge length (bench's
+/// `mean_edge_length` of the soup), 10 iterations, projection on, as pmp's
+/// `uniform_remeshing(m, len, 10, true)` and CGAL's `isotropic_remeshing`;
+/// once on a clone, without a progress callback.
+fn uniform_remeshing(input: &Input) -> (Elapsed, String) {
+    use meshloom::algo::remesh::{remesh, RemeshOptions, Sizing};
+    let mut m = input.mesh.clone();
+    let len = mean_edge_length(input);
+    let opts = RemeshOptions {
+        sizing: Sizing::Uniform(len),
+        iterations: 10,
+        project: true,
+        ..RemeshOptions::default()
+    };
+    let t0 = stamp();
+    let r = remesh(&mut m, &opts, meshloom::algo::Progress::none()).expect("remesh");
+    let e = since(t0);
+    (
+        e,
+        format!(
+            "-> {} V, {} F; target length {len:.6}, 10 iterations; {} splits, {} collapses, {} flips, {:.1}% of edges within [4/5, 4/3] L",
+            m.vertex_count(),
+            m.face_count(),
+            r.splits,
+            r.collapses,
+            r.flips,
+            100.0 * r.edge_lengths.within
         ),
     )
 }

@@ -13,6 +13,7 @@ Examples:
   meshloom render data/elephant.off elephant.png --wireframe
   meshloom smooth data/elephant.off smooth.off --method taubin
   meshloom decimate data/elephant.off small.off --ratio 0.1
+  meshloom remesh data/elephant.off even.off
 
 Exit codes: 0 success, 1 bad input, 2 usage.";
 
@@ -178,6 +179,23 @@ Example:
   meshloom subdivide cube.obj smooth.obj --scheme catmull-clark --levels 3
   meshloom subdivide bunny.off bunny4.ply --scheme loop --levels 2 --json")]
     Subdivide(SubdivideArgs),
+    /// Remesh a triangle mesh isotropically (Botsch-Kobbelt).
+    ///
+    /// Splits long edges, collapses short ones, flips towards valence 6
+    /// and relaxes the vertices in their tangent planes, projecting them
+    /// back onto the input surface, --iterations times (default 10). The
+    /// target edge length is --edge-length, or by default the input's mean
+    /// edge length; --adaptive TOL makes it follow the curvature instead
+    /// (the largest length within TOL of the surface). Boundaries slide
+    /// along themselves, corners stay; --feature-angle DEG keeps edges
+    /// sharper than DEG degrees as lines too. UVs and other vertex and
+    /// corner attributes are resampled from the input, per seam side.
+    /// Faces must be triangles (`meshloom triangulate` first).
+    #[command(after_help = "\
+Example:
+  meshloom remesh bunny.off even.off --edge-length 0.002
+  meshloom remesh part.obj part-remeshed.obj --adaptive 0.001 --feature-angle 40 --json")]
+    Remesh(RemeshArgs),
 }
 
 /// How to read an input file.
@@ -432,6 +450,45 @@ pub struct DecimateArgs {
     pub read: ReadArgs,
 }
 
+/// `meshloom remesh`.
+#[derive(Args, Debug)]
+pub struct RemeshArgs {
+    /// The mesh file to read.
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// The mesh file to write (format from its extension).
+    #[arg(value_parser = mesh_path)]
+    pub output: PathBuf,
+    /// The target edge length (default: the input's mean edge length).
+    #[arg(long, value_parser = positive, conflicts_with = "adaptive")]
+    pub edge_length: Option<f64>,
+    /// Adaptive lengths that follow the curvature, within this
+    /// approximation error (mesh units).
+    #[arg(long, value_parser = positive)]
+    pub adaptive: Option<f64>,
+    /// The shortest adaptive length (default: a quarter of the mean edge length).
+    #[arg(long, value_parser = positive, requires = "adaptive")]
+    pub min_length: Option<f64>,
+    /// The longest adaptive length (default: four times the mean edge length).
+    #[arg(long, value_parser = positive, requires = "adaptive")]
+    pub max_length: Option<f64>,
+    /// Rounds of split, collapse, flip and relaxation.
+    #[arg(long, default_value_t = 10)]
+    pub iterations: usize,
+    /// Edges whose faces meet at more than this many degrees are kept as
+    /// sharp lines; where they meet or end, vertices stay.
+    #[arg(long, value_parser = degrees)]
+    pub feature_angle: Option<f64>,
+    /// Keep boundary vertices and edges exactly where they are.
+    #[arg(long)]
+    pub keep_boundary: bool,
+    /// Print the report as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
 /// `meshloom lod`.
 #[derive(Args, Debug)]
 pub struct LodArgs {
@@ -461,6 +518,22 @@ fn ratio(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(r) if (0.0..=1.0).contains(&r) => Ok(r),
         _ => Err("expected a number from 0 to 1".into()),
+    }
+}
+
+/// A finite number > 0.
+fn positive(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(r) if r.is_finite() && r > 0.0 => Ok(r),
+        _ => Err("expected a finite number > 0".into()),
+    }
+}
+
+/// An angle in degrees, 0 to 180.
+fn degrees(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(r) if (0.0..=180.0).contains(&r) => Ok(r),
+        _ => Err("expected an angle in degrees from 0 to 180".into()),
     }
 }
 

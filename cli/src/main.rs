@@ -20,7 +20,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 use cli::{Cli, Command};
-use commands::{convert, decimate, render, smooth, stats, subdivide, validate};
+use commands::{convert, decimate, remesh, render, smooth, stats, subdivide, validate};
 
 /// Why a command failed, and the exit code that says so.
 #[derive(Debug)]
@@ -69,6 +69,7 @@ fn main() -> ExitCode {
         Command::Lod(a) => decimate::lod(&a),
         Command::Render(a) => render::run(&a),
         Command::Subdivide(a) => subdivide::run(&a),
+        Command::Remesh(a) => remesh::run(&a),
     };
     match done {
         Ok(()) => ExitCode::SUCCESS,

@@ -413,6 +413,7 @@ fn every_command_has_help_with_an_example() {
         "lod",
         "render",
         "subdivide",
+        "remesh",
     ] {
         assert!(
             stdout(&o).contains(command),
@@ -1607,4 +1608,88 @@ fn fill_holes_fair_patches_every_hole() {
     ]);
     assert_eq!(code(&o), 2);
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn remesh_evens_the_edges_and_reports() {
+    let dir = scratch("remesh");
+    let out = dir.join("even.off");
+    // Default length: the input's mean edge length.
+    let o = run(&["remesh", BUNDLED, path_str(&out), "--json"]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let j = json(&o);
+    let r = &j["report"];
+    assert_eq!(r["iterations"].as_u64(), Some(10));
+    assert_eq!(r["vertices_before"].as_u64(), Some(2775));
+    assert!(r["edge_lengths"]["within"].as_f64().unwrap() >= 0.95, "{r}");
+    let v = r["vertices"].as_u64().unwrap();
+    let o = run(&["stats", path_str(&out), "--json"]);
+    assert_eq!(code(&o), 0);
+    let s = json(&o);
+    assert_eq!(s["vertices"].as_u64(), Some(v));
+    assert_eq!(s["euler_characteristic"].as_i64(), Some(-4));
+    // A given length, fewer iterations, a feature angle; text report.
+    let target = 2.0 * r["target_length"].as_f64().unwrap();
+    let o = run(&[
+        "remesh",
+        BUNDLED,
+        path_str(&out),
+        "--edge-length",
+        &target.to_string(),
+        "--iterations",
+        "3",
+        "--feature-angle",
+        "60",
+    ]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(text.contains("3 iterations"), "{text}");
+    assert!(text.contains("wrote"), "{text}");
+    let o = run(&["stats", path_str(&out), "--json"]);
+    assert!(json(&o)["vertices"].as_u64().unwrap() < v);
+    // Adaptive.
+    let o = run(&[
+        "remesh",
+        BUNDLED,
+        path_str(&out),
+        "--adaptive",
+        "0.001",
+        "--json",
+    ]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    assert!(json(&o)["report"]["vertices"].as_u64().unwrap() > 0);
+}
+
+#[test]
+fn remesh_refuses_bad_input_and_bad_usage() {
+    let dir = scratch("remesh-bad");
+    let out = dir.join("x.off");
+    // Quads: bad input, exit 1, nothing written.
+    let o = run(&[
+        "remesh",
+        &shared("polygons/cgal_cube_quad.off"),
+        path_str(&out),
+    ]);
+    assert_eq!(code(&o), 1, "{}", stderr(&o));
+    assert!(stderr(&o).contains("triangulate"), "{}", stderr(&o));
+    assert!(!out.exists());
+    for args in [
+        &["remesh", BUNDLED, path_str(&out), "--edge-length", "0"][..],
+        &["remesh", BUNDLED, path_str(&out), "--edge-length", "-1"],
+        &[
+            "remesh",
+            BUNDLED,
+            path_str(&out),
+            "--edge-length",
+            "1",
+            "--adaptive",
+            "0.1",
+        ],
+        &["remesh", BUNDLED, path_str(&out), "--feature-angle", "200"],
+        &["remesh", BUNDLED, path_str(&out), "--min-length", "1"],
+        &["remesh", BUNDLED],
+    ] {
+        let o = run(args);
+        assert_eq!(code(&o), 2, "{args:?}: {}", stderr(&o));
+    }
 }

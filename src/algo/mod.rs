@@ -15,6 +15,7 @@
 //! | [`catmull_clark`] | Catmull-Clark subdivision of any polygons, semi-sharp creases | the mesh, rebuilt wholesale |
 //! | [`sqrt3`] | Kobbelt's sqrt(3) subdivision | the mesh, rebuilt wholesale |
 //! | [`midpoint`] | linear subdivision: triangles 1-to-4, other polygons to quads | the mesh, rebuilt wholesale |
+//! | [`remesh`] | isotropic remeshing (Botsch-Kobbelt): split, collapse, flip, tangential relaxation, projection onto the input through a BVH; uniform or curvature-adaptive length; boundaries and features kept; UVs resampled per seam side | the mesh, handed over wholesale; [`RemeshReport`] |
 //! | [`normals`] | face normals; vertex normals weighted by angle, area or uniformly; corner (half-edge) normals split at creases and hard edges | plain `Vec`s indexed by slot, or attribute columns named [`normals::NORMAL`] |
 //!
 //! The hot loops (the Laplacian, curvature, smoothing, fairing and vertex
@@ -40,6 +41,7 @@ pub mod midpoint;
 
 pub mod normals;
 pub mod progress;
+pub mod remesh;
 pub mod smooth;
 mod sparse;
 pub mod sqrt3;
@@ -55,6 +57,7 @@ pub use normals::{
     vertex_normals, CornerNormalOptions, NormalWeight, VertexNormalOptions, NORMAL,
 };
 pub use progress::{Flow, Progress, ProgressInfo};
+pub use remesh::{remesh, RemeshOptions, RemeshReport};
 pub use sqrt3::sqrt3_subdivide;
 pub use subdivision::{
     Boundary, Counts, LevelReport, SubdivisionOptions, SubdivisionReport, VertexData,

@@ -121,6 +121,24 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn flip_edge(&mut self, ek: EdgeKey) -> Result<EdgeKey> {
+        let plan = self.plan_flip(ek)?;
+        self.commit_flip(plan);
+        self.end_op();
+        Ok(ek)
+    }
+
+    /// The remesher's door: [`flip_edge`](Mesh::flip_edge) of a live edge
+    /// slot, checked as it is, without the per-call debug validation (the
+    /// caller validates once at the end).
+    pub(crate) fn flip_unvalidated(&mut self, e: Eid) -> Result<()> {
+        let plan = self.plan_flip(self.ekey(e))?;
+        self.commit_flip(plan);
+        Ok(())
+    }
+
+    /// The commit and rules of a planned flip; cannot fail.
+    #[inline(always)]
+    fn commit_flip(&mut self, plan: FlipPlan) {
         let FlipPlan {
             e,
             h1,
@@ -129,7 +147,7 @@ impl Mesh {
             t2,
             c,
             d,
-        } = self.plan_flip(ek)?;
+        } = plan;
         let [h, t] = e.halfedges();
         let (a, b) = (self.origin(h), self.origin(t));
         let (f0, f1) = (self.face_of(h), self.face_of(t));
@@ -164,7 +182,5 @@ impl Mesh {
         }
         self.attrs.halfedge.copy(h2.index(), h.index());
         self.attrs.halfedge.copy(t2.index(), t.index());
-        self.end_op();
-        Ok(ek)
     }
 }

@@ -4,7 +4,7 @@
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
-use crate::layout::{Eid, Fid, HalfedgeRecord, Hid};
+use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, Vid};
 use crate::mesh::Mesh;
 
 /// Faces up to this degree are handled without heap allocation.
@@ -103,7 +103,28 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn split_edge(&mut self, e: EdgeKey, t: f64) -> Result<VertexKey> {
-        let SplitEdgePlan { h, t: tw, ph } = self.plan_split_edge(e, t)?;
+        let plan = self.plan_split_edge(e, t)?;
+        let m = self.commit_split_edge(plan, t);
+        self.end_op();
+        Ok(self.vkey(m))
+    }
+
+    /// The remesher's door: [`split_edge`](Mesh::split_edge) of a live
+    /// edge slot at `t` in `0..=1`, without the per-call debug validation
+    /// (the caller validates once at the end).
+    pub(crate) fn split_edge_unvalidated(&mut self, e: Eid, t: f64) -> Vid {
+        let [h, tw] = e.halfedges();
+        let plan = SplitEdgePlan {
+            h,
+            t: tw,
+            ph: self.prev_fast(h),
+        };
+        self.commit_split_edge(plan, t)
+    }
+
+    /// The commit and rules of a planned edge split; cannot fail.
+    fn commit_split_edge(&mut self, plan: SplitEdgePlan, t: f64) -> Vid {
+        let SplitEdgePlan { h, t: tw, ph } = plan;
         let a = self.origin(h);
         let b = self.origin(tw);
         let nh = self.next(h);
@@ -148,8 +169,7 @@ impl Mesh {
         hc.copy(h.index(), n0.index());
         hc.interpolate(h.index(), &[(n0.index(), 1.0 - t), (nh.index(), t)]);
         hc.interpolate(n1.index(), &[(nt.index(), 1.0 - t), (tw.index(), t)]);
-        self.end_op();
-        Ok(self.vkey(m))
+        m
     }
 
     fn plan_split_face(&self, f: FaceKey, a: VertexKey, b: VertexKey) -> Result<SplitFacePlan> {

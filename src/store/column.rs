@@ -381,6 +381,15 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     /// Whether the rule's interpolation is a weighted mean
     /// ([`Rule::LINEAR`]).
     fn interpolates_linearly(&self) -> bool;
+    /// Set slot `dst` to the rule's `interpolate` of `inputs` (slot,
+    /// weight) read from `src`, a column of the same type and rule (of
+    /// another mesh); `false`, changing nothing, when `src` is not.
+    fn interpolate_from(
+        &mut self,
+        src: &dyn ErasedColumn,
+        dst: usize,
+        inputs: &[(usize, f64)],
+    ) -> bool;
     /// Save slot `i`'s value before a write (the journal's open step).
     fn save(&mut self, i: usize);
     /// Save slots `range` for a bulk writer.
@@ -560,6 +569,20 @@ where
 
     fn interpolates_linearly(&self) -> bool {
         R::LINEAR
+    }
+
+    fn interpolate_from(
+        &mut self,
+        src: &dyn ErasedColumn,
+        dst: usize,
+        inputs: &[(usize, f64)],
+    ) -> bool {
+        let Some(src) = src.as_any().downcast_ref::<Self>() else {
+            return false;
+        };
+        let result = src.with_inputs(inputs, R::interpolate);
+        self.set(dst, result);
+        true
     }
 
     fn save(&mut self, i: usize) {

@@ -3,6 +3,7 @@
 pub mod convert;
 pub mod decimate;
 pub mod normals;
+pub mod remesh;
 pub mod render;
 pub mod smooth;
 pub mod stats;

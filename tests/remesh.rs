@@ -1,0 +1,648 @@
+//! Isotropic remeshing: edge lengths and valences reached, the surface
+//! kept (Hausdorff distance both ways), features, corners and boundaries
+//! kept, real meshes, UVs resampled per seam side, vertex columns
+//! resampled, cancellation, bad input.
+
+use std::collections::HashMap;
+
+use meshloom::algo::remesh::{remesh, BoundaryMode, RemeshOptions, RemeshReport, Resample, Sizing};
+use meshloom::algo::{Flow, Progress};
+use meshloom::shapes::{self, GridFaces};
+use meshloom::{Error, Mesh};
+
+const MESHES: &str = "../shared/data/meshes";
+
+type V3 = [f64; 3];
+
+fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn len(a: V3) -> f64 {
+    dot(a, a).sqrt()
+}
+
+fn read(path: &str) -> Mesh {
+    let opts = meshloom::io::ReadOptions::repair_all();
+    meshloom::io::read_with(format!("{MESHES}/{path}"), &opts)
+        .unwrap()
+        .0
+}
+
+fn run(mesh: &mut Mesh, options: &RemeshOptions) -> RemeshReport {
+    let r = remesh(mesh, options, Progress::none()).unwrap();
+    mesh.validate().unwrap();
+    r
+}
+
+fn uniform(l: f64) -> RemeshOptions {
+    RemeshOptions {
+        sizing: Sizing::Uniform(l),
+        ..RemeshOptions::default()
+    }
+}
+
+fn triangles(mesh: &Mesh) -> Vec<[V3; 3]> {
+    mesh.faces()
+        .map(|f| {
+            let vs: Vec<V3> = mesh
+                .face(f)
+                .unwrap()
+                .vertices()
+                .map(|v| mesh.position(v).unwrap())
+                .collect();
+            [vs[0], vs[1], vs[2]]
+        })
+        .collect()
+}
+
+/// Distance from `p` to segment `ab`.
+fn point_segment(p: V3, a: V3, b: V3) -> f64 {
+    let ab = sub(b, a);
+    let l2 = dot(ab, ab);
+    let t = if l2 > 0.0 {
+        (dot(sub(p, a), ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    len(sub(
+        p,
+        [a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]],
+    ))
+}
+
+/// Distance from `p` to triangle `t` (inside: to its plane; else to its
+/// nearest side).
+fn point_triangle(p: V3, t: &[V3; 3]) -> f64 {
+    let [a, b, c] = *t;
+    let n = cross(sub(b, a), sub(c, a));
+    let nn = dot(n, n);
+    if nn > 0.0 {
+        let inside = [(a, b), (b, c), (c, a)]
+            .iter()
+            .all(|&(x, y)| dot(cross(sub(y, x), sub(p, x)), n) >= 0.0);
+        if inside {
+            return dot(sub(p, a), n).abs() / nn.sqrt();
+        }
+    }
+    point_segment(p, a, b)
+        .min(point_segment(p, b, c))
+        .min(point_segment(p, c, a))
+}
+
+/// Sample points of a mesh: its vertices and its face centroids.
+fn samples(mesh: &Mesh, max: usize) -> Vec<V3> {
+    let tris = triangles(mesh);
+    let mut out: Vec<V3> = mesh.vertices().map(|v| mesh.position(v).unwrap()).collect();
+    out.extend(
+        tris.iter()
+            .map(|t| [0, 1, 2].map(|k| (t[0][k] + t[1][k] + t[2][k]) / 3.0)),
+    );
+    let step = out.len().div_ceil(max).max(1);
+    out.into_iter().step_by(step).collect()
+}
+
+/// The largest distance from samples of `a` to the surface of `b`.
+fn one_sided(a: &Mesh, b: &Mesh) -> f64 {
+    let tris = triangles(b);
+    samples(a, 600)
+        .iter()
+        .map(|&p| {
+            tris.iter()
+                .map(|t| point_triangle(p, t))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(0.0, f64::max)
+}
+
+fn diagonal(mesh: &Mesh) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for v in mesh.vertices() {
+        let p = mesh.position(v).unwrap();
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    len(sub(hi, lo))
+}
+
+/// Hausdorff distance (sampled both ways) over the bounding-box diagonal.
+fn hausdorff(a: &Mesh, b: &Mesh) -> f64 {
+    one_sided(a, b).max(one_sided(b, a)) / diagonal(b)
+}
+
+/// Edge lengths of the mesh.
+fn lengths(mesh: &Mesh) -> Vec<f64> {
+    mesh.edges()
+        .map(|e| {
+            let [a, b] = mesh.edge(e).unwrap().vertices();
+            len(sub(mesh.position(a).unwrap(), mesh.position(b).unwrap()))
+        })
+        .collect()
+}
+
+fn share_within(mesh: &Mesh, l: f64) -> f64 {
+    let ls = lengths(mesh);
+    let ok = ls
+        .iter()
+        .filter(|&&x| x >= 0.8 * l * (1.0 - 1e-9) && x <= 4.0 / 3.0 * l * (1.0 + 1e-9))
+        .count();
+    ok as f64 / ls.len() as f64
+}
+
+/// Mean valence and mean |valence − 6| of the interior vertices.
+fn valences(mesh: &Mesh) -> (f64, f64) {
+    let vals: Vec<f64> = mesh
+        .vertices()
+        .filter(|&v| !mesh.vertex(v).unwrap().is_boundary())
+        .map(|v| mesh.vertex(v).unwrap().degree() as f64)
+        .collect();
+    let n = vals.len() as f64;
+    (
+        vals.iter().sum::<f64>() / n,
+        vals.iter().map(|x| (x - 6.0).abs()).sum::<f64>() / n,
+    )
+}
+
+#[test]
+fn a_sphere_gets_even_edges_and_valence_six_and_stays_on_its_surface() {
+    let input = shapes::icosphere(3); // 642 V, edges about 0.11
+    let mut mesh = input.clone();
+    let l = 0.07;
+    let r = run(&mut mesh, &uniform(l));
+    assert_eq!(r.iterations, 10);
+    assert!(r.splits > 0 && r.collapses > 0, "{r:?}");
+    let within = share_within(&mesh, l);
+    assert!(within >= 0.95, "{within}");
+    assert!((r.edge_lengths.within - within).abs() < 1e-12);
+    // Valence: a closed genus-0 triangle mesh has mean 6 − 12/V exactly;
+    // the spread around 6 is what remeshing improves.
+    let (mean, spread) = valences(&mesh);
+    assert!((mean - 6.0).abs() < 0.05, "{mean}");
+    assert!(spread < 0.5, "mean |valence − 6| = {spread}");
+    assert_eq!(mesh.euler_characteristic(), 2);
+    let h = hausdorff(&mesh, &input);
+    assert!(h < 0.005, "Hausdorff {h} of the diagonal");
+}
+
+#[test]
+fn the_default_length_is_the_mean_edge_length_of_the_input() {
+    let input = shapes::icosphere(3);
+    let mean = {
+        let l = lengths(&input);
+        l.iter().sum::<f64>() / l.len() as f64
+    };
+    let mut mesh = input.clone();
+    let r = run(&mut mesh, &RemeshOptions::default());
+    assert!((r.target_length - mean).abs() < 1e-12);
+    assert!(share_within(&mesh, mean) >= 0.95);
+    // About as many vertices as before.
+    let ratio = mesh.vertex_count() as f64 / input.vertex_count() as f64;
+    assert!((0.7..1.5).contains(&ratio), "{ratio}");
+}
+
+#[test]
+fn a_cube_keeps_its_corners_and_sharp_edges_with_a_feature_angle() {
+    let mut input = shapes::cube();
+    input.triangulate_all();
+    let mut mesh = input.clone();
+    let options = RemeshOptions {
+        sizing: Sizing::Uniform(0.15),
+        feature_angle: Some(45f64.to_radians()),
+        ..RemeshOptions::default()
+    };
+    let r = run(&mut mesh, &options);
+    assert_eq!(r.feature_edges, 12);
+    assert_eq!(r.fixed_vertices, 8);
+    assert!(mesh.vertex_count() > 100);
+    let ps: Vec<V3> = mesh.vertices().map(|v| mesh.position(v).unwrap()).collect();
+    // Corners stay.
+    for i in 0..8 {
+        let c = [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64];
+        assert!(
+            ps.iter().any(|p| len(sub(*p, c)) < 1e-12),
+            "corner {c:?} lost"
+        );
+    }
+    // Every vertex on the cube's surface, every triangle within one side
+    // (no triangle cuts a sharp edge), so the edges stay sharp.
+    let on = |x: f64| x.abs() < 1e-9 || (x - 1.0).abs() < 1e-9;
+    for p in &ps {
+        assert!(p.iter().any(|&x| on(x)), "{p:?} off the surface");
+    }
+    for t in triangles(&mesh) {
+        let side = (0..3).any(|k| {
+            (t[0][k] - t[1][k]).abs() < 1e-9 && (t[1][k] - t[2][k]).abs() < 1e-9 && on(t[0][k])
+        });
+        assert!(side, "triangle {t:?} is not on one side");
+    }
+    // Sharp edges are still there: vertices on the 12 edges (two
+    // coordinates 0 or 1) at about the target spacing.
+    let on_edges = ps
+        .iter()
+        .filter(|p| p.iter().filter(|&&x| on(x)).count() >= 2)
+        .count();
+    assert!(on_edges >= 8 + 12 * 4, "{on_edges}");
+    assert!(share_within(&mesh, 0.15) >= 0.85);
+}
+
+/// The boundary polyline of a mesh: its boundary edges as segments.
+fn boundary_segments(mesh: &Mesh) -> Vec<[V3; 2]> {
+    mesh.edges()
+        .filter(|&e| mesh.edge(e).unwrap().is_boundary())
+        .map(|e| {
+            let [a, b] = mesh.edge(e).unwrap().vertices();
+            [mesh.position(a).unwrap(), mesh.position(b).unwrap()]
+        })
+        .collect()
+}
+
+fn boundary_vertices(mesh: &Mesh) -> Vec<V3> {
+    mesh.vertices()
+        .filter(|&v| mesh.vertex(v).unwrap().is_boundary())
+        .map(|v| mesh.position(v).unwrap())
+        .collect()
+}
+
+fn on_polyline(p: V3, segs: &[[V3; 2]]) -> f64 {
+    segs.iter()
+        .map(|s| point_segment(p, s[0], s[1]))
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn an_open_grid_keeps_its_boundary_square_and_corners() {
+    let input = shapes::grid(6, 6, GridFaces::Triangles); // cells of 1
+    let mut mesh = input.clone();
+    let r = run(&mut mesh, &uniform(0.4));
+    assert!(r.splits > 0);
+    assert_eq!(mesh.hole_count(), 1);
+    assert_eq!(mesh.euler_characteristic(), 1);
+    let segs = boundary_segments(&input);
+    let bv = boundary_vertices(&mesh);
+    for &p in &bv {
+        assert!(on_polyline(p, &segs) < 1e-9, "{p:?} off the boundary");
+        assert_eq!(p[2], 0.0);
+    }
+    // About 4 · 6 / 0.4 = 60 boundary vertices at the target spacing.
+    assert!((45..=80).contains(&bv.len()), "{}", bv.len());
+    for c in [
+        [0.0, 0.0, 0.0],
+        [6.0, 0.0, 0.0],
+        [0.0, 6.0, 0.0],
+        [6.0, 6.0, 0.0],
+    ] {
+        assert!(
+            bv.iter().any(|p| len(sub(*p, c)) < 1e-12),
+            "corner {c:?} lost"
+        );
+    }
+    assert!(share_within(&mesh, 0.4) >= 0.9);
+    let (_, spread) = valences(&mesh);
+    assert!(spread < 0.6, "{spread}");
+    // Flat: every vertex in the plane, every face facing +z.
+    for t in triangles(&mesh) {
+        assert!(cross(sub(t[1], t[0]), sub(t[2], t[0]))[2] > 0.0);
+    }
+}
+
+#[test]
+fn a_fixed_boundary_stays_exactly_as_it_was() {
+    let input = shapes::grid(4, 4, GridFaces::Triangles);
+    let mut mesh = input.clone();
+    let options = RemeshOptions {
+        sizing: Sizing::Uniform(0.5),
+        boundary: BoundaryMode::Fixed,
+        ..RemeshOptions::default()
+    };
+    run(&mut mesh, &options);
+    let mut before = boundary_vertices(&input);
+    let mut after = boundary_vertices(&mesh);
+    let key = |p: &V3| (p[0] * 1000.0) as i64 * 100000 + (p[1] * 1000.0) as i64;
+    before.sort_by_key(key);
+    after.sort_by_key(key);
+    assert_eq!(before, after);
+}
+
+#[test]
+fn a_real_closed_mesh_stays_close_and_valid() {
+    let input = read("closed/cgal_elephant.off"); // 2775 V, genus 3
+    let mut mesh = input.clone();
+    let r = run(&mut mesh, &RemeshOptions::default());
+    assert_eq!(mesh.euler_characteristic(), input.euler_characteristic());
+    assert!(mesh.is_closed());
+    // About 90 % here (the rest a little short, where the collapse that
+    // would fix them would make an edge longer than 4/3 L).
+    let within = share_within(&mesh, r.target_length);
+    assert!(within >= 0.85, "{within}");
+    // 1.4 % measured: the tusks and ear rims are thinner than a few
+    // target lengths, and face centroids sample the chords there.
+    let h = hausdorff(&mesh, &input);
+    assert!(h < 0.02, "Hausdorff {h} of the diagonal");
+}
+
+#[test]
+fn a_real_mesh_with_a_boundary_keeps_it() {
+    let input = read("boundary/cgal_mesh_with_border.off"); // 548 V, one loop
+    let mut mesh = input.clone();
+    let r = run(&mut mesh, &RemeshOptions::default());
+    assert_eq!(mesh.hole_count(), input.hole_count());
+    assert_eq!(mesh.euler_characteristic(), input.euler_characteristic());
+    let segs = boundary_segments(&input);
+    let d = diagonal(&input);
+    for p in boundary_vertices(&mesh) {
+        assert!(on_polyline(p, &segs) < 1e-9 * d, "{p:?} off the boundary");
+    }
+    let within = share_within(&mesh, r.target_length);
+    assert!(within >= 0.85, "{within}");
+    let h = hausdorff(&mesh, &input);
+    assert!(h < 0.01, "Hausdorff {h} of the diagonal");
+}
+
+#[test]
+fn adaptive_sizing_follows_the_curvature() {
+    // A torus: the inner rim bends more than the outer.
+    let mut input = shapes::torus(32, 16, 1.0, 0.3).unwrap();
+    input.triangulate_all();
+    let mut mesh = input.clone();
+    let options = RemeshOptions {
+        sizing: Sizing::Adaptive {
+            tolerance: 0.002,
+            min_length: Some(0.05),
+            max_length: Some(0.5),
+        },
+        ..RemeshOptions::default()
+    };
+    let r = run(&mut mesh, &options);
+    assert!(r.edge_lengths.within >= 0.85, "{r:?}");
+    assert!(r.edge_lengths.min >= 0.05 * 0.8 * 0.9);
+    // Mean edge length near the inner rim (distance to the axis < 1) is
+    // shorter than near the outer (> 1).
+    let (mut inner, mut outer) = ((0.0, 0), (0.0, 0));
+    for e in mesh.edges() {
+        let [a, b] = mesh.edge(e).unwrap().vertices();
+        let (pa, pb) = (mesh.position(a).unwrap(), mesh.position(b).unwrap());
+        let rho = ((pa[0] + pb[0]).powi(2) + (pa[1] + pb[1]).powi(2)).sqrt() / 2.0;
+        let l = len(sub(pa, pb));
+        if rho < 0.8 {
+            inner = (inner.0 + l, inner.1 + 1);
+        } else if rho > 1.2 {
+            outer = (outer.0 + l, outer.1 + 1);
+        }
+    }
+    let (li, lo) = (inner.0 / inner.1 as f64, outer.0 / outer.1 as f64);
+    assert!(li < 0.9 * lo, "inner {li}, outer {lo}");
+    assert_eq!(mesh.euler_characteristic(), 0);
+    assert!(hausdorff(&mesh, &input) < 0.01);
+}
+
+#[test]
+fn a_vertex_column_is_resampled_from_the_input() {
+    // A colour that is a linear function of the position: barycentric
+    // resampling on the flat input reproduces it exactly at every vertex.
+    let mut mesh = shapes::grid(5, 5, GridFaces::Triangles);
+    let colour = mesh.add_vertex_attr::<[f64; 3]>("colour").unwrap();
+    let f = |p: V3| [p[0] / 5.0, p[1] / 5.0, 0.5 + 0.1 * (p[0] - p[1])];
+    for v in mesh.vertices().collect::<Vec<_>>() {
+        let p = mesh.position(v).unwrap();
+        mesh.set_attr(&colour, v, f(p)).unwrap();
+    }
+    let r = run(&mut mesh, &uniform(0.45));
+    assert_eq!(r.resampled, vec!["colour".to_string()]);
+    for v in mesh.vertices() {
+        let c = *mesh.attr(&colour, v).unwrap().unwrap();
+        let want = f(mesh.position(v).unwrap());
+        for k in 0..3 {
+            assert!((c[k] - want[k]).abs() < 1e-9, "{c:?} vs {want:?}");
+        }
+    }
+    // With resampling off, the columns keep what the rules gave them
+    // (midpoints of midpoints: not the value at the moved positions).
+    let mut mesh2 = shapes::grid(5, 5, GridFaces::Triangles);
+    let colour2 = mesh2.add_vertex_attr::<[f64; 3]>("colour").unwrap();
+    for v in mesh2.vertices().collect::<Vec<_>>() {
+        let p = mesh2.position(v).unwrap();
+        mesh2.set_attr(&colour2, v, f(p)).unwrap();
+    }
+    let options = RemeshOptions {
+        resample: Resample::Off,
+        ..uniform(0.45)
+    };
+    let r = run(&mut mesh2, &options);
+    assert!(r.resampled.is_empty());
+    let off = mesh2
+        .vertices()
+        .filter(|&v| {
+            let c = *mesh2.attr(&colour2, v).unwrap().unwrap();
+            let want = f(mesh2.position(v).unwrap());
+            (c[0] - want[0]).abs() > 1e-6
+        })
+        .count();
+    assert!(off > 0);
+}
+
+/// Interior edges across which the corner column `name` differs at an end.
+fn seam_edges(mesh: &Mesh, name: &str) -> usize {
+    let value = |h| mesh.attr_value(name, h).unwrap();
+    mesh.edges()
+        .filter(|&e| {
+            let view = mesh.edge(e).unwrap();
+            if view.is_boundary() {
+                return false;
+            }
+            let (h, t) = (view.halfedge(0), view.halfedge(1));
+            value(h.key()) != value(t.next().key()) || value(h.next().key()) != value(t.key())
+        })
+        .count()
+}
+
+fn uv(m: &Mesh, h: meshloom::HalfedgeKey) -> Option<[f64; 2]> {
+    match m.attr_value("texcoord", h).unwrap()? {
+        meshloom::attr::Value::List(l) => {
+            let f: Vec<f64> = l
+                .iter()
+                .map(|x| match x {
+                    meshloom::attr::Value::F32(x) => f64::from(*x),
+                    meshloom::attr::Value::F64(x) => *x,
+                    other => panic!("{other:?}"),
+                })
+                .collect();
+            Some([f[0], f[1]])
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn the_textured_spider_keeps_its_uv_seams_and_islands() {
+    let mut input = read("textured/spider.obj");
+    input.triangulate_all();
+    // Islands of the input: faces joined across edges that are no seam.
+    let faces: Vec<_> = input.faces().collect();
+    let index: HashMap<_, _> = faces.iter().enumerate().map(|(i, &f)| (f, i)).collect();
+    let mut parent: Vec<usize> = (0..faces.len()).collect();
+    fn find(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    for e in input.edges() {
+        let v = input.edge(e).unwrap();
+        if v.is_boundary() {
+            continue;
+        }
+        let (h, t) = (v.halfedge(0), v.halfedge(1));
+        if uv(&input, h.key()) != uv(&input, t.next().key())
+            || uv(&input, h.next().key()) != uv(&input, t.key())
+        {
+            continue;
+        }
+        let (a, b) = (index[&h.face().key()], index[&t.face().key()]);
+        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+        parent[ra] = rb;
+    }
+    let mut boxes: HashMap<usize, [f64; 4]> = HashMap::new();
+    for (i, &f) in faces.iter().enumerate() {
+        let root = find(&mut parent, i);
+        let b = boxes.entry(root).or_insert([
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ]);
+        for h in input.face(f).unwrap().halfedges() {
+            if let Some([u, v]) = uv(&input, h) {
+                *b = [b[0].min(u), b[1].min(v), b[2].max(u), b[3].max(v)];
+            }
+        }
+    }
+    let seams_before = seam_edges(&input, "texcoord");
+    let mut mesh = input.clone();
+    let r = run(&mut mesh, &RemeshOptions::default());
+    assert!(r.resampled.iter().any(|c| c == "texcoord"), "{r:?}");
+    assert_eq!(mesh.euler_characteristic(), input.euler_characteristic());
+    assert_eq!(mesh.hole_count(), input.hole_count());
+    // Seams stay seams: about as many seam edges (the edge count is
+    // about the same at the mean edge length).
+    let seams = seam_edges(&mesh, "texcoord");
+    assert!(
+        seams as f64 >= 0.5 * seams_before as f64 && seams as f64 <= 2.0 * seams_before as f64,
+        "{seams} seam edges, {seams_before} before"
+    );
+    // Every face's corners lie together in one input island's range.
+    let eps = 1e-6;
+    for f in mesh.faces() {
+        let corners: Vec<[f64; 2]> = mesh
+            .face(f)
+            .unwrap()
+            .halfedges()
+            .filter_map(|h| uv(&mesh, h))
+            .collect();
+        let fits = boxes.values().any(|b| {
+            corners.iter().all(|&[u, v]| {
+                u >= b[0] - eps && v >= b[1] - eps && u <= b[2] + eps && v <= b[3] + eps
+            })
+        });
+        assert!(fits, "face corners {corners:?} in no island");
+    }
+}
+
+/// Everything about a mesh that a run could change: polygons, positions
+/// and every column's values in order.
+fn snapshot(mesh: &Mesh) -> String {
+    let (p, _) = mesh.to_polygons();
+    let mut s = format!("{p:?}");
+    for h in mesh.halfedges() {
+        s += &format!("{:?}", mesh.attr_value("texcoord", h).ok());
+    }
+    s
+}
+
+#[test]
+fn a_cancelled_run_leaves_the_mesh_exactly_as_it_was() {
+    let mut mesh = read("textured/spider.obj");
+    mesh.triangulate_all();
+    let before = snapshot(&mesh);
+    let counts = (mesh.vertex_count(), mesh.edge_count(), mesh.face_count());
+    for cancel_at in [0u64, 3] {
+        let mut cb = |info: &meshloom::algo::ProgressInfo<'_>| {
+            if info.done >= cancel_at {
+                Flow::Cancel
+            } else {
+                Flow::Continue
+            }
+        };
+        let err = remesh(&mut mesh, &RemeshOptions::default(), Progress::new(&mut cb)).unwrap_err();
+        assert!(matches!(err, Error::Cancelled { .. }), "{err}");
+        assert_eq!(snapshot(&mesh), before);
+        assert_eq!(
+            (mesh.vertex_count(), mesh.edge_count(), mesh.face_count()),
+            counts
+        );
+        mesh.validate().unwrap();
+    }
+    // A callback that goes on gives the same result as none.
+    let mut a = mesh.clone();
+    let mut go = |_: &meshloom::algo::ProgressInfo<'_>| Flow::Continue;
+    let ra = remesh(&mut a, &RemeshOptions::default(), Progress::new(&mut go)).unwrap();
+    let mut b = mesh.clone();
+    let rb = remesh(&mut b, &RemeshOptions::default(), Progress::none()).unwrap();
+    assert_eq!(ra, rb);
+    assert_eq!(snapshot(&a), snapshot(&b));
+}
+
+#[test]
+fn bad_input_is_refused_and_changes_nothing() {
+    let mut quads = shapes::cube();
+    let err = remesh(&mut quads, &RemeshOptions::default(), Progress::none()).unwrap_err();
+    match err {
+        Error::Unsuitable { key, reason, .. } => {
+            assert!(key.is_some());
+            assert!(reason.contains("triangles"), "{reason}");
+        }
+        other => panic!("{other}"),
+    }
+    assert_eq!(quads.face_count(), 6);
+    let mut mesh = shapes::icosphere(1);
+    for l in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let err = remesh(&mut mesh, &uniform(l), Progress::none()).unwrap_err();
+        assert!(matches!(err, Error::Unsuitable { .. }), "{err}");
+    }
+    let options = RemeshOptions {
+        resample: Resample::Columns(vec!["nothing".into()]),
+        ..RemeshOptions::default()
+    };
+    assert!(matches!(
+        remesh(&mut mesh, &options, Progress::none()),
+        Err(Error::Unsuitable { .. })
+    ));
+    assert_eq!(mesh.vertex_count(), 42);
+    // An empty mesh: nothing to do.
+    let mut empty = Mesh::new();
+    let r = remesh(&mut empty, &RemeshOptions::default(), Progress::none());
+    assert!(r.is_err() || empty.vertex_count() == 0);
+}
+
+#[test]
+fn an_undo_takes_the_whole_remeshing_back() {
+    let mut mesh = shapes::icosphere(2);
+    mesh.enable_history(meshloom::journal::HistoryLimits::default());
+    let before = snapshot(&mesh);
+    remesh(&mut mesh, &uniform(0.15), Progress::none()).unwrap();
+    assert_ne!(snapshot(&mesh), before);
+    assert!(mesh.undo());
+    assert_eq!(snapshot(&mesh), before);
+}
