@@ -224,6 +224,8 @@ const WORKLOADS: &[(&str, Workload)] = &[
     ("read_lib", read_lib),
     ("circulate", circulate),
     ("smooth_10", smooth_10),
+    // meshloom only: smooth_10 as the peers write it, through views.
+    ("smooth_10_views", smooth_10_views),
     // meshloom only: smooth_10 through keys instead of views.
     ("smooth_10_keys", smooth_10_keys),
     ("split_collapse_checked", split_collapse_checked),
@@ -323,8 +325,31 @@ fn circulate(input: &Input) -> (Elapsed, String) {
     (e, format!("checksum {sum}"))
 }
 
-/// 10 Jacobi iterations of uniform barycentre smoothing through the attribute
-/// API, boundary vertices fixed (as the C++ smooth_10): vertex views, their
+/// 10 Jacobi iterations of uniform barycentre smoothing, boundary vertices
+/// fixed (as the C++ smooth_10), by the library's own smoother:
+/// `algo::smooth` with the uniform method and `λ = 1` (each moving vertex
+/// goes to the mean of its neighbours). It flattens the one-rings of the
+/// moving vertices once per call and then runs the ten steps over flat
+/// arrays; the peers walk their half-edges in every step
+/// (`smooth_10_views` is the same loop through meshloom's views).
+fn smooth_10(input: &Input) -> (Elapsed, String) {
+    use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
+    let mut mesh = input.mesh.clone();
+    let opts = SmoothOptions {
+        iterations: 10,
+        step: Some(1.0),
+        ..SmoothOptions::with_method(SmoothMethod::Uniform)
+    };
+    let t0 = stamp();
+    smooth(&mut mesh, &opts, meshloom::algo::Progress::none()).expect("smooth");
+    let e = since(t0);
+    let p = mesh.position_slots().unwrap();
+    let chk: f64 = p.iter().map(|q| q[2]).sum();
+    (e, format!("10 iterations, sum z {chk:.6}"))
+}
+
+/// meshloom only: smooth_10 as the peers write it, a loop through the
+/// attribute API, boundary vertices fixed (as the C++ smooth_10): vertex views, their
 /// neighbours as views (`neighbor_views`) and `AttrView::at`, the read the
 /// attribute docs name as the fastest in a loop that navigates.
 ///
@@ -332,7 +357,7 @@ fn circulate(input: &Input) -> (Elapsed, String) {
 /// the timer starts and iterate the vertices inside it; here the scratch
 /// buffer is allocated before the timer and the vertex keys are collected
 /// inside it.
-fn smooth_10(input: &Input) -> (Elapsed, String) {
+fn smooth_10_views(input: &Input) -> (Elapsed, String) {
     let mut mesh = input.mesh.clone();
     let pos = mesh.position_attr().expect("positions");
     let mut next = vec![[0.0f64; 3]; mesh.vertex_count()];
@@ -412,38 +437,70 @@ fn smooth_10_keys(input: &Input) -> (Elapsed, String) {
     (e, format!("10 iterations, sum z {chk:.6}"))
 }
 
+/// What one poke-then-collapse run did (see [`poke_collapse`]).
+struct PokeCollapse {
+    /// Thread CPU and wall time of the whole run.
+    all: Elapsed,
+    /// Wall time of the poke pass alone.
+    split_wall: f64,
+    /// Faces poked.
+    poked: usize,
+    /// Centre vertices whose collapse succeeded.
+    collapsed: usize,
+    /// Centre vertices whose collapse was refused.
+    refused: usize,
+}
+
 /// Poke every face (1-to-3 split), then collapse every new centre vertex
-/// (meshloom's collapse_edge always checks the link condition). No garbage
-/// collection: meshloom leaves vacant slots (the peers' time includes GC).
-fn split_collapse_checked(input: &Input) -> (Elapsed, String) {
-    let mut m = input.mesh.clone();
-    let mut refused = 0usize;
+/// (meshloom's collapse_edge always checks the link condition): the loops
+/// that `split_collapse_checked`, `split_collapse_compact` and `journal`
+/// share. No garbage collection.
+fn poke_collapse(m: &mut Mesh) -> PokeCollapse {
     let t0 = stamp();
     let [first_new, _, _, faces] = m.slot_counts();
+    let mut poked = 0usize;
     for i in 0..faces {
         if let Some(f) = m.face_at(i) {
             m.poke_face(f).expect("poke");
+            poked += 1;
         }
     }
-    let t_split = since(t0);
+    let split_wall = since(t0).wall;
+    let (mut collapsed, mut refused) = (0usize, 0usize);
     for i in first_new..m.slot_counts()[0] {
         if let Some(c) = m.vertex_at(i) {
             let h = m.vertex(c).expect("live").halfedge().key();
-            if m.collapse_edge(h).is_err() {
+            if m.collapse_edge(h).is_ok() {
+                collapsed += 1;
+            } else {
                 refused += 1;
             }
         }
     }
-    let t_all = since(t0);
+    PokeCollapse {
+        all: since(t0),
+        split_wall,
+        poked,
+        collapsed,
+        refused,
+    }
+}
+
+/// Poke every face, then collapse every new centre vertex (see
+/// [`poke_collapse`]). No garbage collection: meshloom leaves vacant slots
+/// (the peers' time includes GC).
+fn split_collapse_checked(input: &Input) -> (Elapsed, String) {
+    let mut m = input.mesh.clone();
+    let run = poke_collapse(&mut m);
     let note = format!(
         "back to {} V, {} F, {} refused; wall split {:.4} + collapse {:.4} + gc 0 s",
         m.vertex_count(),
         m.face_count(),
-        refused,
-        t_split.wall,
-        t_all.wall - t_split.wall
+        run.refused,
+        run.split_wall,
+        run.all.wall - run.split_wall
     );
-    (t_all, note)
+    (run.all, note)
 }
 
 /// meshloom only: split_collapse_checked followed by `compact()`, the
@@ -451,23 +508,8 @@ fn split_collapse_checked(input: &Input) -> (Elapsed, String) {
 /// split_collapse_checked time includes (README caveat 2).
 fn split_collapse_compact(input: &Input) -> (Elapsed, String) {
     let mut m = input.mesh.clone();
-    let mut refused = 0usize;
     let t0 = stamp();
-    let [first_new, _, _, faces] = m.slot_counts();
-    for i in 0..faces {
-        if let Some(f) = m.face_at(i) {
-            m.poke_face(f).expect("poke");
-        }
-    }
-    let t_split = since(t0);
-    for i in first_new..m.slot_counts()[0] {
-        if let Some(c) = m.vertex_at(i) {
-            let h = m.vertex(c).expect("live").halfedge().key();
-            if m.collapse_edge(h).is_err() {
-                refused += 1;
-            }
-        }
-    }
+    let run = poke_collapse(&mut m);
     let t_coll = since(t0);
     let maps = m.compact();
     std::hint::black_box(&maps);
@@ -476,35 +518,12 @@ fn split_collapse_compact(input: &Input) -> (Elapsed, String) {
         "back to {} V, {} F, {} refused; wall split {:.4} + collapse {:.4} + compact {:.4} s",
         m.vertex_count(),
         m.face_count(),
-        refused,
-        t_split.wall,
-        t_coll.wall - t_split.wall,
+        run.refused,
+        run.split_wall,
+        t_coll.wall - run.split_wall,
         t_all.wall - t_coll.wall
     );
     (t_all, note)
-}
-
-/// The poke/collapse run of split_collapse_checked, on a fresh clone;
-/// returns (thread CPU seconds, operators that succeeded).
-fn poke_collapse(m: &mut Mesh) -> (f64, usize) {
-    let t0 = stamp();
-    let mut ops = 0usize;
-    let [first_new, _, _, faces] = m.slot_counts();
-    for i in 0..faces {
-        if let Some(f) = m.face_at(i) {
-            m.poke_face(f).expect("poke");
-            ops += 1;
-        }
-    }
-    for i in first_new..m.slot_counts()[0] {
-        if let Some(c) = m.vertex_at(i) {
-            let h = m.vertex(c).expect("live").halfedge().key();
-            if m.collapse_edge(h).is_ok() {
-                ops += 1;
-            }
-        }
-    }
-    (since(t0).cpu, ops)
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -522,16 +541,16 @@ fn journal(input: &Input) -> (Elapsed, String) {
     let t_all = stamp();
     for _ in 0..rounds {
         let mut m = input.mesh.clone();
-        off.push(poke_collapse(&mut m).0);
+        off.push(poke_collapse(&mut m).all.cpu);
         drop(m);
         let mut m = input.mesh.clone();
         m.enable_history(Default::default());
         m.begin_step("run");
-        let (t, n) = poke_collapse(&mut m);
+        let run = poke_collapse(&mut m);
         m.end_step();
-        on.push(t);
+        on.push(run.all.cpu);
         bytes = m.history_bytes();
-        ops = n;
+        ops = run.poked + run.collapsed;
         let t0 = stamp();
         assert!(m.undo());
         undo.push(since(t0).cpu);

@@ -403,3 +403,52 @@ fn implicit_smoothing_of_real_meshes_validates() {
             .all(|c| c.is_finite()));
     }
 }
+
+#[test]
+fn one_uniform_step_with_lambda_one_is_the_neighbours_mean() {
+    // On a noisy grid (boundary fixed) and a noisy sphere: each moving
+    // vertex lands on the mean of its neighbours' old positions, to the
+    // rounding of the sum; boundary vertices do not move at all.
+    let mut grid = shapes::grid(7, 6, GridFaces::Triangles);
+    let mut seed = 7u64;
+    let vs: Vec<_> = grid.vertices().collect();
+    for &v in &vs {
+        let mut p = grid.position(v).unwrap();
+        p[2] = noise(&mut seed);
+        grid.set_position(v, p).unwrap();
+    }
+    for mut m in [grid, noisy_sphere(2, 0.05)] {
+        let before: Vec<_> = m.vertices().map(|v| m.position(v).unwrap()).collect();
+        let expected: Vec<_> = m
+            .vertices()
+            .map(|v| {
+                let view = m.vertex(v).unwrap();
+                if view.is_boundary() {
+                    return m.position(v).unwrap();
+                }
+                let ring: Vec<_> = view.neighbors().map(|u| m.position(u).unwrap()).collect();
+                let n = ring.len() as f64;
+                [0, 1, 2].map(|k| ring.iter().map(|p| p[k]).sum::<f64>() / n)
+            })
+            .collect();
+        let opts = SmoothOptions {
+            iterations: 1,
+            step: Some(1.0),
+            ..SmoothOptions::default()
+        };
+        smooth(&mut m, &opts, Progress::none()).unwrap();
+        for (i, v) in m.vertices().enumerate() {
+            let got = m.position(v).unwrap();
+            if m.vertex(v).unwrap().is_boundary() {
+                assert_eq!(got, before[i]);
+            }
+            for k in 0..3 {
+                assert!(
+                    (got[k] - expected[i][k]).abs() < 1e-14,
+                    "{got:?} {:?}",
+                    expected[i]
+                );
+            }
+        }
+    }
+}

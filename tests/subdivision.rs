@@ -1234,3 +1234,70 @@ fn cancel_sqrt3_and_midpoint() {
         assert!(m.face_count() > 320);
     }
 }
+
+/// An icosphere with two UV charts: the faces whose centroid lies above
+/// z = 0 take `(x, y)`, the others `(x + 10, y)`; the edges between the
+/// two halves are seams.
+fn two_chart_sphere() -> Mesh {
+    let mut m = meshloom::shapes::icosphere(2);
+    let tc = m.add_halfedge_attr::<[f64; 2]>("texcoord").unwrap();
+    let faces: Vec<FaceKey> = m.faces().collect();
+    for f in faces {
+        let hs: Vec<_> = m.face(f).unwrap().halfedges().collect();
+        let at = |m: &Mesh, h| m.position(m.halfedge(h).unwrap().origin().key()).unwrap();
+        let z: f64 = hs.iter().map(|&h| at(&m, h)[2]).sum();
+        let shift = if z > 0.0 { 0.0 } else { 10.0 };
+        for h in hs {
+            let q = at(&m, h);
+            m.set_attr(&tc, h, [q[0] + shift, q[1]]).unwrap();
+        }
+    }
+    m
+}
+
+#[test]
+fn sqrt3_keeps_uv_seams() {
+    let mut m = two_chart_sphere();
+    let before = seams(&m);
+    assert!(before >= 8, "{before} seams");
+    let (v, f) = (m.vertex_count(), m.face_count());
+    sqrt3_subdivide(&mut m, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+    m.validate().unwrap();
+    assert_eq!((m.vertex_count(), m.face_count()), (v + f + 3 * f, 9 * f));
+    // The seam edges are kept, not flipped away: as many seams as before
+    // and none inside a chart.
+    assert_eq!(seams(&m), before);
+    // Every triangle lies in one chart: no corner mixes the two.
+    let tc = m
+        .attr_handle::<meshloom::HalfedgeKey, [f64; 2], meshloom::attr::Interpolate>("texcoord")
+        .unwrap();
+    let (mut upper, mut lower) = (0, 0);
+    for f in m.faces() {
+        let us: Vec<f64> = m
+            .face(f)
+            .unwrap()
+            .halfedges()
+            .map(|h| m.attr(&tc, h).unwrap().expect("every corner has a UV")[0])
+            .collect();
+        if us.iter().all(|&u| u.abs() <= 1.0) {
+            upper += 1;
+        } else {
+            assert!(us.iter().all(|&u| (9.0..=11.0).contains(&u)), "{us:?}");
+            lower += 1;
+        }
+    }
+    assert_eq!(upper + lower, 9 * f);
+    assert!(upper > 0 && lower > 0);
+    // Without the column the same sphere flips every edge.
+    let mut plain = meshloom::shapes::icosphere(2);
+    sqrt3_subdivide(&mut plain, &SubdivisionOptions::default(), Progress::none()).unwrap();
+    let mut seamed = two_chart_sphere();
+    sqrt3_subdivide(
+        &mut seamed,
+        &SubdivisionOptions::default(),
+        Progress::none(),
+    )
+    .unwrap();
+    assert_eq!(plain.edge_count(), seamed.edge_count());
+    assert_eq!(seams(&seamed), before);
+}

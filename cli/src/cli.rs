@@ -164,7 +164,8 @@ Example:
     #[command(after_help = "\
 Example:
   meshloom render data/elephant.off elephant.png
-  meshloom render part.obj part.png --view top --flat --wireframe --boundary --size 1024x768")]
+  meshloom render part.obj part.png --view top --flat --wireframe --boundary --size 1024x768
+  meshloom render bunny.obj bunny.png --color curvature")]
     Render(RenderArgs),
     /// Subdivide: Loop, Catmull-Clark, sqrt(3) or midpoint, any levels.
     ///
@@ -573,8 +574,21 @@ pub struct RenderArgs {
     /// Samples per pixel along each axis, 1 to 4 (smoother edges, slower).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=4))]
     pub supersample: u32,
+    /// What colours the faces: plain, or curvature (mean curvature: blue
+    /// concave, white flat, red convex; range ± the 98th percentile of |H|).
+    #[arg(long, value_enum, default_value = "plain")]
+    pub color: ColorBy,
     #[command(flatten)]
     pub read: ReadArgs,
+}
+
+/// What colours the faces in `meshloom render`.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ColorBy {
+    /// The plain front and back colours.
+    Plain,
+    /// Mean curvature, by a diverging colour map.
+    Curvature,
 }
 
 /// A subdivision scheme.

@@ -1693,3 +1693,47 @@ fn remesh_refuses_bad_input_and_bad_usage() {
         assert_eq!(code(&o), 2, "{args:?}: {}", stderr(&o));
     }
 }
+
+/// Pixels of an RGB(A) PNG file: (reddish, bluish) counts.
+fn red_and_blue_pixels(path: &std::path::Path) -> (usize, usize) {
+    let decoder = png::Decoder::new(std::fs::File::open(path).expect("png"));
+    let mut reader = decoder.read_info().expect("png header");
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).expect("png frame");
+    let channels = info.color_type.samples();
+    assert!(channels >= 3, "{:?}", info.color_type);
+    let (mut red, mut blue) = (0, 0);
+    for px in buf[..info.buffer_size()].chunks(channels) {
+        let (r, b) = (i32::from(px[0]), i32::from(px[2]));
+        red += usize::from(r > b + 60);
+        blue += usize::from(b > r + 60);
+    }
+    (red, blue)
+}
+
+#[test]
+fn render_colors_by_curvature() {
+    let dir = scratch("render_curvature");
+    let (plain, curved) = (dir.join("plain.png"), dir.join("curvature.png"));
+    let o = run(&["render", BUNDLED, path_str(&plain), "--size", "160x120"]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let o = run(&[
+        "render",
+        BUNDLED,
+        path_str(&curved),
+        "--size",
+        "160x120",
+        "--color",
+        "curvature",
+    ]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    // The elephant has convex (red) and concave (blue) parts; the plain
+    // colours have neither.
+    let (red, blue) = red_and_blue_pixels(&curved);
+    assert!(red > 50 && blue > 10, "red {red}, blue {blue}");
+    assert_eq!(red_and_blue_pixels(&plain), (0, 0));
+    // An unknown colouring is a usage error, before any reading.
+    let o = run(&["render", BUNDLED, path_str(&curved), "--color", "rainbow"]);
+    assert_eq!(code(&o), 2, "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -55,7 +55,7 @@
 
 use super::laplacian::{
     add_scaled, as_triangle, cross, laplacian_at, live_faces, mass_matrix_at, norm, positions, sub,
-    LaplaceWeights, Laplacian, LaplacianOptions, V3,
+    Laplacian, LaplacianOptions, V3,
 };
 use super::progress::Progress;
 use super::sparse::{solve_spd, LowerCsc};
@@ -215,21 +215,14 @@ pub fn smooth(
     let n = options.iterations;
     match options.method {
         SmoothMethod::Uniform | SmoothMethod::Taubin => {
-            let l = laplacian_at(
-                mesh,
-                &[],
-                &LaplacianOptions {
-                    weights: LaplaceWeights::Uniform,
-                    clamp_negative: false,
-                },
-            );
+            let rings = FreeRings::of(mesh, &free);
             let mut next = x.clone();
             for it in 0..n {
                 progress.report(ALGORITHM, "iterations", u64::from(it), u64::from(n))?;
-                explicit_step(&l, &free, &x, &mut next, step);
+                rings.uniform_step(&x, &mut next, step);
                 std::mem::swap(&mut x, &mut next);
                 if options.method == SmoothMethod::Taubin {
-                    explicit_step(&l, &free, &x, &mut next, mu);
+                    rings.uniform_step(&x, &mut next, mu);
                     std::mem::swap(&mut x, &mut next);
                 }
             }
@@ -314,6 +307,75 @@ pub(crate) fn free_vertices(mesh: &Mesh, options: &SmoothOptions) -> Result<Vec<
         }
     }
     Ok(free)
+}
+
+/// The one-rings of the vertices that move, flattened once per call (CSR):
+/// the uniform steps then read three flat arrays and the positions, with
+/// no half-edge navigation and no row for a fixed vertex.
+struct FreeRings {
+    /// The moving vertex slots with at least one neighbour, in slot order.
+    rows: Vec<u32>,
+    /// Row `k`'s neighbours are `cols[offsets[k]..offsets[k + 1]]`.
+    offsets: Vec<u32>,
+    /// Neighbour vertex slots (one per outgoing half-edge).
+    cols: Vec<u32>,
+    /// `1 / degree` per row.
+    inv_degree: Vec<f64>,
+}
+
+impl FreeRings {
+    /// The rings of the vertices `free` marks, by one turn around each.
+    fn of(mesh: &Mesh, free: &[bool]) -> FreeRings {
+        let moving = free.iter().filter(|&&f| f).count();
+        let mut rings = FreeRings {
+            rows: Vec::with_capacity(moving),
+            offsets: Vec::with_capacity(moving + 1),
+            cols: Vec::with_capacity(mesh.he.len().min(8 * moving)),
+            inv_degree: Vec::with_capacity(moving),
+        };
+        rings.offsets.push(0);
+        for v in mesh.vids() {
+            if !free[v.index()] {
+                continue;
+            }
+            let start = rings.cols.len();
+            rings
+                .cols
+                .extend(mesh.outgoing(v).map(|h| mesh.he[h.twin()].origin.raw()));
+            let degree = rings.cols.len() - start;
+            if degree == 0 {
+                continue;
+            }
+            rings.rows.push(v.raw());
+            rings.offsets.push(rings.cols.len() as u32);
+            rings.inv_degree.push(1.0 / degree as f64);
+        }
+        rings
+    }
+
+    /// One Jacobi step toward the neighbours' mean: `next_i = (1 − s) x_i +
+    /// s · mean_j x_j` for every row (with `s = 1`, exactly the mean); the
+    /// other slots of `next` are left as they are.
+    fn uniform_step(&self, x: &[V3], next: &mut [V3], s: f64) {
+        let keep = 1.0 - s;
+        let spans = self.offsets.windows(2);
+        for ((&i, span), &inv) in self.rows.iter().zip(spans).zip(&self.inv_degree) {
+            let mut acc = [0.0f64; 3];
+            for &c in &self.cols[span[0] as usize..span[1] as usize] {
+                let q = x[c as usize];
+                acc[0] += q[0];
+                acc[1] += q[1];
+                acc[2] += q[2];
+            }
+            let q = x[i as usize];
+            let t = s * inv;
+            next[i as usize] = [
+                keep * q[0] + t * acc[0],
+                keep * q[1] + t * acc[1],
+                keep * q[2] + t * acc[2],
+            ];
+        }
+    }
 }
 
 /// One Jacobi step with normalised weights: `next_i = x_i + s (Σ w x_j /

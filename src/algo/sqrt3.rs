@@ -9,8 +9,9 @@
 //! [`Error::Unsuitable`] names the first face that is not a triangle, or an
 //! interior vertex of valence 2.
 //!
-//! **Boundary.** Boundary edges are not flipped: the piece of the
-//! triangle beside one stays, and boundary vertices stay where they are.
+//! **Boundary.** Boundary edges (and seams, below) are not flipped: the
+//! piece of the triangle beside one stays, and boundary vertices stay
+//! where they are.
 //! The boundary is therefore not refined: Kobbelt's rule (trisect the
 //! boundary every second level, with its own curve stencils) is not
 //! implemented, so after many levels long thin triangles line the
@@ -31,10 +32,14 @@
 //! keeps its total, a label comes from the triangle's own side). A corner
 //! at a face point takes the mean of its face's corners; a corner at an
 //! old vertex lies in two parent faces and takes the mean of the two
-//! corners there, so a UV seam does not survive √3 (its edges are flipped
-//! away): use Loop or Catmull-Clark for textured meshes. Edge columns:
-//! every new edge gets `interpolate` of nothing (no edge runs along a
-//! parent edge).
+//! corners there, which are the same value unless the edge between them
+//! is a seam. **Seams stay seams:** an edge where any corner (half-edge)
+//! column differs across it (a UV seam, a split corner normal) is kept,
+//! not flipped, as a boundary edge is; the triangles beside it stay in
+//! their own parent face, and the corners on each side keep their own
+//! chart's values. Edge columns: every new edge gets `interpolate` of
+//! nothing (no edge runs along a parent edge), a kept edge keeps its
+//! value.
 //!
 //! **Built wholesale**, not by `poke_face` and `flip_edge` on every
 //! element: one pass over the edges writes the six half-edges of each, in
@@ -137,9 +142,18 @@ struct Layout {
     corner: Vec<u32>,
     /// Per old face slot: the rank among faces, or among holes.
     face_rank: Vec<u32>,
+    /// Per old edge slot: whether the edge is kept instead of flipped (a
+    /// boundary edge, or a seam of a corner column).
+    kept: Vec<bool>,
 }
 
 impl Layout {
+    /// Whether old edge `e` is kept (boundary or seam) rather than flipped.
+    #[inline(always)]
+    fn kept(&self, e: Eid) -> bool {
+        self.kept[e.index()]
+    }
+
     #[inline(always)]
     fn corner_of(&self, h: Hid) -> Option<u32> {
         self.corner[h.index()].checked_sub(1)
@@ -199,8 +213,30 @@ impl Layout {
             edge_rank: Ranks::of(&mesh.e_slots),
             corner,
             face_rank,
+            kept: kept_edges(mesh),
         }
     }
+}
+
+/// Per edge slot: whether √3 keeps the edge instead of flipping it. A
+/// boundary edge has no face across to flip into; a seam of any corner
+/// (half-edge) column, where the corners on the two sides differ at either
+/// end (by [`Attribute::same_value`](crate::attr::Attribute::same_value),
+/// as [`decimate`](crate::algo::decimate) finds seams), would otherwise
+/// run through the middle of the new triangles, where no corner can hold
+/// both charts' values.
+fn kept_edges(mesh: &Mesh) -> Vec<bool> {
+    let columns = &mesh.attrs.halfedge.cols;
+    let mut kept = vec![false; mesh.e_slots.slot_count()];
+    for e in mesh.eids() {
+        let [h, t] = e.halfedges();
+        kept[e.index()] = mesh.in_hole(h)
+            || mesh.in_hole(t)
+            || columns.iter().any(|(_, c)| {
+                !c.same(h.index(), mesh.next(t).index()) || !c.same(mesh.next(h).index(), t.index())
+            });
+    }
+    kept
 }
 
 /// Refuse what √3 cannot take.
@@ -303,7 +339,7 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
             let p = mesh.he[rec.next].next; // prev(h) in a triangle
                                             // Side 0: origin(h) -> c, in the triangle beside p's edge at
                                             // dest(p): across the flipped edge, or in p's own kept piece.
-            he.push(if mesh.in_hole(p.twin()) {
+            he.push(if l.kept(p.edge()) {
                 HalfedgeRecord {
                     origin: rec.origin,
                     next: l.spoke(p).halfedge(1),
@@ -318,7 +354,7 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
             });
             // Side 1: c -> origin(h), in the triangle at origin(h).
             let t = h.twin();
-            let next = if mesh.in_hole(t) {
+            let next = if l.kept(h.edge()) {
                 l.edge(h.edge()).halfedge(h.side())
             } else {
                 l.spoke(mesh.he[t].next).halfedge(0)
@@ -339,12 +375,13 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
         if !mesh.e_slots.is_live(ei) {
             continue;
         }
-        let hs = Eid::new(ei as u32).halfedges();
-        let boundary = hs.iter().any(|&h| mesh.in_hole(h));
+        let e = Eid::new(ei as u32);
+        let hs = e.halfedges();
+        let kept = l.kept(e);
         for s in 0..2 {
             let (own, other) = (hs[s], hs[1 - s]);
             let rec = mesh.he[own];
-            he.push(if !boundary {
+            he.push(if !kept {
                 HalfedgeRecord {
                     origin: l.face_point(rec.face),
                     next: l.spoke(other).halfedge(1),
@@ -509,11 +546,17 @@ impl Plans<'_> {
     }
 
     /// The mean of the three corners of `h`'s face.
+    ///
+    /// Always summed from the face's own half-edge, whichever corner `h`
+    /// is: the corners around one face point then get bit-identical values
+    /// (a sum in another order may differ in the last bit, which would
+    /// count as a seam at every face point).
     fn face_corners(&self, h: Hid, plan: &mut ColumnPlan) {
         let m = self.mesh;
         let third = 1.0 / 3.0;
-        let (a, b) = (m.next(h), m.next(m.next(h)));
-        plan.interpolate([(h.raw(), third), (a.raw(), third), (b.raw(), third)]);
+        let first = m.face_halfedge(m.face_of(h));
+        let (a, b) = (m.next(first), m.next(m.next(first)));
+        plan.interpolate([(first.raw(), third), (a.raw(), third), (b.raw(), third)]);
     }
 }
 
@@ -564,7 +607,7 @@ impl ColumnPlans for Plans<'_> {
                 // the face across prev(h): the mean of the two corners
                 // (only h's own where prev(h) is on the boundary).
                 let p = m.next(m.next(h));
-                if m.in_hole(p.twin()) {
+                if self.l.kept(p.edge()) {
                     plan.copy(h.raw());
                 } else {
                     plan.interpolate([(h.raw(), 0.5), (p.twin().raw(), 0.5)]);
@@ -574,9 +617,9 @@ impl ColumnPlans for Plans<'_> {
             }
         }
         for edge in m.eids() {
-            let boundary = edge.halfedges().iter().any(|&h| m.in_hole(h));
+            let kept = self.l.kept(edge);
             for h in edge.halfedges() {
-                if boundary {
+                if kept {
                     plan.copy(h.raw());
                 } else {
                     self.face_corners(h, &mut plan);
@@ -594,7 +637,7 @@ impl ColumnPlans for Plans<'_> {
             plan.interpolate([]);
         }
         for edge in m.eids() {
-            if edge.halfedges().iter().any(|&h| m.in_hole(h)) {
+            if self.l.kept(edge) {
                 plan.copy(edge.raw());
             } else {
                 plan.interpolate([]);
@@ -614,8 +657,8 @@ impl ColumnPlans for Plans<'_> {
                     continue;
                 }
                 let (own, other) = (m.face_of(h).raw(), m.face_of(h.twin()));
-                if m.is_hole(other) {
-                    // The kept piece beside a boundary edge.
+                if self.l.kept(edge) {
+                    // The kept piece beside a boundary or seam edge.
                     plan.split(own, third);
                 } else {
                     // Half of each piece beside the flipped edge, this

@@ -1,8 +1,9 @@
-//! `meshloom render IN OUT.png [--view ..] [--flat] [--wireframe] [--boundary]`.
+//! `meshloom render IN OUT.png [--view ..] [--flat] [--wireframe] [--boundary]
+//! [--color plain|curvature]`.
 
-use meshloom_cli::render::{self, RenderOptions, Shading};
+use meshloom_cli::render::{self, Coloring, RenderOptions, Shading};
 
-use crate::cli::RenderArgs;
+use crate::cli::{ColorBy, RenderArgs};
 use crate::progress::Progress;
 use crate::{input, output, Failure};
 
@@ -20,6 +21,10 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         wireframe: args.wireframe,
         boundary: args.boundary,
         supersample: args.supersample,
+        coloring: match args.color {
+            ColorBy::Plain => Coloring::Plain,
+            ColorBy::Curvature => Coloring::Curvature,
+        },
         ..RenderOptions::default()
     };
     // Options that cannot work are a usage error, found before any reading.

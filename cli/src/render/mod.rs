@@ -11,6 +11,8 @@
 //! - Both sides are lit; the back side of a face (seen through a hole of an
 //!   open mesh) has its own colour.
 //! - Each pixel averages `supersample²` samples, which smooths edges.
+//! - [`Coloring::Curvature`] colours the surface by its mean curvature
+//!   (blue concave, white flat, red convex) instead of the plain colours.
 //!
 //! ```
 //! use meshloom_cli::render::{render, RenderOptions, View};
@@ -33,7 +35,9 @@ mod tests;
 use std::path::PathBuf;
 
 pub use image::Image;
-pub use options::{Colors, RenderOptions, Shading, View, MAX_SAMPLES, MAX_SIDE, VIEW_NAMES};
+pub use options::{
+    Coloring, Colors, RenderOptions, Shading, View, MAX_SAMPLES, MAX_SIDE, VIEW_NAMES,
+};
 
 use camera::{add, dot, newell_normal, normalize, scale, Camera};
 use meshloom::algo::{vertex_normals, NormalWeight, VertexNormalOptions};
@@ -139,6 +143,10 @@ pub fn render_with_progress(
             .map_err(|_| RenderError::NoPositions)?,
         ),
     };
+    let vertex_colors = match o.coloring {
+        Coloring::Plain => None,
+        Coloring::Curvature => Some(curvature_colors(mesh)?),
+    };
     let light = camera.light();
     let total = mesh.face_count();
     let mut done = 0;
@@ -155,19 +163,24 @@ pub fn render_with_progress(
             (o.colors.back, -1.0)
         };
         let flat = normalize(n).unwrap_or(camera.toward_eye);
-        let shade = |normal: [f64; 3]| {
+        let base = base.map(f64::from);
+        let shade = |normal: [f64; 3], color: [f64; 3]| {
             let lambert = (side * dot(normal, light)).max(0.0);
             let k = AMBIENT + (1.0 - AMBIENT) * lambert;
-            base.map(|c| (f64::from(c) * k).round().clamp(0.0, 255.0) as u8)
+            color.map(|c| (c * k).round().clamp(0.0, 255.0) as u8)
         };
-        canvas.fill_polygon(&corners, &screen, |vertex_weights| match &normals {
-            None => shade(flat),
-            Some(vn) => {
+        canvas.fill_polygon(&corners, &screen, |vertex_weights| {
+            let blend = |values: &[[f64; 3]]| {
                 let mut m = [0.0; 3];
                 for &(v, w) in vertex_weights {
-                    m = add(m, scale(vn[v as usize], w));
+                    m = add(m, scale(values[v as usize], w));
                 }
-                shade(normalize(m).unwrap_or(flat))
+                m
+            };
+            let color = vertex_colors.as_deref().map_or(base, blend);
+            match &normals {
+                None => shade(flat, color),
+                Some(vn) => shade(normalize(blend(vn)).unwrap_or(flat), color),
             }
         });
         done += 1;
@@ -195,6 +208,47 @@ pub fn render_with_progress(
         }
     }
     Ok(canvas.downsample(s))
+}
+
+/// The colour of every vertex slot by its mean curvature (see
+/// [`Coloring::Curvature`]), as sRGB values in `[0, 255]`.
+fn curvature_colors(mesh: &Mesh) -> Result<Vec<[f64; 3]>, RenderError> {
+    use meshloom::algo::curvature::{curvature, CurvatureOptions};
+    let h = curvature(mesh, &CurvatureOptions::default())
+        .map_err(|_| RenderError::NoPositions)?
+        .mean;
+    let range = symmetric_range(mesh.vertices().map(|v| h[v.index()]));
+    Ok(h.iter().map(|&x| diverging(x / range)).collect())
+}
+
+/// Percentile of `|H|` that sets the colour range.
+const CURVATURE_PERCENTILE: f64 = 0.98;
+
+/// The half-width of the colour range: the 98th percentile of the finite
+/// `|values|`, or 1 when that is zero (a flat mesh: everything white).
+fn symmetric_range(values: impl Iterator<Item = f64>) -> f64 {
+    let mut magnitudes: Vec<f64> = values.filter(|x| x.is_finite()).map(f64::abs).collect();
+    if magnitudes.is_empty() {
+        return 1.0;
+    }
+    let k = ((magnitudes.len() - 1) as f64 * CURVATURE_PERCENTILE).round() as usize;
+    let (_, &mut r, _) = magnitudes.select_nth_unstable_by(k, f64::total_cmp);
+    if r > 0.0 {
+        r
+    } else {
+        1.0
+    }
+}
+
+/// A diverging colour map over `t` in `[−1, 1]` (clamped; NaN is white):
+/// blue, white, red, as sRGB values.
+fn diverging(t: f64) -> [f64; 3] {
+    const BLUE: [f64; 3] = [59.0, 76.0, 192.0];
+    const WHITE: [f64; 3] = [242.0, 242.0, 242.0];
+    const RED: [f64; 3] = [180.0, 4.0, 38.0];
+    let t = if t.is_nan() { 0.0 } else { t.clamp(-1.0, 1.0) };
+    let (end, s) = if t < 0.0 { (BLUE, -t) } else { (RED, t) };
+    [0, 1, 2].map(|k| WHITE[k] + s * (end[k] - WHITE[k]))
 }
 
 /// Share of light that reaches faces turned away from the lamp.

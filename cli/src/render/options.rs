@@ -126,6 +126,22 @@ pub enum Shading {
     Smooth,
 }
 
+/// What gives the faces their colour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Coloring {
+    /// The front and back colours of [`Colors`].
+    #[default]
+    Plain,
+    /// The mean curvature at each vertex (`meshloom::algo::curvature`),
+    /// blended across the faces, by a diverging colour map: blue where the
+    /// surface is concave (`H < 0`), white where it is flat, red where it
+    /// is convex. The range is symmetric, `±` the 98th percentile of `|H|`
+    /// over the vertices, so a few extreme vertices (sharp corners,
+    /// boundary spikes) do not wash the rest out to white; beyond it the
+    /// colour saturates. Both sides of a face take the same colour.
+    Curvature,
+}
+
 /// Colours of a picture, as sRGB bytes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Colors {
@@ -173,6 +189,8 @@ pub struct RenderOptions {
     pub supersample: u32,
     /// The colours.
     pub colors: Colors,
+    /// What gives the faces their colour (default: the plain colours).
+    pub coloring: Coloring,
 }
 
 impl RenderOptions {
@@ -217,6 +235,7 @@ impl Default for RenderOptions {
             boundary: false,
             supersample: 2,
             colors: Colors::default(),
+            coloring: Coloring::Plain,
         }
     }
 }

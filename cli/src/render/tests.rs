@@ -197,3 +197,44 @@ fn view_names_round_trip() {
         assert_eq!(v.to_string(), name);
     }
 }
+
+#[test]
+fn diverging_map_runs_blue_white_red() {
+    assert_eq!(diverging(0.0), [242.0, 242.0, 242.0]);
+    assert_eq!(diverging(f64::NAN), diverging(0.0));
+    assert_eq!(diverging(-1.0), [59.0, 76.0, 192.0]);
+    assert_eq!(diverging(-7.0), diverging(-1.0)); // saturates
+    assert_eq!(diverging(1.0), [180.0, 4.0, 38.0]);
+    let half = diverging(0.5);
+    assert!(half[0] > half[2] && half[0] < 242.0);
+}
+
+#[test]
+fn curvature_range_ignores_the_top_two_percent() {
+    // 98 values of 1 and two wild ones: the range is 1, not 1000.
+    let values =
+        (0..98)
+            .map(|i| if i % 2 == 0 { 1.0 } else { -1.0 })
+            .chain([1000.0, -1000.0, f64::NAN]);
+    assert_eq!(symmetric_range(values), 1.0);
+    assert_eq!(symmetric_range([0.0, 0.0].into_iter()), 1.0);
+    assert_eq!(symmetric_range(std::iter::empty()), 1.0);
+}
+
+#[test]
+fn a_sphere_in_curvature_colours_is_red() {
+    // Convex everywhere (H > 0): the middle pixel is red, not the plain
+    // blue-grey; the background stays.
+    let mesh = shapes::icosphere(3);
+    let o = RenderOptions {
+        coloring: Coloring::Curvature,
+        ..small(View::Front)
+    };
+    let img = render(&mesh, &o).unwrap();
+    let [r, g, b] = img.pixel(40, 30).unwrap();
+    assert!(r > g && r > b, "{:?}", [r, g, b]);
+    assert_eq!(img.pixel(0, 0), Some(o.colors.background));
+    let plain = render(&mesh, &small(View::Front)).unwrap();
+    let [r, _, b] = plain.pixel(40, 30).unwrap();
+    assert!(b > r);
+}

@@ -299,3 +299,33 @@ fn columns_are_written_and_follow_edits() {
     let bare = Mesh::from_faces(3, &[[0u32, 1, 2]]).unwrap();
     assert_eq!(face_normals(&bare), Err(Error::NoPositions));
 }
+
+#[test]
+fn corner_angle_matches_atan2() {
+    // Deterministic samples over every branch: steep and flat, below and
+    // above tan 15°, acute and obtuse, and values far apart in size.
+    let mut worst: f64 = 0.0;
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for i in 0..200_000 {
+        let y = (next() + 1e-9) * 10f64.powi((i % 7) as i32 - 3);
+        let x = (next() - 0.5) * 10f64.powi((i / 7 % 7) as i32 - 3);
+        let (got, want) = (super::corner_angle(y, x), y.atan2(x));
+        worst = worst.max((got - want).abs());
+    }
+    for (y, x) in [
+        (1.0, 0.0),
+        (1.0, 1.0),
+        (1.0, -1.0),
+        (1e-300, 1.0),
+        (1.0, -1e-300),
+    ] {
+        worst = worst.max((super::corner_angle(y, x) - f64::atan2(y, x)).abs());
+    }
+    assert!(worst <= 2e-15, "worst error {worst:e}");
+}

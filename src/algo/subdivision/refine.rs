@@ -213,6 +213,49 @@ pub(crate) fn face_ring(mesh: &Mesh, start: Hid, ring: &mut Vec<Hid>) {
     }
 }
 
+/// The three half-edges of the face through `h0`, if it is a triangle.
+#[inline(always)]
+fn triangle_at(mesh: &Mesh, h0: Hid) -> Option<[Hid; 3]> {
+    let h1 = mesh.he[h0].next;
+    let h2 = mesh.he[h1].next;
+    (mesh.he[h2].next == h0).then_some([h0, h1, h2])
+}
+
+/// Cut triangle `hs` (corner ids from `c0`) 1-to-4: its corner ids, the
+/// records of its three inside edges and the links of its three corner
+/// triangles, as the `Cut::Triangle` branch of [`refine`] writes them for
+/// any ring of three (the centre triangle's link is the caller's).
+#[inline(always)]
+fn cut_triangle(
+    r: &mut Refinement,
+    hs: [Hid; 3],
+    c0: u32,
+    he: &mut IdVec<Hid, HalfedgeRecord>,
+    f_halfedge: &mut IdVec<Fid, FaceLink>,
+) {
+    let center = Fid::new(r.corners + r.tris);
+    for (i, &h) in hs.iter().enumerate() {
+        r.corner[h.index()] = c0 + i as u32 + 1;
+    }
+    for i in 0..3 {
+        let (hi, hp) = (hs[i], hs[(i + 2) % 3]);
+        let (mi, mp) = (r.edge_point(hi.edge()), r.edge_point(hp.edge()));
+        he.push(HalfedgeRecord {
+            origin: mi,
+            next: r.second_child(hp),
+            face: Fid::new(c0 + i as u32),
+        });
+        he.push(HalfedgeRecord {
+            origin: mp,
+            next: Eid::new(c0 + ((i + 1) % 3) as u32).halfedge(1),
+            face: center,
+        });
+    }
+    for h in hs {
+        f_halfedge.push(FaceLink::new(r.first_child(h), false));
+    }
+}
+
 /// A fresh arena of `n` live slots whose generations are above every
 /// generation `old` ever issued.
 pub(crate) fn fresh_slots(old: &Slots, n: usize, algorithm: &'static str) -> Result<Slots> {
@@ -296,6 +339,18 @@ pub(crate) fn refine(
             r.holes += 1;
             hole_links.push(FaceLink::new(r.first_child(link.halfedge()), true));
             continue;
+        }
+        if rule == CutRule::Triangles {
+            if let Some(hs) = triangle_at(mesh, link.halfedge()) {
+                // The common case, with the ring in registers: the same
+                // records as the general `Cut::Triangle` branch below.
+                cut_triangle(&mut r, hs, next_corner, &mut he, &mut f_halfedge);
+                centers.push(FaceLink::new(Eid::new(next_corner).halfedge(1), false));
+                r.face_rank[fi] = r.tris;
+                r.tris += 1;
+                next_corner += 3;
+                continue;
+            }
         }
         face_ring(mesh, link.halfedge(), &mut ring);
         let n = ring.len();
