@@ -312,9 +312,9 @@ fn corner_angle_matches_atan2() {
         seed ^= seed << 17;
         (seed >> 11) as f64 / (1u64 << 53) as f64
     };
-    for i in 0..200_000u32 {
-        let y = (next() + 1e-9) * 10f64.powi((i % 7) as i32 - 3);
-        let x = (next() - 0.5) * 10f64.powi((i / 7 % 7) as i32 - 3);
+    for i in 0..200_000 {
+        let y = (next() + 1e-9) * 10f64.powi(i % 7 - 3);
+        let x = (next() - 0.5) * 10f64.powi(i / 7 % 7 - 3);
         let (got, want) = (super::corner_angle(y, x), y.atan2(x));
         worst = worst.max((got - want).abs());
     }
