@@ -2,6 +2,7 @@
 
 use super::refuse;
 use crate::error::{Refusal, Result};
+use crate::journal::{journaled, Journaling};
 use crate::keys::EdgeKey;
 use crate::layout::{Eid, FaceLink, Hid, Vid};
 use crate::mesh::Mesh;
@@ -121,6 +122,11 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn flip_edge(&mut self, ek: EdgeKey) -> Result<EdgeKey> {
+        journaled!(self.flip_edge_with(ek))
+    }
+
+    /// [`flip_edge`](Mesh::flip_edge)'s body, in journaling mode `J`.
+    fn flip_edge_with<J: Journaling>(&mut self, ek: EdgeKey) -> Result<EdgeKey> {
         let FlipPlan {
             e,
             h1,
@@ -135,27 +141,27 @@ impl Mesh {
         let (f0, f1) = (self.face_of(h), self.face_of(t));
         // f0 = (h: c -> d, t2: d -> b, h1: b -> c);
         // f1 = (t: d -> c, h2: c -> a, t1: a -> d).
-        self.he_mut(h).origin = c;
-        self.he_mut(t).origin = d;
-        self.set_next(h, t2);
-        self.set_next(t2, h1);
-        self.set_next(h1, h);
-        self.set_next(t, h2);
-        self.set_next(h2, t1);
-        self.set_next(t1, t);
-        self.he_mut(t2).face = f0;
-        self.he_mut(h2).face = f1;
+        self.he_mut::<J>(h).origin = c;
+        self.he_mut::<J>(t).origin = d;
+        self.set_next::<J>(h, t2);
+        self.set_next::<J>(t2, h1);
+        self.set_next::<J>(h1, h);
+        self.set_next::<J>(t, h2);
+        self.set_next::<J>(h2, t1);
+        self.set_next::<J>(t1, t);
+        self.he_mut::<J>(t2).face = f0;
+        self.he_mut::<J>(h2).face = f1;
         // Neither face is a hole (refused above): no flag to keep.
-        *self.f_halfedge_mut(f0) = FaceLink::new(h, false);
-        *self.f_halfedge_mut(f1) = FaceLink::new(t, false);
+        *self.f_halfedge_mut::<J>(f0) = FaceLink::new(h, false);
+        *self.f_halfedge_mut::<J>(f1) = FaceLink::new(t, false);
         // a and b may have named h and t; t1 and h1 surely leave them. A
         // vertex that named another half-edge keeps it: a boundary vertex
         // names one in a hole (rule 11), which h and t are not.
         if self.v_halfedge[a] == h {
-            *self.v_halfedge_mut(a) = t1;
+            *self.v_halfedge_mut::<J>(a) = t1;
         }
         if self.v_halfedge[b] == t {
-            *self.v_halfedge_mut(b) = h1;
+            *self.v_halfedge_mut::<J>(b) = h1;
         }
         if !self.attrs.face.cols.is_empty() {
             let pair = [(f0.index(), 0.5), (f1.index(), 0.5)];
@@ -164,7 +170,7 @@ impl Mesh {
         }
         self.attrs.halfedge.copy(h2.index(), h.index());
         self.attrs.halfedge.copy(t2.index(), t.index());
-        self.end_op();
+        self.end_op::<J>();
         Ok(ek)
     }
 }
