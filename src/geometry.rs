@@ -190,8 +190,8 @@ mod glam_points {
                 fn from_value(value: &Value) -> Option<Self> {
                     <[$s; 3]>::from_value(value).map(<$t>::from_array)
                 }
-                fn same_as(&self, other: &Self) -> bool {
-                    self.to_array().same_as(&other.to_array())
+                fn same_value(&self, other: &Self) -> bool {
+                    self.to_array().same_value(&other.to_array())
                 }
             }
         };
@@ -243,8 +243,8 @@ mod nalgebra_points {
                 fn from_value(value: &Value) -> Option<Self> {
                     <[$s; 3]>::from_value(value).map(|[x, y, z]| <$t>::new(x, y, z))
                 }
-                fn same_as(&self, other: &Self) -> bool {
-                    [self.x, self.y, self.z].same_as(&[other.x, other.y, other.z])
+                fn same_value(&self, other: &Self) -> bool {
+                    [self.x, self.y, self.z].same_value(&[other.x, other.y, other.z])
                 }
             }
         };

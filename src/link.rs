@@ -45,6 +45,7 @@
 //! ```
 
 use crate::error::{Error, Result};
+use crate::journal::Recorded;
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 use crate::layout::Vid;
 use crate::mesh::Mesh;
@@ -106,8 +107,8 @@ impl RawEdit<'_> {
     pub fn set_origin(&mut self, h: HalfedgeKey, v: VertexKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let v = self.mesh.check_vertex(v)?;
-        self.mesh.he_mut(h).origin = v;
-        *self.mesh.v_halfedge_mut(v) = h;
+        self.mesh.he_mut::<Recorded>(h).origin = v;
+        *self.mesh.v_halfedge_mut::<Recorded>(v) = h;
         Ok(())
     }
 
@@ -119,8 +120,8 @@ impl RawEdit<'_> {
     pub fn set_face(&mut self, h: HalfedgeKey, f: FaceKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let f = self.mesh.check_face(f)?;
-        self.mesh.he_mut(h).face = f;
-        self.mesh.set_face_link(f, h);
+        self.mesh.he_mut::<Recorded>(h).face = f;
+        self.mesh.set_face_link::<Recorded>(f, h);
         Ok(())
     }
 
@@ -131,7 +132,7 @@ impl RawEdit<'_> {
     pub fn link(&mut self, a: HalfedgeKey, b: HalfedgeKey) -> Result<()> {
         let a = self.mesh.check_halfedge(a)?;
         let b = self.mesh.check_halfedge(b)?;
-        self.mesh.set_next(a, b);
+        self.mesh.set_next::<Recorded>(a, b);
         Ok(())
     }
 
@@ -143,7 +144,7 @@ impl RawEdit<'_> {
     pub fn set_vertex_halfedge(&mut self, v: VertexKey, h: HalfedgeKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let v = self.mesh.check_vertex(v)?;
-        *self.mesh.v_halfedge_mut(v) = h;
+        *self.mesh.v_halfedge_mut::<Recorded>(v) = h;
         Ok(())
     }
 
@@ -155,7 +156,7 @@ impl RawEdit<'_> {
     pub fn set_face_halfedge(&mut self, f: FaceKey, h: HalfedgeKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let f = self.mesh.check_face(f)?;
-        self.mesh.set_face_link(f, h);
+        self.mesh.set_face_link::<Recorded>(f, h);
         Ok(())
     }
 
@@ -165,26 +166,26 @@ impl RawEdit<'_> {
     /// [`Error::StaleKey`].
     pub fn set_hole(&mut self, f: FaceKey, hole: bool) -> Result<()> {
         let f = self.mesh.check_face(f)?;
-        self.mesh.set_hole(f, hole);
+        self.mesh.set_hole::<Recorded>(f, hole);
         Ok(())
     }
 
     /// A new vertex with no links yet.
     pub fn new_vertex(&mut self) -> VertexKey {
-        let v = self.mesh.alloc_vertex();
+        let v = self.mesh.alloc_vertex::<Recorded>();
         self.mesh.vkey(v)
     }
 
     /// A new edge (two half-edges, [`EdgeKey::halfedge_key`]) with no links
     /// yet.
     pub fn new_edge(&mut self) -> EdgeKey {
-        let e = self.mesh.alloc_edge();
+        let e = self.mesh.alloc_edge::<Recorded>();
         self.mesh.ekey(e)
     }
 
     /// A new face (a hole if `hole`) with no links yet.
     pub fn new_face(&mut self, hole: bool) -> FaceKey {
-        let f = self.mesh.alloc_face(hole);
+        let f = self.mesh.alloc_face::<Recorded>(hole);
         self.mesh.fkey(f)
     }
 
@@ -194,7 +195,7 @@ impl RawEdit<'_> {
     /// [`Error::StaleKey`].
     pub fn remove_vertex(&mut self, v: VertexKey) -> Result<()> {
         let v = self.mesh.check_vertex(v)?;
-        self.mesh.free_vertex(v);
+        self.mesh.free_vertex::<Recorded>(v);
         Ok(())
     }
 
@@ -204,7 +205,7 @@ impl RawEdit<'_> {
     /// [`Error::StaleKey`].
     pub fn remove_edge(&mut self, e: EdgeKey) -> Result<()> {
         let e = self.mesh.check_edge(e)?;
-        self.mesh.free_edge(e);
+        self.mesh.free_edge::<Recorded>(e);
         Ok(())
     }
 
@@ -214,7 +215,7 @@ impl RawEdit<'_> {
     /// [`Error::StaleKey`].
     pub fn remove_face(&mut self, f: FaceKey) -> Result<()> {
         let f = self.mesh.check_face(f)?;
-        self.mesh.free_face(f);
+        self.mesh.free_face::<Recorded>(f);
         Ok(())
     }
 

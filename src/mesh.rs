@@ -18,7 +18,7 @@
 
 use crate::error::{Error, Result};
 use crate::iter::{Edges, Faces, Halfedges, Vertices};
-use crate::journal::Recorder;
+use crate::journal::{Journaling, Recorded, Recorder};
 use crate::keys::{AnyKey, EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 pub(crate) use crate::layout::HalfedgeRecord;
 use crate::layout::{Eid, FaceLink, Fid, Hid, LinkVec, Vid};
@@ -436,12 +436,12 @@ impl Mesh {
     /// of its half-edges lie in holes: keep its half-edge if that lies in a
     /// hole, else turn around `v` for one that does. O(1) when it already
     /// points into a hole, else O(degree of `v`).
-    pub(crate) fn point_at_hole(&mut self, v: Vid) {
+    pub(crate) fn point_at_hole<J: Journaling>(&mut self, v: Vid) {
         if self.on_boundary(v) {
             return;
         }
         if let Some(h) = self.outgoing(v).find(|&h| self.in_hole(h)) {
-            self.set_vertex_halfedge(v, h);
+            self.set_vertex_halfedge::<J>(v, h);
         }
     }
 
@@ -468,7 +468,7 @@ impl Mesh {
                     && !self.f_halfedge.get(c.face).is_some_and(|l| l.is_hole())
             });
             if cur_ok {
-                self.set_vertex_halfedge(r.origin, h);
+                self.set_vertex_halfedge::<Recorded>(r.origin, h);
             }
         }
     }
@@ -479,14 +479,14 @@ impl Mesh {
     /// the caller's rule.
     // Inlined: measured (instruction counts of poke_face) to matter.
     #[inline(always)]
-    pub(crate) fn alloc_vertex(&mut self) -> Vid {
+    pub(crate) fn alloc_vertex<J: Journaling>(&mut self) -> Vid {
         let (i, g, is_new) = self.v_slots.alloc();
         let v = Vid::new(i);
         if is_new {
             self.v_halfedge.push(Hid::NONE);
         } else {
-            self.set_vertex_halfedge(v, Hid::NONE);
-            if let Some(r) = self.rec.as_deref_mut() {
+            self.set_vertex_halfedge::<J>(v, Hid::NONE);
+            if let Some(r) = self.recorder::<J>() {
                 r.reused(0, i, g);
                 self.attrs.vertex.reset(v.index());
             }
@@ -496,7 +496,7 @@ impl Mesh {
     }
 
     /// A new edge slot (two half-edges) with no links yet.
-    pub(crate) fn alloc_edge(&mut self) -> Eid {
+    pub(crate) fn alloc_edge<J: Journaling>(&mut self) -> Eid {
         let (i, g, is_new) = self.e_slots.alloc();
         let e = Eid::new(i);
         if is_new {
@@ -504,9 +504,9 @@ impl Mesh {
             self.he.push(HalfedgeRecord::VACANT);
         } else {
             for h in e.halfedges() {
-                self.set_he(h, HalfedgeRecord::VACANT);
+                self.set_he::<J>(h, HalfedgeRecord::VACANT);
             }
-            if let Some(r) = self.rec.as_deref_mut() {
+            if let Some(r) = self.recorder::<J>() {
                 r.reused(1, i, g);
                 self.attrs.edge.reset(e.index());
                 for h in e.halfedges() {
@@ -523,15 +523,15 @@ impl Mesh {
     /// A new face slot (a hole if `hole`) with no links yet.
     // Inlined: measured (instruction counts of poke_face) to matter.
     #[inline(always)]
-    pub(crate) fn alloc_face(&mut self, hole: bool) -> Fid {
+    pub(crate) fn alloc_face<J: Journaling>(&mut self, hole: bool) -> Fid {
         let (i, g, is_new) = self.f_slots.alloc();
         let f = Fid::new(i);
         let link = FaceLink::unset(hole);
         if is_new {
             self.f_halfedge.push(link);
         } else {
-            self.set_face_link_raw(f, link);
-            if let Some(r) = self.rec.as_deref_mut() {
+            self.set_face_link_raw::<J>(f, link);
+            if let Some(r) = self.recorder::<J>() {
                 r.reused(2, i, g);
                 self.attrs.face.reset(f.index());
             }
@@ -546,9 +546,10 @@ impl Mesh {
     /// Remove a vertex slot and its attribute values. While a journal
     /// records, the slot keeps its links and values (undoing the removal
     /// then only revives the slot; a reuse clears them, recorded).
-    pub(crate) fn free_vertex(&mut self, v: Vid) {
-        if let Some(r) = self.rec.as_deref_mut() {
-            r.died(0, v.raw(), self.v_slots.generation_of(v.raw()));
+    pub(crate) fn free_vertex<J: Journaling>(&mut self, v: Vid) {
+        let generation = self.v_slots.generation_of(v.raw());
+        if let Some(r) = self.recorder::<J>() {
+            r.died(0, v.raw(), generation);
         } else {
             self.attrs.vertex.clear(v.index());
             *self.v_halfedge.unlogged_mut(v) = Hid::NONE;
@@ -558,9 +559,10 @@ impl Mesh {
 
     /// Remove an edge slot, both half-edges and their attribute values
     /// (kept while a journal records, as in [`free_vertex`](Mesh::free_vertex)).
-    pub(crate) fn free_edge(&mut self, e: Eid) {
-        if let Some(r) = self.rec.as_deref_mut() {
-            r.died(1, e.raw(), self.e_slots.generation_of(e.raw()));
+    pub(crate) fn free_edge<J: Journaling>(&mut self, e: Eid) {
+        let generation = self.e_slots.generation_of(e.raw());
+        if let Some(r) = self.recorder::<J>() {
+            r.died(1, e.raw(), generation);
         } else {
             self.attrs.edge.clear(e.index());
             for h in e.halfedges() {
@@ -573,12 +575,13 @@ impl Mesh {
 
     /// Remove a face slot and its attribute values (kept while a journal
     /// records, as in [`free_vertex`](Mesh::free_vertex)).
-    pub(crate) fn free_face(&mut self, f: Fid) {
+    pub(crate) fn free_face<J: Journaling>(&mut self, f: Fid) {
         if self.is_hole(f) {
             self.holes -= 1;
         }
-        if let Some(r) = self.rec.as_deref_mut() {
-            r.died(2, f.raw(), self.f_slots.generation_of(f.raw()));
+        let generation = self.f_slots.generation_of(f.raw());
+        if let Some(r) = self.recorder::<J>() {
+            r.died(2, f.raw(), generation);
         } else {
             self.attrs.face.clear(f.index());
             *self.f_halfedge.unlogged_mut(f) = FaceLink::unset(false);
@@ -587,10 +590,10 @@ impl Mesh {
     }
 
     /// Set or clear a face's hole flag.
-    pub(crate) fn set_hole(&mut self, f: Fid, hole: bool) {
+    pub(crate) fn set_hole<J: Journaling>(&mut self, f: Fid, hole: bool) {
         let link = self.f_halfedge[f];
         if link.is_hole() != hole {
-            self.set_face_link_raw(f, link.with_hole(hole));
+            self.set_face_link_raw::<J>(f, link.with_hole(hole));
             if hole {
                 self.holes += 1;
             } else {

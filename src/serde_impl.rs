@@ -70,6 +70,16 @@ struct MeshData {
     edge_base: u32,
     #[serde(default = "first_base")]
     face_base: u32,
+    /// Each arena's fresh floor where an undo raised it above the base
+    /// (see `slots.rs`): no generation below it is issued again, so keys
+    /// of elements an undo took back stay stale in the copy too. Absent:
+    /// the base.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    vertex_fresh: Option<u32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    edge_fresh: Option<u32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    face_fresh: Option<u32>,
     /// Index of the position column among the vertex columns.
     position: Option<usize>,
     vertex_attrs: Vec<ColumnData>,
@@ -127,6 +137,9 @@ impl Serialize for Mesh {
             vertex_base: self.v_slots.base(),
             edge_base: self.e_slots.base(),
             face_base: self.f_slots.base(),
+            vertex_fresh: self.v_slots.raised_fresh(),
+            edge_fresh: self.e_slots.raised_fresh(),
+            face_fresh: self.f_slots.raised_fresh(),
             position: self.attrs.position,
             vertex_attrs: columns_out(self, ElementKind::Vertex, v_live)
                 .map_err(S::Error::custom)?,
@@ -212,12 +225,28 @@ fn mesh_from(data: MeshData) -> Result<Mesh, String> {
     {
         return Err("too many slots for 32-bit links".into());
     }
-    let slots = |kind: &str, generations: Vec<u32>, base: u32| {
-        Slots::from_generations(generations, base, base).map_err(|e| format!("{kind} {e}"))
+    let slots = |kind: &str, generations: Vec<u32>, base: u32, fresh: Option<u32>| {
+        Slots::from_generations(generations, base, fresh.unwrap_or(base))
+            .map_err(|e| format!("{kind} {e}"))
     };
-    let v_slots = slots("vertex", data.vertex_generations, data.vertex_base)?;
-    let e_slots = slots("edge", data.edge_generations, data.edge_base)?;
-    let f_slots = slots("face", data.face_generations, data.face_base)?;
+    let v_slots = slots(
+        "vertex",
+        data.vertex_generations,
+        data.vertex_base,
+        data.vertex_fresh,
+    )?;
+    let e_slots = slots(
+        "edge",
+        data.edge_generations,
+        data.edge_base,
+        data.edge_fresh,
+    )?;
+    let f_slots = slots(
+        "face",
+        data.face_generations,
+        data.face_base,
+        data.face_fresh,
+    )?;
     let holes = (0..nf)
         .filter(|&f| f_slots.is_live(f) && data.face_halfedge[f].is_hole())
         .count();

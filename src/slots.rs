@@ -309,6 +309,13 @@ impl Slots {
         self.state
     }
 
+    /// The fresh floor where an undo raised it above the base (`None`:
+    /// it is the base), for serde.
+    #[cfg(feature = "serde")]
+    pub(crate) fn raised_fresh(&self) -> Option<u32> {
+        (self.fresh != self.base).then_some(self.fresh)
+    }
+
     /// The fresh floor (odd, at least the base).
     #[cfg(test)]
     pub(crate) fn fresh(&self) -> u32 {

@@ -12,31 +12,21 @@
 //! differ.
 
 mod common;
+use common::ops::{self, nth, TopoOp};
 use common::*;
+use meshloom::algo::{decimate, smooth, Progress};
 use meshloom::attr::{Incompatible, Interpolate, Value};
 use meshloom::journal::{ColumnChangeKind, HistoryLimits};
 use meshloom::{shapes, AnyKey, EdgeKey, ElementKind, FaceKey, Mesh, VertexKey};
 use quickcheck::{Arbitrary, Gen, QuickCheck, TestResult};
 use std::collections::{BTreeMap, BTreeSet, HashSet};
 
+/// One edit: an operator of the shared stream (`common::ops`, the same
+/// generator as `ops_model.rs`), or an attribute write, a bulk write, a
+/// column change, a raw edit or an algorithm run.
 #[derive(Clone, Debug)]
 enum Op {
-    SplitEdge(usize, u8),
-    SplitFace(usize, usize, usize),
-    Poke(usize),
-    CollapseAt(usize, u8),
-    Flip(usize),
-    RemoveEdge(usize),
-    MergeFaces(usize, usize),
-    RemoveVertex(usize),
-    RemoveFace(usize),
-    FillHole(usize),
-    Triangulate(usize),
-    TriangulateAll,
-    Compact,
-    Extrude(usize),
-    SplitVertex(usize, usize, usize),
-    CutLoop(usize),
+    Topo(TopoOp),
     SetPosition(usize, i8),
     SetWeight(usize, i8),
     ClearWeight(usize),
@@ -46,32 +36,17 @@ enum Op {
     AddColumn,
     RemoveColumn,
     RawRepoint(usize),
+    Smooth,
+    Decimate(u8),
 }
 
 impl Arbitrary for Op {
     fn arbitrary(g: &mut Gen) -> Op {
         let i = usize::arbitrary(g);
-        let j = usize::arbitrary(g);
-        let k = usize::arbitrary(g);
         let t = u8::arbitrary(g) % 11;
         let d = i8::arbitrary(g);
-        match u8::arbitrary(g) % 34 {
-            0..=2 => Op::SplitEdge(i, t),
-            3 => Op::SplitFace(i, j, k),
-            4..=5 => Op::Poke(i),
-            6..=8 => Op::CollapseAt(i, t),
-            9..=10 => Op::Flip(i),
-            11 => Op::RemoveEdge(i),
-            12 => Op::MergeFaces(i, j),
-            13 => Op::RemoveVertex(i),
-            14 => Op::RemoveFace(i),
-            15 => Op::FillHole(i),
-            16 => Op::Triangulate(i),
-            17 => Op::TriangulateAll,
-            18 => Op::Compact,
-            19 => Op::Extrude(i),
-            20 => Op::SplitVertex(i, j, k),
-            21 => Op::CutLoop(i),
+        match u8::arbitrary(g) % 36 {
+            0..=21 => Op::Topo(TopoOp::arbitrary(g)),
             22..=23 => Op::SetPosition(i, d),
             24..=25 => Op::SetWeight(i, d),
             26 => Op::ClearWeight(i),
@@ -80,16 +55,10 @@ impl Arbitrary for Op {
             29 => Op::ViewWrite(d),
             30 => Op::AddColumn,
             31 => Op::RemoveColumn,
+            32 => Op::Smooth,
+            33 => Op::Decimate(t),
             _ => Op::RawRepoint(i),
         }
-    }
-}
-
-fn nth<T>(mut it: impl Iterator<Item = T>, count: usize, i: usize) -> Option<T> {
-    if count == 0 {
-        None
-    } else {
-        it.nth(i % count)
     }
 }
 
@@ -117,87 +86,21 @@ fn shape(i: u8) -> Mesh {
 /// the model checks through the undo length).
 fn apply(m: &mut Mesh, op: &Op) {
     match *op {
-        Op::SplitEdge(i, t) => {
-            if let Some(e) = nth(m.edges(), m.edge_count(), i) {
-                let _ = m.split_edge(e, f64::from(t) / 10.0);
-            }
+        Op::Topo(ref t) => {
+            let _ = ops::apply(m, t);
         }
-        Op::SplitFace(i, j, k) => {
-            if let Some(f) = nth(m.faces(), m.face_count(), i) {
-                let c: Vec<_> = m.face(f).unwrap().vertices().collect();
-                let _ = m.split_face(f, c[j % c.len()], c[k % c.len()]);
-            }
+        Op::Smooth => {
+            // An algorithm run: one undo unit.
+            let _ = smooth::smooth(m, &smooth::SmoothOptions::default(), Progress::none());
         }
-        Op::Poke(i) => {
-            if let Some(f) = nth(m.faces_and_holes(), m.face_count() + m.hole_count(), i) {
-                let _ = m.poke_face(f);
-            }
-        }
-        Op::CollapseAt(i, t) => {
-            if let Some(h) = nth(m.halfedges(), m.halfedge_count(), i) {
-                let _ = m.collapse_edge_at(h, f64::from(t) / 10.0);
-            }
-        }
-        Op::Flip(i) => {
-            if let Some(e) = nth(m.edges(), m.edge_count(), i) {
-                let _ = m.flip_edge(e);
-            }
-        }
-        Op::RemoveEdge(i) => {
-            if let Some(e) = nth(m.edges(), m.edge_count(), i) {
-                let _ = m.remove_edge(e);
-            }
-        }
-        Op::MergeFaces(i, j) => {
-            if let Some(f) = nth(m.faces(), m.face_count(), i) {
-                let ns: Vec<_> = m.face(f).unwrap().neighbors().collect();
-                let g = if ns.is_empty() { f } else { ns[j % ns.len()] };
-                let _ = m.merge_faces(f, g);
-            }
-        }
-        Op::RemoveVertex(i) => {
-            if let Some(v) = nth(m.vertices(), m.vertex_count(), i) {
-                let _ = m.remove_vertex(v);
-            }
-        }
-        Op::RemoveFace(i) => {
-            if let Some(f) = nth(m.faces(), m.face_count(), i) {
-                let _ = m.remove_face(f);
-            }
-        }
-        Op::FillHole(i) => {
-            if let Some(h) = nth(m.holes(), m.hole_count(), i) {
-                let _ = m.fill_hole(h);
-            }
-        }
-        Op::Triangulate(i) => {
-            if let Some(f) = nth(m.faces(), m.face_count(), i) {
-                let _ = m.triangulate(f);
-            }
-        }
-        Op::TriangulateAll => {
-            m.triangulate_all();
-        }
-        Op::Compact => {
-            m.compact();
-        }
-        Op::Extrude(i) => {
-            if let Some(f) = nth(m.faces(), m.face_count(), i) {
-                let _ = m.extrude_face(f, 0.5);
-            }
-        }
-        Op::SplitVertex(i, j, k) => {
-            if let Some(v) = nth(m.vertices(), m.vertex_count(), i) {
-                let outs: Vec<_> = m.vertex(v).unwrap().outgoing().collect();
-                let _ = m.split_vertex(outs[j % outs.len()], outs[k % outs.len()]);
-            }
-        }
-        Op::CutLoop(i) => {
-            if let Some(v) = nth(m.vertices(), m.vertex_count(), i) {
-                let mut ring: Vec<_> = m.vertex(v).unwrap().neighbors().collect();
-                ring.push(ring[0]);
-                let _ = m.cut_path(&ring);
-            }
+        Op::Decimate(t) => {
+            // Decimation in place (no progress callback): one undo unit.
+            let target = m.vertex_count() * usize::from(t) / 10;
+            let _ = decimate::decimate(
+                m,
+                &decimate::DecimateOptions::to(decimate::Target::Vertices(target)),
+                Progress::none(),
+            );
         }
         Op::SetPosition(i, d) => {
             if let Some(v) = nth(m.vertices(), m.vertex_count(), i) {
@@ -543,7 +446,7 @@ fn failing_or_panicking_transactions_leave_the_snapshot() {
         let mut m = shape(shape_i);
         if history {
             m.enable_history(HistoryLimits::default());
-            apply(&mut m, &Op::Poke(0));
+            apply(&mut m, &Op::Topo(TopoOp::Poke(0)));
         }
         let before = canon(&m);
         let undo_len = m.undo_len();
@@ -558,7 +461,7 @@ fn failing_or_panicking_transactions_leave_the_snapshot() {
                     // A nested transaction that commits.
                     if n % 3 == 0 {
                         m.transaction(|m| {
-                            apply(m, &Op::SplitEdge(n, 5));
+                            apply(m, &Op::Topo(TopoOp::SplitEdge(n, 5)));
                             Ok(())
                         })?;
                     }
@@ -581,8 +484,8 @@ fn failing_or_panicking_transactions_leave_the_snapshot() {
         assert_eq!(m.history_enabled(), history);
         // The mesh goes on working: a committed transaction is one unit.
         let r = m.transaction(|m| {
-            apply(m, &Op::Poke(1));
-            apply(m, &Op::SplitEdge(2, 3));
+            apply(m, &Op::Topo(TopoOp::Poke(1)));
+            apply(m, &Op::Topo(TopoOp::SplitEdge(2, 3)));
             Ok(7)
         });
         assert_eq!(r.unwrap(), 7);
@@ -798,4 +701,76 @@ fn serde_and_clone_of_a_journaled_mesh_carry_no_history() {
         assert_eq!(canon(&back), canon(&m));
     }
     assert!(m.redo());
+}
+
+/// The fresh floor an undo raised travels with the serde form: a key of an
+/// element an undo took back stays stale in the deserialised copy, even
+/// when the copy reuses the same slot.
+#[cfg(feature = "serde")]
+#[test]
+fn serde_keeps_the_fresh_floor_so_undone_keys_stay_stale() {
+    let mut m = shapes::icosahedron();
+    m.enable_history(HistoryLimits::default());
+    let v = m.vertices().next().unwrap();
+    m.remove_vertex(v).unwrap();
+    let f = m.faces().next().unwrap();
+    // The poke takes the slot the removal freed (the free list's top).
+    let c = m.poke_face(f).unwrap();
+    assert_eq!(c.index(), v.index());
+    assert!(m.undo() && m.undo());
+    assert!(m.vertex(v).is_ok() && m.vertex(c).is_err());
+    let json = serde_json::to_string(&m).unwrap();
+    let mut back: Mesh = serde_json::from_str(&json).unwrap();
+    // The same edits again in the copy: the slot is reused once more, and
+    // the key the undone poke issued must not name the new vertex.
+    back.remove_vertex(v).unwrap();
+    let f = back.faces().next().unwrap();
+    let c2 = back.poke_face(f).unwrap();
+    assert_eq!(c2.index(), v.index());
+    assert_ne!(c2, c);
+    assert!(back.vertex(c).is_err(), "an undone key names a new vertex");
+    // Without an undo the floor stays the base and the form is unchanged.
+    let plain = shapes::icosahedron();
+    assert!(!serde_json::to_string(&plain).unwrap().contains("fresh"));
+}
+
+/// An algorithm run is one undo unit named after it (decimation in place
+/// used to be one step per collapse); a composite operator is one unit.
+#[test]
+fn an_algorithm_run_is_one_named_unit() {
+    use meshloom::shapes::{grid, GridFaces};
+    let mut m = grid(12, 12, GridFaces::Triangles);
+    m.enable_history(HistoryLimits::default());
+    let start = canon(&m);
+    let n0 = m.vertex_count();
+    let options = decimate::DecimateOptions::to(decimate::Target::Vertices(n0 / 3));
+    decimate::decimate(&mut m, &options, Progress::none()).unwrap();
+    assert!(
+        m.vertex_count() < n0 / 2,
+        "{} of {n0} left",
+        m.vertex_count()
+    );
+    assert_eq!((m.undo_len(), m.undo_name()), (1, Some("Decimate")));
+    let decimated = canon(&m);
+    smooth::smooth(&mut m, &smooth::SmoothOptions::default(), Progress::none()).unwrap();
+    assert_eq!((m.undo_len(), m.undo_name()), (2, Some("Smooth")));
+    assert!(m.undo());
+    assert_eq!(canon(&m), decimated);
+    assert!(m.undo());
+    assert_eq!(canon(&m), start);
+    assert!(m.redo() && m.redo());
+    // Inside a group of the caller's, the group's name wins.
+    m.step("Tidy", |m| {
+        smooth::smooth(m, &smooth::SmoothOptions::default(), Progress::none())
+    })
+    .unwrap();
+    assert_eq!((m.undo_len(), m.undo_name()), (3, Some("Tidy")));
+
+    let mut q = quad_grid(4);
+    q.enable_history(HistoryLimits::default());
+    let before = canon(&q);
+    assert!(q.triangulate_all().is_empty());
+    assert_eq!(q.undo_len(), 1);
+    assert!(q.undo());
+    assert_eq!(canon(&q), before);
 }

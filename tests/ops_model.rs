@@ -4,63 +4,15 @@
 //! `x`; after every refusal the mesh equals its snapshot.
 
 mod common;
+use common::ops::{pick, Target, TopoOp};
 use common::*;
 use meshloom::{shapes, Mesh};
 use quickcheck::{Arbitrary, Gen, QuickCheck, TestResult};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::OnceLock;
 
-#[derive(Clone, Debug)]
-enum Op {
-    SplitEdge(usize, u8),
-    SplitFace(usize, usize, usize),
-    Poke(usize),
-    Collapse(usize),
-    CollapseAt(usize, u8),
-    Flip(usize),
-    RemoveEdge(usize),
-    MergeFaces(usize, usize),
-    RemoveVertex(usize),
-    RemoveFace(usize),
-    FillHole(usize),
-    Triangulate(usize),
-    TriangulateAll,
-    Compact,
-    Extrude(usize),
-    SplitVertex(usize, usize, usize),
-    CutOpen(usize, usize),
-    CutLoop(usize),
-}
-
-impl Arbitrary for Op {
-    fn arbitrary(g: &mut Gen) -> Op {
-        let i = usize::arbitrary(g);
-        let j = usize::arbitrary(g);
-        let k = usize::arbitrary(g);
-        let t = u8::arbitrary(g) % 11;
-        // Weighted so that meshes both grow and shrink.
-        match u8::arbitrary(g) % 28 {
-            0..=2 => Op::SplitEdge(i, t),
-            3..=4 => Op::SplitFace(i, j, k),
-            5..=6 => Op::Poke(i),
-            7..=10 => Op::Collapse(i),
-            11 => Op::CollapseAt(i, t),
-            12..=14 => Op::Flip(i),
-            15..=16 => Op::RemoveEdge(i),
-            17 => Op::MergeFaces(i, j),
-            18 => Op::RemoveVertex(i),
-            19 => Op::RemoveFace(i),
-            20 => Op::FillHole(i),
-            21 => Op::Triangulate(i),
-            22 => Op::TriangulateAll,
-            23 => Op::Extrude(i),
-            24 => Op::SplitVertex(i, j, k),
-            25 => Op::CutOpen(i, j),
-            26 => Op::CutLoop(i),
-            _ => Op::Compact,
-        }
-    }
-}
+/// The shared operator stream (`common::ops`).
+type Op = TopoOp;
 
 #[derive(Clone, Debug)]
 struct Case {
@@ -128,76 +80,44 @@ fn real_meshes() -> &'static Vec<Mesh> {
     })
 }
 
-fn nth<T>(it: impl Iterator<Item = T>, count: usize, i: usize) -> Option<T> {
-    if count == 0 {
-        None
-    } else {
-        it.into_iter().nth(i % count)
-    }
-}
-
-/// Run one op with every check. Returns false when the op does not apply
-/// (no element to pick).
+/// Run one op with every check (nothing to do when the op finds no element
+/// to pick).
 fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
+    let Some(target) = pick(m, op) else {
+        return;
+    };
     let chi = m.euler_characteristic();
     let (ft, vt) = (face_total(m, totals), vertex_total(m, totals));
     let fcount = m.face_count();
     let before = snapshot(m);
-    let dchi_cut: i64;
     // (check result, op result, χ change, face total kept, vertex total kept)
-    let (check, ok, dchi, keep_f, keep_v): (bool, bool, i64, bool, bool) = match *op {
-        Op::SplitEdge(i, t) => {
-            let Some(e) = nth(m.edges(), m.edge_count(), i) else {
-                return;
-            };
-            let t = f64::from(t) / 10.0;
-            (
-                m.check_split_edge(e, t).is_ok(),
-                m.split_edge(e, t).is_ok(),
-                0,
-                true,
-                true,
-            )
-        }
-        Op::SplitFace(i, j, k) => {
-            let Some(f) = nth(m.faces(), m.face_count(), i) else {
-                return;
-            };
-            let c: Vec<_> = m.face(f).unwrap().vertices().collect();
-            let (a, b) = (c[j % c.len()], c[k % c.len()]);
-            (
-                m.check_split_face(f, a, b).is_ok(),
-                m.split_face(f, a, b).is_ok(),
-                0,
-                true,
-                true,
-            )
-        }
-        Op::Poke(i) => {
-            let Some(f) = nth(m.faces_and_holes(), m.face_count() + m.hole_count(), i) else {
-                return;
-            };
-            (
-                m.check_poke_face(f).is_ok(),
-                m.poke_face(f).is_ok(),
-                0,
-                true,
-                true,
-            )
-        }
-        Op::Collapse(i) | Op::CollapseAt(i, _) => {
-            let Some(h) = nth(m.halfedges(), m.halfedge_count(), i) else {
-                return;
-            };
+    let (check, ok, dchi, keep_f, keep_v): (bool, bool, i64, bool, bool) = match (op, target) {
+        (Op::SplitEdge(..), Target::Edge(e, t)) => (
+            m.check_split_edge(e, t).is_ok(),
+            m.split_edge(e, t).is_ok(),
+            0,
+            true,
+            true,
+        ),
+        (Op::SplitFace(..), Target::FaceCorners(f, a, b)) => (
+            m.check_split_face(f, a, b).is_ok(),
+            m.split_face(f, a, b).is_ok(),
+            0,
+            true,
+            true,
+        ),
+        (Op::Poke(_), Target::Face(f)) => (
+            m.check_poke_face(f).is_ok(),
+            m.poke_face(f).is_ok(),
+            0,
+            true,
+            true,
+        ),
+        (Op::Collapse(_) | Op::CollapseAt(..), Target::Halfedge(h, t)) => {
             let hv = m.halfedge(h).unwrap();
             let closes = [hv.face(), hv.twin().face()]
                 .iter()
                 .any(|f| f.is_hole() && f.degree() == 3);
-            let t = if let Op::CollapseAt(_, t) = *op {
-                f64::from(t) / 10.0
-            } else {
-                1.0
-            };
             let check = m.check_collapse_edge_at(h, t).is_ok();
             (
                 check,
@@ -207,22 +127,14 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
                 true,
             )
         }
-        Op::Flip(i) => {
-            let Some(e) = nth(m.edges(), m.edge_count(), i) else {
-                return;
-            };
-            (
-                m.check_flip_edge(e).is_ok(),
-                m.flip_edge(e).is_ok(),
-                0,
-                true,
-                true,
-            )
-        }
-        Op::RemoveEdge(i) => {
-            let Some(e) = nth(m.edges(), m.edge_count(), i) else {
-                return;
-            };
+        (Op::Flip(_), Target::Edge(e, _)) => (
+            m.check_flip_edge(e).is_ok(),
+            m.flip_edge(e).is_ok(),
+            0,
+            true,
+            true,
+        ),
+        (Op::RemoveEdge(_), Target::Edge(e, _)) => {
             let boundary = m.edge(e).unwrap().is_boundary();
             (
                 m.check_remove_edge(e).is_ok(),
@@ -232,36 +144,21 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
                 true,
             )
         }
-        Op::MergeFaces(i, j) => {
-            let Some(f) = nth(m.faces(), m.face_count(), i) else {
-                return;
-            };
-            let ns: Vec<_> = m.face(f).unwrap().neighbors().collect();
-            let g = if ns.is_empty() { f } else { ns[j % ns.len()] };
-            (
-                m.check_merge_faces(f, g).is_ok(),
-                m.merge_faces(f, g).is_ok(),
-                0,
-                true,
-                true,
-            )
-        }
-        Op::RemoveVertex(i) => {
-            let Some(v) = nth(m.vertices(), m.vertex_count(), i) else {
-                return;
-            };
-            (
-                m.check_remove_vertex(v).is_ok(),
-                m.remove_vertex(v).is_ok(),
-                0,
-                true,
-                false,
-            )
-        }
-        Op::RemoveFace(i) => {
-            let Some(f) = nth(m.faces(), m.face_count(), i) else {
-                return;
-            };
+        (Op::MergeFaces(..), Target::Faces(f, g)) => (
+            m.check_merge_faces(f, g).is_ok(),
+            m.merge_faces(f, g).is_ok(),
+            0,
+            true,
+            true,
+        ),
+        (Op::RemoveVertex(_), Target::Vertex(v)) => (
+            m.check_remove_vertex(v).is_ok(),
+            m.remove_vertex(v).is_ok(),
+            0,
+            true,
+            false,
+        ),
+        (Op::RemoveFace(i), Target::Face(f)) => {
             let check = m.check_remove_face(f).is_ok();
             let ok = m.remove_face(f).is_ok();
             if ok {
@@ -282,10 +179,7 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
             tally(op, ok);
             return assert_eq!(check, ok);
         }
-        Op::FillHole(i) => {
-            let Some(h) = nth(m.holes(), m.hole_count(), i) else {
-                return;
-            };
+        (Op::FillHole(i), Target::Face(h)) => {
             if i % 2 == 0 {
                 (
                     m.check_fill_hole(h).is_ok(),
@@ -303,26 +197,21 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
                 (check, r.is_ok(), 1, true, true)
             }
         }
-        Op::Triangulate(i) => {
-            let Some(f) = nth(m.faces(), m.face_count(), i) else {
-                return;
-            };
-            (
-                m.check_triangulate(f).is_ok(),
-                m.triangulate(f).is_ok(),
-                0,
-                true,
-                true,
-            )
-        }
-        Op::TriangulateAll => {
+        (Op::Triangulate(_), Target::Face(f)) => (
+            m.check_triangulate(f).is_ok(),
+            m.triangulate(f).is_ok(),
+            0,
+            true,
+            true,
+        ),
+        (Op::TriangulateAll, _) => {
             let left = m.triangulate_all();
             for f in &left {
                 assert!(m.face(*f).unwrap().degree() > 3);
             }
             (true, true, 0, true, true)
         }
-        Op::Compact => {
+        (Op::Compact, _) => {
             // Every key from before is stale or maps to the same element
             // (same position, same ends); none names another element.
             let vs: Vec<_> = m.vertices().map(|v| (v, m.position(v).ok())).collect();
@@ -353,83 +242,42 @@ fn step(m: &mut Mesh, totals: &Totals, op: &Op) {
             }
             (true, true, 0, true, true)
         }
-        Op::Extrude(i) => {
-            let Some(f) = nth(m.faces(), m.face_count(), i) else {
-                return;
-            };
-            (
-                m.check_extrude_face(f, 0.5).is_ok(),
-                m.extrude_face(f, 0.5).is_ok(),
-                0,
-                true,
-                true,
-            )
-        }
-        Op::SplitVertex(i, j, k) => {
-            let Some(v) = nth(m.vertices(), m.vertex_count(), i) else {
-                return;
-            };
-            let outs: Vec<_> = m.vertex(v).unwrap().outgoing().collect();
-            let (hc, hd) = (outs[j % outs.len()], outs[k % outs.len()]);
-            (
-                m.check_split_vertex(hc, hd).is_ok(),
-                m.split_vertex(hc, hd).is_ok(),
-                0,
-                true,
-                true,
-            )
-        }
-        Op::CutOpen(i, j) => {
-            let Some(v) = nth(m.vertices(), m.vertex_count(), i) else {
-                return;
-            };
-            // A walk of up to four steps that never meets a vertex twice.
-            let mut path = vec![v];
-            let mut salt = j;
-            for _ in 0..4 {
-                let last = *path.last().unwrap();
-                let ns: Vec<_> = m
-                    .vertex(last)
-                    .unwrap()
-                    .neighbors()
-                    .filter(|n| !path.contains(n))
-                    .collect();
-                if ns.is_empty() {
-                    break;
-                }
-                path.push(ns[salt % ns.len()]);
-                salt /= 7;
-            }
+        (Op::Extrude(_), Target::Face(f)) => (
+            m.check_extrude_face(f, 0.5).is_ok(),
+            m.extrude_face(f, 0.5).is_ok(),
+            0,
+            true,
+            true,
+        ),
+        (Op::SplitVertex(..), Target::Outgoing(hc, hd)) => (
+            m.check_split_vertex(hc, hd).is_ok(),
+            m.split_vertex(hc, hd).is_ok(),
+            0,
+            true,
+            true,
+        ),
+        (Op::CutOpen(..), Target::Path(path)) => {
+            // χ: −1 for a slit, +1 for each end on a boundary.
+            let ends = [path[0], *path.last().unwrap()]
+                .iter()
+                .filter(|&&v| m.vertex(v).unwrap().is_boundary())
+                .count() as i64;
             (
                 m.check_cut_path(&path).is_ok(),
-                {
-                    // χ: −1 for a slit, +1 for each end on a boundary.
-                    let ends = [path[0], *path.last().unwrap()]
-                        .iter()
-                        .filter(|&&v| m.vertex(v).unwrap().is_boundary())
-                        .count() as i64;
-                    dchi_cut = ends - 1;
-                    m.cut_path(&path).is_ok()
-                },
-                dchi_cut,
+                m.cut_path(&path).is_ok(),
+                ends - 1,
                 true,
                 true,
             )
         }
-        Op::CutLoop(i) => {
-            let Some(v) = nth(m.vertices(), m.vertex_count(), i) else {
-                return;
-            };
-            let mut ring: Vec<_> = m.vertex(v).unwrap().neighbors().collect();
-            ring.push(ring[0]);
-            (
-                m.check_cut_path(&ring).is_ok(),
-                m.cut_path(&ring).is_ok(),
-                0,
-                true,
-                true,
-            )
-        }
+        (Op::CutLoop(_), Target::Path(ring)) => (
+            m.check_cut_path(&ring).is_ok(),
+            m.cut_path(&ring).is_ok(),
+            0,
+            true,
+            true,
+        ),
+        (op, t) => unreachable!("{op:?} picked {t:?}"),
     };
     assert_eq!(check, ok, "check_* disagrees with the operator on {op:?}");
     tally(op, ok);

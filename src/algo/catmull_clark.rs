@@ -83,6 +83,17 @@ const ALGORITHM: &str = "catmull_clark";
 pub fn catmull_clark(
     mesh: &mut Mesh,
     options: &SubdivisionOptions,
+    progress: Progress<'_>,
+) -> Result<SubdivisionReport> {
+    mesh.as_one_step("Catmull-Clark", |mesh| {
+        catmull_clark_run(mesh, options, progress)
+    })
+}
+
+/// [`catmull_clark`] itself, outside the journal's step.
+fn catmull_clark_run(
+    mesh: &mut Mesh,
+    options: &SubdivisionOptions,
     mut progress: Progress<'_>,
 ) -> Result<SubdivisionReport> {
     check_columns(

@@ -285,6 +285,11 @@ pub struct CurvatureColumns {
 /// # Ok::<(), meshloom::Error>(())
 /// ```
 pub fn add_curvature(mesh: &mut Mesh, options: &CurvatureOptions) -> Result<CurvatureColumns> {
+    mesh.as_one_step("Add curvature", |mesh| add_curvature_run(mesh, options))
+}
+
+/// [`add_curvature`] itself, outside the journal's step.
+fn add_curvature_run(mesh: &mut Mesh, options: &CurvatureOptions) -> Result<CurvatureColumns> {
     let c = curvature(mesh, options)?;
     // Check every name before adding any column.
     for name in [

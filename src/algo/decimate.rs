@@ -303,6 +303,15 @@ pub struct DecimateReport {
 pub fn decimate(
     mesh: &mut Mesh,
     options: &DecimateOptions,
+    progress: Progress<'_>,
+) -> Result<DecimateReport> {
+    mesh.as_one_step("Decimate", |mesh| decimate_run(mesh, options, progress))
+}
+
+/// [`decimate`] itself, outside the journal's step.
+fn decimate_run(
+    mesh: &mut Mesh,
+    options: &DecimateOptions,
     mut progress: Progress<'_>,
 ) -> Result<DecimateReport> {
     let stops = [Stop::from_target(mesh, options)?];
@@ -764,7 +773,9 @@ impl Engine {
                 }
                 let (a, b) = (mesh.he[c.h].origin, mesh.he[c.h.twin()].origin);
                 let hk = mesh.hkey(c.h);
-                if mesh.collapse_unvalidated(c.h, c.t, Some(c.p)).is_err() {
+                if crate::journal::journaled!(mesh.collapse_unvalidated(c.h, c.t, Some(c.p)))
+                    .is_err()
+                {
                     report.refused.topology += 1;
                     continue;
                 }

@@ -142,7 +142,12 @@ fn unsuitable(key: Option<VertexKey>, reason: impl Into<String>) -> Error {
 /// assert!(fair(&mut sphere, &FairOptions::default(), Progress::none()).is_err());
 /// assert_eq!(sphere.position_slots(), before.position_slots());
 /// ```
-pub fn fair(
+pub fn fair(mesh: &mut Mesh, options: &FairOptions, progress: Progress<'_>) -> Result<FairReport> {
+    mesh.as_one_step("Fair", |mesh| fair_run(mesh, options, progress))
+}
+
+/// [`fair`] itself, outside the journal's step.
+fn fair_run(
     mesh: &mut Mesh,
     options: &FairOptions,
     mut progress: Progress<'_>,

@@ -88,6 +88,17 @@ const ALGORITHM: &str = "loop_subdivide";
 pub fn loop_subdivide(
     mesh: &mut Mesh,
     options: &SubdivisionOptions,
+    progress: Progress<'_>,
+) -> Result<SubdivisionReport> {
+    mesh.as_one_step("Loop subdivision", |mesh| {
+        loop_subdivide_run(mesh, options, progress)
+    })
+}
+
+/// [`loop_subdivide`] itself, outside the journal's step.
+fn loop_subdivide_run(
+    mesh: &mut Mesh,
+    options: &SubdivisionOptions,
     mut progress: Progress<'_>,
 ) -> Result<SubdivisionReport> {
     check_columns(

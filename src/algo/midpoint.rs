@@ -100,6 +100,17 @@ impl MidpointOptions {
 pub fn midpoint_subdivide(
     mesh: &mut Mesh,
     options: &MidpointOptions,
+    progress: Progress<'_>,
+) -> Result<SubdivisionReport> {
+    mesh.as_one_step("Midpoint subdivision", |mesh| {
+        midpoint_subdivide_run(mesh, options, progress)
+    })
+}
+
+/// [`midpoint_subdivide`] itself, outside the journal's step.
+fn midpoint_subdivide_run(
+    mesh: &mut Mesh,
+    options: &MidpointOptions,
     mut progress: Progress<'_>,
 ) -> Result<SubdivisionReport> {
     let rule = match options.faces {

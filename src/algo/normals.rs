@@ -333,6 +333,11 @@ fn newell_vectors(mesh: &Mesh, p: &[V3]) -> Vec<V3> {
 /// # Ok::<(), meshloom::Error>(())
 /// ```
 pub fn add_face_normals(mesh: &mut Mesh) -> Result<FaceAttr<V3>> {
+    mesh.as_one_step("Add face normals", add_face_normals_run)
+}
+
+/// [`add_face_normals`] itself, outside the journal's step.
+fn add_face_normals_run(mesh: &mut Mesh) -> Result<FaceAttr<V3>> {
     let n = face_normals(mesh)?;
     let keys: Vec<FaceKey> = mesh.faces_and_holes().collect();
     let col = normal_column::<FaceKey>(mesh)?;
@@ -535,6 +540,16 @@ fn vertex_and_face_normals(
 /// # Ok::<(), meshloom::Error>(())
 /// ```
 pub fn add_vertex_normals(
+    mesh: &mut Mesh,
+    options: &VertexNormalOptions,
+) -> Result<VertexAttr<V3>> {
+    mesh.as_one_step("Add vertex normals", |mesh| {
+        add_vertex_normals_run(mesh, options)
+    })
+}
+
+/// [`add_vertex_normals`] itself, outside the journal's step.
+fn add_vertex_normals_run(
     mesh: &mut Mesh,
     options: &VertexNormalOptions,
 ) -> Result<VertexAttr<V3>> {
@@ -802,6 +817,16 @@ pub fn corner_normals(mesh: &Mesh, options: &CornerNormalOptions) -> Result<Vec<
 /// # Ok::<(), meshloom::Error>(())
 /// ```
 pub fn add_corner_normals(
+    mesh: &mut Mesh,
+    options: &CornerNormalOptions,
+) -> Result<HalfedgeAttr<V3>> {
+    mesh.as_one_step("Add corner normals", |mesh| {
+        add_corner_normals_run(mesh, options)
+    })
+}
+
+/// [`add_corner_normals`] itself, outside the journal's step.
+fn add_corner_normals_run(
     mesh: &mut Mesh,
     options: &CornerNormalOptions,
 ) -> Result<HalfedgeAttr<V3>> {

@@ -98,6 +98,9 @@ mod bvh;
 use crate::attr::{EdgeAttr, VertexAttr};
 use crate::error::{Error, Result};
 use crate::layout::{Eid, Fid, Hid, Vid};
+// The remesher edits a working copy (a clone records nothing), so its
+// crate-private doors run unrecorded; the run is one unit through replace_with.
+use crate::journal::Unrecorded;
 use crate::mesh::Mesh;
 use bvh::{dot, sub, Bvh, Segment, Triangle, V3};
 
@@ -917,14 +920,14 @@ impl Engine {
             let nh = mesh.next(h);
             let c = mesh.next(nh);
             let n0 = mesh.next(c);
-            let (x, g) = mesh.split_face_raw(n0, h, nh, c);
+            let (x, g) = mesh.split_face_raw::<Unrecorded>(n0, h, nh, c);
             mesh.split_face_values(fh, &[fh, g]);
             spokes[0] = x.edge();
         }
         if !hole_t {
             let nt = mesh.next(n1);
             let d = mesh.next(nt);
-            let (x, g) = mesh.split_face_raw(t, n1, nt, d);
+            let (x, g) = mesh.split_face_raw::<Unrecorded>(t, n1, nt, d);
             mesh.split_face_values(ft, &[ft, g]);
             spokes[1] = x.edge();
         }
@@ -974,7 +977,9 @@ impl Engine {
                     let allowed = if h == h0 { c01 } else { c10 };
                     if allowed
                         && self.short_enough_after(mesh, h)
-                        && mesh.collapse_unvalidated(h, 1.0, None).is_ok()
+                        && mesh
+                            .collapse_unvalidated::<Unrecorded>(h, 1.0, None)
+                            .is_ok()
                     {
                         collapses += 1;
                         any = true;

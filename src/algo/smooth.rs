@@ -174,6 +174,15 @@ fn unsuitable(reason: impl Into<String>) -> Error {
 pub fn smooth(
     mesh: &mut Mesh,
     options: &SmoothOptions,
+    progress: Progress<'_>,
+) -> Result<SmoothReport> {
+    mesh.as_one_step("Smooth", |mesh| smooth_run(mesh, options, progress))
+}
+
+/// [`smooth`] itself, outside the journal's step.
+fn smooth_run(
+    mesh: &mut Mesh,
+    options: &SmoothOptions,
     mut progress: Progress<'_>,
 ) -> Result<SmoothReport> {
     let explicit = options.method != SmoothMethod::Implicit;

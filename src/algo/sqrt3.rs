@@ -95,6 +95,17 @@ const ALGORITHM: &str = "sqrt3_subdivide";
 pub fn sqrt3_subdivide(
     mesh: &mut Mesh,
     options: &SubdivisionOptions,
+    progress: Progress<'_>,
+) -> Result<SubdivisionReport> {
+    mesh.as_one_step("Sqrt(3) subdivision", |mesh| {
+        sqrt3_subdivide_run(mesh, options, progress)
+    })
+}
+
+/// [`sqrt3_subdivide`] itself, outside the journal's step.
+fn sqrt3_subdivide_run(
+    mesh: &mut Mesh,
+    options: &SubdivisionOptions,
     mut progress: Progress<'_>,
 ) -> Result<SubdivisionReport> {
     check_columns(

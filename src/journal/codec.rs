@@ -147,9 +147,38 @@ fn bits_state(b: u64) -> State {
     }
 }
 
-/// Append `step` as one framed step.
-pub(crate) fn encode(step: &Step, out: &mut Vec<u8>, body: &mut Vec<u8>) {
-    body.clear();
+/// Append `step` as one framed step. The body is written in place after
+/// a one-byte length; a body of 128 bytes or more moves up to make room
+/// for its longer length (no scratch copy of the body).
+pub(crate) fn encode(step: &Step, out: &mut Vec<u8>) {
+    let frame = out.len();
+    out.reserve(1 + size_hint(step));
+    out.push(0);
+    encode_body(step, out);
+    let len = out.len() - frame - 1;
+    let k = varint_len(len as u64);
+    if k > 1 {
+        out.resize(out.len() + k - 1, 0);
+        out.copy_within(frame + 1..frame + 1 + len, frame + k);
+    }
+    let mut prefix = Vec::with_capacity(k);
+    put(&mut prefix, len as u64);
+    out[frame..frame + k].copy_from_slice(&prefix);
+    // The length again, reversed, so the step can be found from its end.
+    let mark = out.len();
+    put(out, len as u64);
+    out[mark..].reverse();
+}
+
+/// About how many bytes `step`'s body takes (to reserve once).
+fn size_hint(step: &Step) -> usize {
+    16 + step.he.len() * 6
+        + (step.vh.len() + step.fl.len()) * 4
+        + step.events.iter().map(|e| e.len() * 4).sum::<usize>()
+}
+
+/// `step`'s body, appended to `body`.
+fn encode_body(step: &Step, body: &mut Vec<u8>) {
     let mut flags = u64::from(step.more);
     let has_slots =
         step.births.iter().any(|b| b.1 > 0) || step.events.iter().any(|e| !e.is_empty());
@@ -263,12 +292,6 @@ pub(crate) fn encode(step: &Step, out: &mut Vec<u8>, body: &mut Vec<u8>) {
     if step.side > 0 {
         put(body, u64::from(step.side));
     }
-    put(out, body.len() as u64);
-    out.extend_from_slice(body);
-    // The length again, reversed, so the step can be found from its end.
-    let mark = out.len();
-    put(out, body.len() as u64);
-    out[mark..].reverse();
 }
 
 /// Reads varints forward.
@@ -512,10 +535,9 @@ mod tests {
     fn steps_round_trip_from_both_ends() {
         let s = sample();
         let mut log = Vec::new();
-        let mut body = Vec::new();
-        encode(&Step::default(), &mut log, &mut body);
+        encode(&Step::default(), &mut log);
         let first_end = log.len();
-        encode(&s, &mut log, &mut body);
+        encode(&s, &mut log);
         // From the end.
         let (start, range) = last_step(&log, log.len());
         assert_eq!(start, first_end);
@@ -544,8 +566,7 @@ mod tests {
             ));
         }
         let mut log = vec![0xAA];
-        let mut body = Vec::new();
-        encode(&s, &mut log, &mut body);
+        encode(&s, &mut log);
         let (start, range) = last_step(&log, log.len());
         assert_eq!(start, 1);
         let mut d = Step::default();

@@ -1,102 +1,166 @@
-//! The mutators every link write goes through.
+//! The mutators every link write goes through, and how an operator
+//! chooses whether they record.
 //!
 //! The mesh keeps its links in [`LinkVec`](crate::layout::LinkVec)s, which
-//! have no `IndexMut`: a write is one of the calls below. Each records the
-//! old value first while a journal is on ([`Mesh::rec`] is `Some`) and the
-//! slot existed when the open step began; with no journal the check is one
-//! test of a pointer that is null, and the write is the plain store it
-//! replaced. Slot births and deaths are recorded in
-//! [`Mesh::alloc_vertex`] and its siblings, attribute writes in
-//! [`Columns`](crate::store::Columns) (`save`, one compare).
+//! have no `IndexMut`: a write is one of the calls below. Each is generic
+//! over a [`Journaling`] mode, chosen **once per operator call**: a public
+//! operator looks at [`Mesh::rec`] once and runs its body either as
+//! `body::<Unrecorded>` (no journal: every hook below compiles away, the
+//! write is the plain store and nothing else, as if the journal did not
+//! exist) or as `body::<Recorded>` (the hooks record the old value of
+//! every slot that existed when the open step began, once per slot per
+//! step). Code outside the operators (raw edits, setters) uses
+//! `Recorded`, whose hooks check the recorder themselves.
+//!
+//! Slot births and deaths are recorded in [`Mesh::alloc_vertex`] and its
+//! siblings (generic the same way), attribute writes in
+//! [`Columns`](crate::store::Columns) (`save`, one compare with a bound
+//! that is 0 with no journal).
 
+use crate::journal::Recorder;
 use crate::layout::{FaceLink, Fid, HalfedgeRecord, Hid, Vid};
 use crate::mesh::Mesh;
 
+/// Whether an operator's writes are recorded: [`Recorded`] or
+/// [`Unrecorded`], picked once per call (see the module docs).
+pub(crate) trait Journaling {
+    /// Whether the hooks look for a recorder at all.
+    const ON: bool;
+}
+
+/// Writes record their old values while a recorder exists (one test of
+/// [`Mesh::rec`] per write).
+pub(crate) enum Recorded {}
+
+/// No recorder exists: the hooks compile to nothing.
+pub(crate) enum Unrecorded {}
+
+impl Journaling for Recorded {
+    const ON: bool = true;
+}
+
+impl Journaling for Unrecorded {
+    const ON: bool = false;
+}
+
+/// Run an operator body generic over [`Journaling`] in the mode the mesh
+/// is in: `journaled!(self.body(args..))` calls `self.body::<Recorded>`
+/// while a recorder exists, `self.body::<Unrecorded>` otherwise.
+macro_rules! journaled {
+    ($m:ident . $body:ident ( $($arg:expr),* $(,)? )) => {
+        if $m.rec.is_some() {
+            $m.$body::<$crate::journal::Recorded>($($arg),*)
+        } else {
+            $m.$body::<$crate::journal::Unrecorded>($($arg),*)
+        }
+    };
+}
+pub(crate) use journaled;
+
 impl Mesh {
+    /// The recorder, if `J` records and one exists (with `Unrecorded`, a
+    /// constant `None`: the caller's recording code is dead).
+    #[inline(always)]
+    pub(crate) fn recorder<J: Journaling>(&mut self) -> Option<&mut Recorder> {
+        if J::ON {
+            self.rec.as_deref_mut()
+        } else {
+            None
+        }
+    }
+
     /// Record half-edge `h`'s links before a write.
     #[inline(always)]
-    fn log_he(&mut self, h: Hid) {
-        if let Some(r) = self.rec.as_deref_mut() {
-            r.save_he(h, self.he[h]);
+    fn log_he<J: Journaling>(&mut self, h: Hid) {
+        let old = self.he[h];
+        if let Some(r) = self.recorder::<J>() {
+            r.save_he(h, old);
         }
     }
 
     /// Set all three links of half-edge `h`.
     #[inline(always)]
-    pub(crate) fn set_he(&mut self, h: Hid, record: HalfedgeRecord) {
-        self.log_he(h);
+    pub(crate) fn set_he<J: Journaling>(&mut self, h: Hid, record: HalfedgeRecord) {
+        self.log_he::<J>(h);
         *self.he.unlogged_mut(h) = record;
     }
 
     /// Half-edge `h`'s links, mutably (recorded first).
     #[inline(always)]
-    pub(crate) fn he_mut(&mut self, h: Hid) -> &mut HalfedgeRecord {
-        self.log_he(h);
+    pub(crate) fn he_mut<J: Journaling>(&mut self, h: Hid) -> &mut HalfedgeRecord {
+        self.log_he::<J>(h);
         self.he.unlogged_mut(h)
     }
 
     /// Set `next(h)`.
-    pub(crate) fn set_next(&mut self, h: Hid, n: Hid) {
-        self.he_mut(h).next = n;
+    #[inline(always)]
+    pub(crate) fn set_next<J: Journaling>(&mut self, h: Hid, n: Hid) {
+        self.he_mut::<J>(h).next = n;
     }
 
     /// Point vertex `v` at half-edge `h`.
-    pub(crate) fn set_vertex_halfedge(&mut self, v: Vid, h: Hid) {
-        if let Some(r) = self.rec.as_deref_mut() {
-            r.save_vh(v, self.v_halfedge[v]);
-        }
-        *self.v_halfedge.unlogged_mut(v) = h;
+    #[inline(always)]
+    pub(crate) fn set_vertex_halfedge<J: Journaling>(&mut self, v: Vid, h: Hid) {
+        *self.v_halfedge_mut::<J>(v) = h;
     }
 
     /// Vertex `v`'s half-edge, mutably (recorded first).
     #[inline(always)]
-    pub(crate) fn v_halfedge_mut(&mut self, v: Vid) -> &mut Hid {
-        if let Some(r) = self.rec.as_deref_mut() {
-            r.save_vh(v, self.v_halfedge[v]);
+    pub(crate) fn v_halfedge_mut<J: Journaling>(&mut self, v: Vid) -> &mut Hid {
+        let old = self.v_halfedge[v];
+        if let Some(r) = self.recorder::<J>() {
+            r.save_vh(v, old);
         }
         self.v_halfedge.unlogged_mut(v)
     }
 
     /// Face `f`'s link, mutably (recorded first).
     #[inline(always)]
-    pub(crate) fn f_halfedge_mut(&mut self, f: Fid) -> &mut FaceLink {
-        if let Some(r) = self.rec.as_deref_mut() {
-            r.save_fl(f, self.f_halfedge[f]);
+    pub(crate) fn f_halfedge_mut<J: Journaling>(&mut self, f: Fid) -> &mut FaceLink {
+        let old = self.f_halfedge[f];
+        if let Some(r) = self.recorder::<J>() {
+            r.save_fl(f, old);
         }
         self.f_halfedge.unlogged_mut(f)
     }
 
     /// Set face `f`'s link (half-edge and hole flag).
     #[inline(always)]
-    pub(crate) fn set_face_link_raw(&mut self, f: Fid, link: FaceLink) {
-        if let Some(r) = self.rec.as_deref_mut() {
-            r.save_fl(f, self.f_halfedge[f]);
-        }
-        *self.f_halfedge.unlogged_mut(f) = link;
+    pub(crate) fn set_face_link_raw<J: Journaling>(&mut self, f: Fid, link: FaceLink) {
+        *self.f_halfedge_mut::<J>(f) = link;
     }
 
     /// Point face `f` at half-edge `h`, keeping its hole flag.
     #[inline(always)]
-    pub(crate) fn set_face_link(&mut self, f: Fid, h: Hid) {
+    pub(crate) fn set_face_link<J: Journaling>(&mut self, f: Fid, h: Hid) {
         let link = self.f_halfedge[f].with_halfedge(h);
-        self.set_face_link_raw(f, link);
+        self.set_face_link_raw::<J>(f, link);
     }
 
     /// The end of one public edit (an operator, a setter): validate in
     /// debug builds, then close the journal's open step, if a journal
-    /// records.
-    #[inline]
-    pub(crate) fn end_op(&mut self) {
+    /// records and no step group or transaction is open.
+    #[inline(always)]
+    pub(crate) fn end_op<J: Journaling>(&mut self) {
         self.debug_validate();
-        self.end_edit();
+        if J::ON {
+            self.end_edit();
+        }
     }
 
     /// Close the journal's open step, if a journal records (no validation:
-    /// attribute setters).
+    /// attribute setters). Inside a step group or a transaction the step
+    /// stays open: the group is one undo unit anyway, and one step for the
+    /// whole group saves each slot once (its oldest value) and seals once,
+    /// where a step per edit would save and encode every edit's writes.
+    /// Whatever needs the step closed (undo, a bulk view, a column change,
+    /// `take_changes`, the group's end) seals it first.
     #[inline]
     pub(crate) fn end_edit(&mut self) {
-        if self.rec.is_some() {
-            self.seal();
+        if let Some(r) = self.rec.as_deref() {
+            if r.group_depth == 0 {
+                self.seal();
+            }
         }
     }
 }

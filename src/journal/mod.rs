@@ -2,8 +2,10 @@
 //! needs from its mesh kernel.
 //!
 //! Three services share one recorder, which is off until one of them is
-//! asked for (then [`Mesh`] carries it; with it off, every mutator's
-//! journal check is one test of a null pointer):
+//! asked for (then [`Mesh`] carries it). With it off, the journal costs
+//! one test per operator call: the operator then runs a body compiled
+//! without any recording hook (see `hooks.rs`), the same code as if the
+//! journal did not exist:
 //!
 //! - **Transactions.** [`Mesh::transaction`] runs a closure; if it returns
 //!   an error or panics, the mesh is put back exactly as it was (links,
@@ -30,14 +32,39 @@
 //! Every public operator, attribute setter and [`RawEdit`] session
 //! (closed by [`RawEdit::finish`]) is one step; each undo takes back one
 //! *unit*: one step, or every step of a [`Mesh::begin_step`] group or of a
-//! transaction. Algorithms built on the operators are journaled for free
-//! (group them with [`Mesh::step`] to undo them as one).
+//! transaction. Composite operators ([`Mesh::triangulate_all`],
+//! [`Mesh::fill_hole_triangulated`], [`Mesh::cut_path`]) are one step. An
+//! algorithm run ([`algo::smooth`](crate::algo::smooth::smooth),
+//! [`algo::fair`](crate::algo::fair::fair),
+//! [`algo::decimate`](crate::algo::decimate()) in place, `replay`, the
+//! subdivisions, `add_*_normals`, `add_curvature`) is one unit named after
+//! it ([`Mesh::undo_name`] gives `"Decimate"`, `"Smooth"`, ..., unless a
+//! group of yours is open, whose name wins).
+//!
+//! Inside a group or a transaction the edits share one open step, sealed
+//! when the group ends (or when something needs it closed: a bulk view, a
+//! column added or removed, [`Mesh::take_changes`]): each slot's old value
+//! is saved once however often the group writes it, slots the group
+//! created are never saved (undo makes them vacant), and the delta is
+//! encoded once.
 //!
 //! Wholesale rebuilds ([`Mesh::compact`], algorithms that rebuild the mesh
 //! through the crate's one door for that, `Mesh::replace_with`) are kept as
 //! one step holding the whole prior mesh (memory: one copy); undo swaps it
 //! back, and the rebuilt mesh's keys stay stale after that undo. Change
 //! tracking reports them as [`Changes::rebuilt`].
+//!
+//! # Cost
+//!
+//! Measured with `examples/ml_bench.rs` on the 250 000-vertex grid (the
+//! `journal` row: every face poked 1-to-3, then every new vertex collapsed
+//! back, 996 004 operators, as one [`Mesh::step`]): with history on, the
+//! run takes 2.6 times as long as with the journal off, sealing included
+//! (1.8 times without the seal); the undo log holds 37.8 bytes per
+//! operator; undoing the whole run takes 0.28 of the time the run took.
+//! With the journal off, `flip_back` and `split_collapse_checked` execute
+//! as many instructions as before the journal existed (callgrind, within
+//! 2 %).
 //!
 //! # Bulk writes (the rule for algorithm writers)
 //!
@@ -119,6 +146,7 @@ mod codec;
 mod hooks;
 mod recorder;
 
+pub(crate) use hooks::{journaled, Journaling, Recorded, Unrecorded};
 use recorder::Dir;
 pub(crate) use recorder::Recorder;
 
@@ -621,6 +649,23 @@ impl Mesh {
     }
 
     /// Close the open step if a recorder is on.
+    /// Run `f` (an algorithm, a composite operator) as one undo unit named
+    /// `name` while a journal records; with none, just run it (nothing
+    /// else: the check is one test). The run's edits share one open step
+    /// (see [`end_edit`](Mesh::end_edit)), so each slot is saved once.
+    pub(crate) fn as_one_step<R>(&mut self, name: &str, f: impl FnOnce(&mut Mesh) -> R) -> R {
+        if self.rec.is_none() {
+            return f(self);
+        }
+        self.begin_step(name);
+        let out = catch_unwind(AssertUnwindSafe(|| f(self)));
+        self.end_step();
+        match out {
+            Ok(r) => r,
+            Err(p) => resume_unwind(p),
+        }
+    }
+
     #[inline]
     fn seal_if_on(&mut self) {
         if self.rec.is_some() {

@@ -129,10 +129,16 @@ pub(crate) struct Recorder {
     // ----- the open step
     /// Slot counts (vertex, edge, face) when it began.
     pub(crate) start: [u32; 3],
-    pub(crate) he: Vec<(Hid, HalfedgeRecord)>,
+    /// `(slot, 0, old links)`: the mask is filled in when the step is
+    /// sealed, and the vector then becomes the step's (no copy).
+    pub(crate) he: Vec<(Hid, u8, HalfedgeRecord)>,
     pub(crate) vh: Vec<(Vid, Hid)>,
     pub(crate) fl: Vec<(Fid, FaceLink)>,
     pub(crate) events: [Vec<SlotEvent>; 3],
+    /// Bitsets of the slots `he`, `vh` and `fl` hold (vertex, half-edge,
+    /// face): a write to a slot already saved in the open step saves
+    /// nothing. Cleared bit by bit when the step is sealed.
+    pub(crate) seen: [Vec<u64>; 3],
     pub(crate) holes0: usize,
     pub(crate) states0: [State; 3],
     pub(crate) side: Vec<Side>,
@@ -150,7 +156,6 @@ pub(crate) struct Recorder {
     pub(crate) rebuilt: bool,
     // ----- scratch
     step: Step,
-    body: Vec<u8>,
 }
 
 impl std::fmt::Debug for Recorder {
@@ -164,31 +169,58 @@ impl std::fmt::Debug for Recorder {
     }
 }
 
+/// Set bit `i` of `bits` (growing it); whether it was clear.
+#[inline(always)]
+fn first_write(bits: &mut Vec<u64>, i: u32) -> bool {
+    let (w, b) = ((i / 64) as usize, 1u64 << (i % 64));
+    if w >= bits.len() {
+        grow_bits(bits, w);
+    }
+    let word = &mut bits[w];
+    let first = *word & b == 0;
+    *word |= b;
+    first
+}
+
+#[cold]
+#[inline(never)]
+fn grow_bits(bits: &mut Vec<u64>, w: usize) {
+    bits.resize((w + 1).next_power_of_two(), 0);
+}
+
+/// Clear bit `i` of `bits` (set by [`first_write`]).
+#[inline(always)]
+fn clear_bit(bits: &mut [u64], i: u32) {
+    bits[(i / 64) as usize] &= !(1u64 << (i % 64));
+}
+
 /// Which arena a column set's slots belong to, and the shift from slot to
 /// arena slot (half-edge columns share their edge's arena).
 const SET_ARENA: [(usize, u32); 4] = [(0, 0), (1, 1), (1, 0), (2, 0)];
 
 impl Recorder {
-    /// Record `h`'s links before a write.
+    /// Record `h`'s links before a write: the first write to each slot
+    /// that existed when the open step began (later writes to it in the
+    /// same step keep nothing: the oldest value is the one to put back).
     #[inline]
     pub(crate) fn save_he(&mut self, h: Hid, old: HalfedgeRecord) {
-        if h.raw() < self.start[1] * 2 {
-            self.he.push((h, old));
+        if h.raw() < self.start[1] * 2 && first_write(&mut self.seen[1], h.raw()) {
+            self.he.push((h, 0, old));
         }
     }
 
-    /// Record `v`'s half-edge before a write.
+    /// Record `v`'s half-edge before a write (first write per step).
     #[inline]
     pub(crate) fn save_vh(&mut self, v: Vid, old: Hid) {
-        if v.raw() < self.start[0] {
+        if v.raw() < self.start[0] && first_write(&mut self.seen[0], v.raw()) {
             self.vh.push((v, old));
         }
     }
 
-    /// Record `f`'s link before a write.
+    /// Record `f`'s link before a write (first write per step).
     #[inline]
     pub(crate) fn save_fl(&mut self, f: Fid, old: FaceLink) {
-        if f.raw() < self.start[2] {
+        if f.raw() < self.start[2] && first_write(&mut self.seen[2], f.raw()) {
             self.fl.push((f, old));
         }
     }
@@ -337,40 +369,41 @@ impl Mesh {
                 }
             }
         }
-        // Links: the oldest value per slot, the fields that changed.
+        // Links: one saved (oldest) value per slot; keep the fields that
+        // changed, ascending by slot for the delta encoding.
         {
             let r = self.rec.as_deref_mut().expect("no recorder");
             let mut he = std::mem::take(&mut r.he);
-            he.sort_by_key(|e| e.0);
-            he.dedup_by_key(|e| e.0);
-            for &(h, old) in &he {
-                let cur = self.he[h];
-                let mut mask = 0;
-                if cur.origin != old.origin {
-                    mask |= ORIGIN;
-                }
-                if cur.next != old.next {
-                    mask |= NEXT;
-                }
-                if cur.face != old.face {
-                    mask |= FACE;
-                }
-                if mask != 0 {
-                    step.he.push((h, mask, old));
-                }
+            for &(h, ..) in &he {
+                clear_bit(&mut r.seen[1], h.raw());
             }
+            he.sort_unstable_by_key(|e| e.0);
+            for (h, mask, old) in &mut he {
+                let cur = self.he[*h];
+                *mask = (u8::from(cur.origin != old.origin) * ORIGIN)
+                    | (u8::from(cur.next != old.next) * NEXT)
+                    | (u8::from(cur.face != old.face) * FACE);
+            }
+            he.retain(|e| e.1 != 0);
+            // The records become the step's; the step's old buffer (empty)
+            // takes their place for the next step.
+            std::mem::swap(&mut step.he, &mut he);
             he.clear();
             r.he = he;
             let mut vh = std::mem::take(&mut r.vh);
-            vh.sort_by_key(|e| e.0);
-            vh.dedup_by_key(|e| e.0);
+            for &(v, _) in &vh {
+                clear_bit(&mut r.seen[0], v.raw());
+            }
+            vh.sort_unstable_by_key(|e| e.0);
             step.vh
                 .extend(vh.iter().filter(|&&(v, old)| self.v_halfedge[v] != old));
             vh.clear();
             r.vh = vh;
             let mut fl = std::mem::take(&mut r.fl);
-            fl.sort_by_key(|e| e.0);
-            fl.dedup_by_key(|e| e.0);
+            for &(f, _) in &fl {
+                clear_bit(&mut r.seen[2], f.raw());
+            }
+            fl.sort_unstable_by_key(|e| e.0);
             step.fl
                 .extend(fl.iter().filter(|&&(f, old)| self.f_halfedge[f] != old));
             fl.clear();
@@ -467,7 +500,7 @@ impl Mesh {
         if r.group_depth > 0 {
             r.group_started = true;
         }
-        codec::encode(step, &mut r.undo.bytes, &mut r.body);
+        codec::encode(step, &mut r.undo.bytes);
         for s in side {
             r.undo.push_side(s);
         }
@@ -690,7 +723,7 @@ impl Mesh {
                 Dir::Redo => &mut r2.undo,
             };
             step.more = !first_of_unit;
-            codec::encode(&step, &mut dst.bytes, &mut r2.body);
+            codec::encode(&step, &mut dst.bytes);
             for s in side {
                 dst.push_side(s);
             }

@@ -2,6 +2,7 @@
 
 use super::refuse;
 use crate::error::{Refusal, Result};
+use crate::journal::{journaled, Journaling};
 use crate::keys::{HalfedgeKey, VertexKey};
 use crate::layout::{Fid, Hid, Vid};
 use crate::mesh::Mesh;
@@ -375,6 +376,15 @@ impl Mesh {
     /// # Complexity
     /// As `collapse_edge`.
     pub fn collapse_edge_at(&mut self, hk: HalfedgeKey, t: f64) -> Result<VertexKey> {
+        journaled!(self.collapse_edge_at_with(hk, t))
+    }
+
+    /// [`collapse_edge_at`](Mesh::collapse_edge_at)'s body, in journaling mode `J`.
+    fn collapse_edge_at_with<J: Journaling>(
+        &mut self,
+        hk: HalfedgeKey,
+        t: f64,
+    ) -> Result<VertexKey> {
         if !(0.0..=1.0).contains(&t) {
             return Err(refuse(
                 "collapse_edge",
@@ -383,8 +393,8 @@ impl Mesh {
             ));
         }
         let plan = self.plan_collapse(hk)?;
-        let b = self.commit_collapse(plan, t, None);
-        self.end_op();
+        let b = self.commit_collapse::<J>(plan, t, None);
+        self.end_op::<J>();
         Ok(self.vkey(b))
     }
 
@@ -446,10 +456,19 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn collapse_edge_to(&mut self, hk: HalfedgeKey, position: [f64; 3]) -> Result<VertexKey> {
+        journaled!(self.collapse_edge_to_with(hk, position))
+    }
+
+    /// [`collapse_edge_to`](Mesh::collapse_edge_to)'s body, in journaling mode `J`.
+    fn collapse_edge_to_with<J: Journaling>(
+        &mut self,
+        hk: HalfedgeKey,
+        position: [f64; 3],
+    ) -> Result<VertexKey> {
         let plan = self.plan_collapse(hk)?;
         let t = self.collapse_weight(plan.h, position, hk)?;
-        let b = self.commit_collapse(plan, t, Some(position));
-        self.end_op();
+        let b = self.commit_collapse::<J>(plan, t, Some(position));
+        self.end_op::<J>();
         Ok(self.vkey(b))
     }
 
@@ -478,19 +497,24 @@ impl Mesh {
     /// caller validates once at the end; validating after each of
     /// thousands of collapses would make debug builds quadratic). The
     /// caller checked that `position` is finite and `t` in `0..=1`.
-    pub(crate) fn collapse_unvalidated(
+    pub(crate) fn collapse_unvalidated<J: Journaling>(
         &mut self,
         h: Hid,
         t: f64,
         position: Option<[f64; 3]>,
     ) -> Result<Vid> {
         let plan = self.plan_collapse(self.hkey(h))?;
-        Ok(self.commit_collapse(plan, t, position))
+        Ok(self.commit_collapse::<J>(plan, t, position))
     }
 
     /// The commit and rules of a planned collapse; cannot fail.
     #[inline(always)]
-    fn commit_collapse(&mut self, plan: CollapsePlan, t: f64, position: Option<[f64; 3]>) -> Vid {
+    fn commit_collapse<J: Journaling>(
+        &mut self,
+        plan: CollapsePlan,
+        t: f64,
+        position: Option<[f64; 3]>,
+    ) -> Vid {
         let CollapsePlan {
             h,
             a,
@@ -526,40 +550,40 @@ impl Mesh {
         let mut o = h;
         let mut budget = self.he.len();
         loop {
-            self.he_mut(o).origin = b;
+            self.he_mut::<J>(o).origin = b;
             o = self.next(o.twin());
             budget -= 1;
             if o == h || budget == 0 {
                 break;
             }
         }
-        self.set_next(ph, nh);
-        self.set_next(pt, nt);
+        self.set_next::<J>(ph, nh);
+        self.set_next::<J>(pt, nt);
         if self.face_halfedge(f_left) == h {
-            self.set_face_link(f_left, nh);
+            self.set_face_link::<J>(f_left, nh);
         }
         if self.face_halfedge(f_right) == h.twin() {
-            self.set_face_link(f_right, nt);
+            self.set_face_link::<J>(f_right, nt);
         }
-        *self.v_halfedge_mut(b) = nh;
-        self.free_edge(h.edge());
-        self.free_vertex(a);
+        *self.v_halfedge_mut::<J>(b) = nh;
+        self.free_edge::<J>(h.edge());
+        self.free_vertex::<J>(a);
         if left_goes {
             // Two-sided loop (ph: c -> b, nh: b -> c): keep nh.
-            self.dissolve_two_gon(ph, nh, before_tph);
+            self.dissolve_two_gon::<J>(ph, nh, before_tph);
         }
         if right_goes {
             // Two-sided loop (pt: d -> b, nt: b -> d): keep pt.
-            self.dissolve_two_gon(nt, pt, None);
+            self.dissolve_two_gon::<J>(nt, pt, None);
         }
         // Rule 11: b has a's holes now; a closed triangular hole may have
         // held its apex's half-edge.
         if rule11.b {
-            self.point_at_hole(b);
+            self.point_at_hole::<J>(b);
         }
         for v in [rule11.c, rule11.d] {
             if !v.is_none() {
-                self.point_at_hole(v);
+                self.point_at_hole::<J>(v);
             }
         }
         b
@@ -617,26 +641,26 @@ impl Mesh {
     /// `twin(p)` in its face and `p`'s edge goes. The mesh must be consistent
     /// apart from this two-sided loop. `before_tp`, when known, is the
     /// half-edge before `twin(p)` (else it is found by turning).
-    fn dissolve_two_gon(&mut self, p: Hid, n: Hid, before_tp: Option<Hid>) {
+    fn dissolve_two_gon<J: Journaling>(&mut self, p: Hid, n: Hid, before_tp: Option<Hid>) {
         let f = self.face_of(p);
         let tp = p.twin();
         let g = self.face_of(tp);
         let q = before_tp.unwrap_or_else(|| self.prev_fast(tp));
         debug_assert_eq!(q, self.prev(tp));
         let r = self.next(tp);
-        self.set_next(q, n);
-        self.set_next(n, r);
-        self.he_mut(n).face = g;
+        self.set_next::<J>(q, n);
+        self.set_next::<J>(n, r);
+        self.he_mut::<J>(n).face = g;
         if self.face_halfedge(g) == tp {
-            self.set_face_link(g, n);
+            self.set_face_link::<J>(g, n);
         }
         let u = self.origin(p);
         let w = self.origin(tp);
         if self.v_halfedge[u] == p {
-            *self.v_halfedge_mut(u) = n.twin();
+            *self.v_halfedge_mut::<J>(u) = n.twin();
         }
         if self.v_halfedge[w] == tp {
-            *self.v_halfedge_mut(w) = n;
+            *self.v_halfedge_mut::<J>(w) = n;
         }
         let (kept, gone) = (n.edge().index(), p.edge().index());
         self.attrs.edge.merge(kept, &[(kept, 0.5), (gone, 0.5)]);
@@ -652,7 +676,7 @@ impl Mesh {
                 .merge(k.index(), &[(k.index(), 1.0), (f.index(), 0.0)]);
         }
         self.attrs.halfedge.copy(tp.index(), n.index());
-        self.free_face(f);
-        self.free_edge(p.edge());
+        self.free_face::<J>(f);
+        self.free_edge::<J>(p.edge());
     }
 }

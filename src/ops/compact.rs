@@ -1,5 +1,6 @@
 //! `compact`: dense storage after many edits.
 
+use crate::journal::Unrecorded;
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, IdVec, Vid};
 use crate::mesh::Mesh;
@@ -238,7 +239,8 @@ impl Mesh {
             self.f_slots = s;
             self.attrs.face.permute(&f.order);
         }
-        self.end_op();
+        // Inside `wholesale`, which holds the recorder aside: nothing to record.
+        self.end_op::<Unrecorded>();
         KeyMaps {
             vertices: v.map,
             edges: e.map,

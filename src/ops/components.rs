@@ -1,5 +1,7 @@
 //! `split_components`: one mesh per connected piece.
 
+// The pieces are fresh copies (a clone has no journal): nothing records.
+use crate::journal::Unrecorded;
 use crate::layout::{IdVec, Vid};
 use crate::mesh::Mesh;
 
@@ -65,20 +67,20 @@ impl Mesh {
             let edges: Vec<_> = m.eids().collect();
             for e in edges {
                 if label[m.origin(e.halfedge(0))] != c {
-                    m.free_edge(e);
+                    m.free_edge::<Unrecorded>(e);
                 }
             }
             let faces: Vec<_> = m.fids().collect();
             for f in faces {
                 let h = self.face_halfedge(f);
                 if label[self.origin(h)] != c {
-                    m.free_face(f);
+                    m.free_face::<Unrecorded>(f);
                 }
             }
             let vertices: Vec<_> = m.vids().collect();
             for v in vertices {
                 if label[v] != c {
-                    m.free_vertex(v);
+                    m.free_vertex::<Unrecorded>(v);
                 }
             }
             if compact {

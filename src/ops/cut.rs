@@ -4,6 +4,7 @@ use std::collections::HashMap;
 
 use super::refuse;
 use crate::error::{Refusal, Result};
+use crate::journal::{journaled, Journaling};
 use crate::keys::{FaceKey, VertexKey};
 use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, Vid};
 use crate::mesh::Mesh;
@@ -189,6 +190,11 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn cut_path(&mut self, path: &[VertexKey]) -> Result<Vec<FaceKey>> {
+        journaled!(self.cut_path_with(path))
+    }
+
+    /// [`cut_path`](Mesh::cut_path)'s body, in journaling mode `J`.
+    fn cut_path_with<J: Journaling>(&mut self, path: &[VertexKey]) -> Result<Vec<FaceKey>> {
         let CutPlan {
             hs,
             closed,
@@ -216,19 +222,19 @@ impl Mesh {
             .collect();
         let mut copy: Vec<Vid> = vs.clone();
         for (i, _) in &wedges {
-            copy[*i] = self.alloc_vertex();
+            copy[*i] = self.alloc_vertex::<J>();
         }
         if closed {
             copy[k] = copy[0];
         }
-        let new_edges: Vec<Eid> = (0..k).map(|_| self.alloc_edge()).collect();
+        let new_edges: Vec<Eid> = (0..k).map(|_| self.alloc_edge::<J>()).collect();
         // g_i = v'_i+1 -> v'_i takes t_i's place in its right face; gt_i is
         // its twin, on the new boundary.
         let g = |i: usize| new_edges[i].halfedge(0);
         let gt = |i: usize| new_edges[i].halfedge(1);
         let map = |x: Hid| index_of_t.get(&x).map_or(x, |&j| g(j));
         for i in 0..k {
-            *self.he_mut(g(i)) = HalfedgeRecord {
+            *self.he_mut::<J>(g(i)) = HalfedgeRecord {
                 origin: copy[i + 1],
                 next: map(nexts[i]),
                 face: rights[i],
@@ -236,9 +242,9 @@ impl Mesh {
         }
         for i in 0..k {
             let p = map(prevs[i]);
-            self.set_next(p, g(i));
+            self.set_next::<J>(p, g(i));
             if self.face_halfedge(rights[i]) == ts[i] {
-                self.set_face_link(rights[i], g(i));
+                self.set_face_link::<J>(rights[i], g(i));
             }
         }
         // The new boundary: t_i run backwards along the left side, gt_i
@@ -252,7 +258,7 @@ impl Mesh {
             } else {
                 hole_out[0].unwrap_or(gt(0))
             };
-            self.he_mut(ts[i]).next = next_t;
+            self.he_mut::<J>(ts[i]).next = next_t;
             let next_gt = if i + 1 < k {
                 gt(i + 1)
             } else if closed {
@@ -261,30 +267,30 @@ impl Mesh {
                 hole_out[1].unwrap_or(ts[k - 1])
             };
             // The face is set when the new loops are labelled.
-            *self.he_mut(gt(i)) = HalfedgeRecord {
+            *self.he_mut::<J>(gt(i)) = HalfedgeRecord {
                 origin: copy[i],
                 next: next_gt,
                 face: Fid::NONE,
             };
         }
         if let Some(hi) = hole_in[0] {
-            self.set_next(hi, gt(0));
+            self.set_next::<J>(hi, gt(0));
         }
         if let Some(hi) = hole_in[1] {
-            self.set_next(hi, ts[k - 1]);
+            self.set_next::<J>(hi, ts[k - 1]);
         }
         for (i, wedge) in &wedges {
             for &o in wedge {
-                self.he_mut(o).origin = copy[*i];
+                self.he_mut::<J>(o).origin = copy[*i];
             }
             let out = if *i < k { gt(*i) } else { wedge[0] };
-            *self.v_halfedge_mut(copy[*i]) = out;
+            *self.v_halfedge_mut::<J>(copy[*i]) = out;
         }
         for i in 0..k {
-            *self.v_halfedge_mut(vs[i]) = hs[i];
+            *self.v_halfedge_mut::<J>(vs[i]) = hs[i];
         }
         if !closed {
-            *self.v_halfedge_mut(vs[k]) = ts[k - 1];
+            *self.v_halfedge_mut::<J>(vs[k]) = ts[k - 1];
         }
         // Hole faces: the loop through t_0, then the one through gt_0 if it
         // is another loop. Old holes are reused, one left over is freed.
@@ -294,20 +300,20 @@ impl Mesh {
         let first = spare
             .first()
             .copied()
-            .unwrap_or_else(|| self.alloc_face(true));
-        self.he_mut(ts[0]).face = Fid::NONE;
-        self.relabel_loop(ts[0], first);
+            .unwrap_or_else(|| self.alloc_face::<J>(true));
+        self.he_mut::<J>(ts[0]).face = Fid::NONE;
+        self.relabel_loop::<J>(ts[0], first);
         made.push(first);
         if self.face_of(gt(0)) != first {
             let second = if spare.len() > 1 {
                 spare[1]
             } else {
-                self.alloc_face(true)
+                self.alloc_face::<J>(true)
             };
-            self.relabel_loop(gt(0), second);
+            self.relabel_loop::<J>(gt(0), second);
             made.push(second);
         } else if spare.len() > 1 {
-            self.free_face(spare[1]);
+            self.free_face::<J>(spare[1]);
         }
         // Attributes.
         for (i, _) in &wedges {
@@ -328,7 +334,7 @@ impl Mesh {
                 self.attrs.face.interpolate(h.index(), &[]);
             }
         }
-        self.end_op();
+        self.end_op::<J>();
         Ok(made.into_iter().map(|h| self.fkey(h)).collect())
     }
 }

@@ -114,6 +114,7 @@ mod vertex_split;
 pub use compact::KeyMaps;
 
 use crate::error::{Error, Refusal};
+use crate::journal::Journaling;
 use crate::keys::AnyKey;
 use crate::layout::{Eid, Fid, HalfedgeRecord, Hid};
 use crate::mesh::Mesh;
@@ -147,21 +148,21 @@ impl Mesh {
     /// and point `f` at `start`. When `f` is a hole, every vertex on the
     /// cycle is pointed at its half-edge there (rule 11: its corners are
     /// now on the boundary).
-    pub(crate) fn relabel_loop(&mut self, start: Hid, f: Fid) {
+    pub(crate) fn relabel_loop<J: Journaling>(&mut self, start: Hid, f: Fid) {
         let hole = self.is_hole(f);
         let mut h = start;
         for _ in 0..self.he.len() {
-            self.he_mut(h).face = f;
+            self.he_mut::<J>(h).face = f;
             if hole {
                 let o = self.he[h].origin;
-                *self.v_halfedge_mut(o) = h;
+                *self.v_halfedge_mut::<J>(o) = h;
             }
             h = self.he[h].next;
             if h == start {
                 break;
             }
         }
-        self.set_face_link(f, start);
+        self.set_face_link::<J>(f, start);
     }
 
     /// Twice the vector area (Newell) of the `next` cycle through `start`.
@@ -215,27 +216,33 @@ impl Mesh {
     /// The new half-edge `a → b` (returned first) lies in a new face (returned
     /// second) with `hb .. pa`; its twin stays in `f` with `ha .. pb`. Corner
     /// and edge rules run; the face rule is the caller's.
-    pub(crate) fn split_face_raw(&mut self, pa: Hid, ha: Hid, pb: Hid, hb: Hid) -> (Hid, Fid) {
+    pub(crate) fn split_face_raw<J: Journaling>(
+        &mut self,
+        pa: Hid,
+        ha: Hid,
+        pb: Hid,
+        hb: Hid,
+    ) -> (Hid, Fid) {
         let f = self.face_of(ha);
         let a = self.origin(ha);
         let b = self.origin(hb);
-        let e = self.alloc_edge();
-        let g = self.alloc_face(false);
+        let e = self.alloc_edge::<J>();
+        let g = self.alloc_face::<J>(false);
         let [n0, n1] = e.halfedges();
-        *self.he_mut(n0) = HalfedgeRecord {
+        *self.he_mut::<J>(n0) = HalfedgeRecord {
             origin: a,
             next: hb,
             face: g,
         };
-        *self.he_mut(n1) = HalfedgeRecord {
+        *self.he_mut::<J>(n1) = HalfedgeRecord {
             origin: b,
             next: ha,
             face: f,
         };
-        self.set_next(pa, n0);
-        self.set_next(pb, n1);
-        self.relabel_loop(n0, g);
-        self.set_face_link(f, n1);
+        self.set_next::<J>(pa, n0);
+        self.set_next::<J>(pb, n1);
+        self.relabel_loop::<J>(n0, g);
+        self.set_face_link::<J>(f, n1);
         self.attrs.edge.interpolate(e.index(), &[]);
         self.attrs.halfedge.copy(ha.index(), n0.index());
         self.attrs.halfedge.copy(hb.index(), n1.index());
@@ -248,7 +255,7 @@ impl Mesh {
     /// same hole flag takes the second), and vertices left without edges are
     /// removed. Attribute values of the freed elements are dropped: run the
     /// merge rules before. Must be called on a consistent mesh.
-    pub(crate) fn remove_edge_raw(&mut self, e: Eid, survivor: Fid) -> EdgeRemoval {
+    pub(crate) fn remove_edge_raw<J: Journaling>(&mut self, e: Eid, survivor: Fid) -> EdgeRemoval {
         let [x, y] = e.halfedges();
         let (fx, fy) = (self.face_of(x), self.face_of(y));
         let (a, b) = (self.origin(x), self.origin(y));
@@ -259,65 +266,65 @@ impl Mesh {
         };
         if nx == y && ny == x {
             // An isolated edge: everything goes.
-            self.free_face(fx);
+            self.free_face::<J>(fx);
             out.freed_face = Some(fx);
-            self.free_vertex(a);
-            self.free_vertex(b);
-            self.free_edge(e);
+            self.free_vertex::<J>(a);
+            self.free_vertex::<J>(b);
+            self.free_edge::<J>(e);
             return out;
         }
         if nx == y {
             // b has degree 1: ... px -> x -> y -> ny ...
             let px = self.prev_fast(x);
-            self.set_next(px, ny);
-            self.free_vertex(b);
+            self.set_next::<J>(px, ny);
+            self.free_vertex::<J>(b);
             if self.v_halfedge[a] == x {
-                *self.v_halfedge_mut(a) = ny;
+                *self.v_halfedge_mut::<J>(a) = ny;
             }
             let fl = self.face_halfedge(fx);
             if fl == x || fl == y {
-                self.set_face_link(fx, ny);
+                self.set_face_link::<J>(fx, ny);
             }
-            self.free_edge(e);
+            self.free_edge::<J>(e);
             return out;
         }
         if ny == x {
             let py = self.prev_fast(y);
-            self.set_next(py, nx);
-            self.free_vertex(a);
+            self.set_next::<J>(py, nx);
+            self.free_vertex::<J>(a);
             if self.v_halfedge[b] == y {
-                *self.v_halfedge_mut(b) = nx;
+                *self.v_halfedge_mut::<J>(b) = nx;
             }
             let fl = self.face_halfedge(fy);
             if fl == x || fl == y {
-                self.set_face_link(fy, nx);
+                self.set_face_link::<J>(fy, nx);
             }
-            self.free_edge(e);
+            self.free_edge::<J>(e);
             return out;
         }
         let px = self.prev_fast(x);
         let py = self.prev_fast(y);
-        self.set_next(px, ny);
-        self.set_next(py, nx);
+        self.set_next::<J>(px, ny);
+        self.set_next::<J>(py, nx);
         if self.v_halfedge[a] == x {
-            *self.v_halfedge_mut(a) = ny;
+            *self.v_halfedge_mut::<J>(a) = ny;
         }
         if self.v_halfedge[b] == y {
-            *self.v_halfedge_mut(b) = nx;
+            *self.v_halfedge_mut::<J>(b) = nx;
         }
         if fx != fy {
             let gone = if survivor == fx { fy } else { fx };
-            self.relabel_loop(nx, survivor);
-            self.free_face(gone);
+            self.relabel_loop::<J>(nx, survivor);
+            self.free_face::<J>(gone);
             out.freed_face = Some(gone);
         } else {
-            self.set_face_link(fx, nx);
-            let g = self.alloc_face(self.is_hole(fx));
-            self.relabel_loop(ny, g);
+            self.set_face_link::<J>(fx, nx);
+            let g = self.alloc_face::<J>(self.is_hole(fx));
+            self.relabel_loop::<J>(ny, g);
             self.attrs.face.copy(fx.index(), g.index());
             out.new_face = Some(g);
         }
-        self.free_edge(e);
+        self.free_edge::<J>(e);
         out
     }
 

@@ -3,6 +3,7 @@
 
 use super::refuse;
 use crate::error::{Refusal, Result};
+use crate::journal::{journaled, Journaling};
 use crate::keys::FaceKey;
 use crate::layout::{Fid, Hid};
 use crate::mesh::Mesh;
@@ -208,25 +209,30 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn triangulate(&mut self, f: FaceKey) -> Result<Vec<FaceKey>> {
+        journaled!(self.triangulate_with(f))
+    }
+
+    /// [`triangulate`](Mesh::triangulate)'s body, in journaling mode `J`.
+    fn triangulate_with<J: Journaling>(&mut self, f: FaceKey) -> Result<Vec<FaceKey>> {
         let mut sides = Vec::new();
         let mut ears = Vec::new();
         self.plan_triangulate(f, &mut sides, &mut ears)?;
         let mut pieces = Vec::new();
-        self.cut_ears(&mut sides, &ears, &mut pieces);
-        self.end_op();
+        self.cut_ears::<J>(&mut sides, &ears, &mut pieces);
+        self.end_op::<J>();
         Ok(pieces.into_iter().map(|g| self.fkey(g)).collect())
     }
 
     /// Apply planned ears; `sides[i]` is the half-edge leaving corner `i` in
     /// what remains of the face. `pieces` receives the triangles.
-    fn cut_ears(&mut self, sides: &mut [Hid], ears: &[Ear], pieces: &mut Vec<Fid>) {
+    fn cut_ears<J: Journaling>(&mut self, sides: &mut [Hid], ears: &[Ear], pieces: &mut Vec<Fid>) {
         let f = self.face_of(sides[0]);
         pieces.clear();
         pieces.push(f);
         for ear in ears {
             let (pa, ha) = (sides[ear.m as usize], sides[ear.r as usize]);
             let (pb, hb) = (sides[ear.pl as usize], sides[ear.l as usize]);
-            let (n0, g) = self.split_face_raw(pa, ha, pb, hb);
+            let (n0, g) = self.split_face_raw::<J>(pa, ha, pb, hb);
             sides[ear.l as usize] = n0.twin();
             pieces.push(g);
         }
@@ -252,6 +258,11 @@ impl Mesh {
     /// assert_eq!(mesh.face_count(), 12);
     /// ```
     pub fn triangulate_all(&mut self) -> Vec<FaceKey> {
+        journaled!(self.triangulate_all_with())
+    }
+
+    /// [`triangulate_all`](Mesh::triangulate_all)'s body, in journaling mode `J`.
+    fn triangulate_all_with<J: Journaling>(&mut self) -> Vec<FaceKey> {
         let faces: Vec<FaceKey> = self
             .faces()
             .filter(|&f| self.face_degree(f.id()) > 3)
@@ -263,9 +274,9 @@ impl Mesh {
                 left.push(f);
                 continue;
             }
-            self.cut_ears(&mut sides, &ears, &mut pieces);
+            self.cut_ears::<J>(&mut sides, &ears, &mut pieces);
         }
-        self.end_op();
+        self.end_op::<J>();
         left
     }
 }
@@ -305,14 +316,23 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn fill_hole_triangulated(&mut self, hole: FaceKey) -> Result<Vec<FaceKey>> {
+        journaled!(self.fill_hole_triangulated_with(hole))
+    }
+
+    /// [`fill_hole_triangulated`](Mesh::fill_hole_triangulated)'s body, in journaling mode `J`.
+    fn fill_hole_triangulated_with<J: Journaling>(
+        &mut self,
+        hole: FaceKey,
+    ) -> Result<Vec<FaceKey>> {
         self.check_fill_hole(hole)?;
         let mut sides = Vec::new();
         let mut ears = Vec::new();
         self.plan_triangulate_loop(hole, &mut sides, &mut ears, true)?;
-        self.fill_hole(hole)?;
+        // One edit: the fill does not end its own (one journal step).
+        self.fill_hole_open::<J>(hole)?;
         let mut pieces = Vec::new();
-        self.cut_ears(&mut sides, &ears, &mut pieces);
-        self.end_op();
+        self.cut_ears::<J>(&mut sides, &ears, &mut pieces);
+        self.end_op::<J>();
         Ok(pieces.into_iter().map(|g| self.fkey(g)).collect())
     }
 }

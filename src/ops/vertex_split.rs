@@ -2,6 +2,7 @@
 
 use super::refuse;
 use crate::error::{Refusal, Result};
+use crate::journal::{journaled, Journaling};
 use crate::keys::HalfedgeKey;
 use crate::layout::{HalfedgeRecord, Hid};
 use crate::mesh::Mesh;
@@ -102,6 +103,15 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn split_vertex(&mut self, hck: HalfedgeKey, hdk: HalfedgeKey) -> Result<HalfedgeKey> {
+        journaled!(self.split_vertex_with(hck, hdk))
+    }
+
+    /// [`split_vertex`](Mesh::split_vertex)'s body, in journaling mode `J`.
+    fn split_vertex_with<J: Journaling>(
+        &mut self,
+        hck: HalfedgeKey,
+        hdk: HalfedgeKey,
+    ) -> Result<HalfedgeKey> {
         let VertexSplitPlan { hc, hd, moved, pd } = self.plan_split_vertex(hck, hdk)?;
         let b = self.origin(hc);
         let c = self.dest(hc);
@@ -112,74 +122,78 @@ impl Mesh {
         let after_hc = self.next(hc);
         // Rule 11: only a boundary b can leave holes at b or at a.
         let b_on_boundary = self.holes > 0 && self.on_boundary(b);
-        let a = self.alloc_vertex();
-        let (e_ab, e_ac, e_ad) = (self.alloc_edge(), self.alloc_edge(), self.alloc_edge());
+        let a = self.alloc_vertex::<J>();
+        let (e_ab, e_ac, e_ad) = (
+            self.alloc_edge::<J>(),
+            self.alloc_edge::<J>(),
+            self.alloc_edge::<J>(),
+        );
         let [h, t] = e_ab.halfedges(); // a -> b, b -> a
         let [ac, ca] = e_ac.halfedges();
         let [ad, da] = e_ad.halfedges();
-        let left = self.alloc_face(false);
-        let right = self.alloc_face(false);
+        let left = self.alloc_face::<J>(false);
+        let right = self.alloc_face::<J>(false);
         let prev_c = moved.last().map_or(da, |&o| o.twin());
         let next_d = moved.first().copied().unwrap_or(ac);
         for &o in &moved {
-            self.he_mut(o).origin = a;
+            self.he_mut::<J>(o).origin = a;
         }
         // The faces beside the wedge: ac takes hc's place, da takes d -> b's.
-        *self.he_mut(ac) = HalfedgeRecord {
+        *self.he_mut::<J>(ac) = HalfedgeRecord {
             origin: a,
             next: after_hc,
             face: f_c,
         };
-        *self.he_mut(da) = HalfedgeRecord {
+        *self.he_mut::<J>(da) = HalfedgeRecord {
             origin: d,
             next: next_d,
             face: f_d,
         };
-        self.set_next(prev_c, ac);
-        self.set_next(pd, da);
+        self.set_next::<J>(prev_c, ac);
+        self.set_next::<J>(pd, da);
         if self.face_halfedge(f_c) == hc {
-            self.set_face_link(f_c, ac);
+            self.set_face_link::<J>(f_c, ac);
         }
         if self.face_halfedge(f_d) == tdb {
-            self.set_face_link(f_d, da);
+            self.set_face_link::<J>(f_d, da);
         }
         // Triangles (a, b, c) and (b, a, d).
-        *self.he_mut(h) = HalfedgeRecord {
+        *self.he_mut::<J>(h) = HalfedgeRecord {
             origin: a,
             next: hc,
             face: left,
         };
-        self.he_mut(hc).next = ca;
-        self.he_mut(hc).face = left;
-        *self.he_mut(ca) = HalfedgeRecord {
+        self.he_mut::<J>(hc).next = ca;
+        self.he_mut::<J>(hc).face = left;
+        *self.he_mut::<J>(ca) = HalfedgeRecord {
             origin: c,
             next: h,
             face: left,
         };
-        *self.he_mut(t) = HalfedgeRecord {
+        *self.he_mut::<J>(t) = HalfedgeRecord {
             origin: b,
             next: ad,
             face: right,
         };
-        *self.he_mut(ad) = HalfedgeRecord {
+        *self.he_mut::<J>(ad) = HalfedgeRecord {
             origin: a,
             next: tdb,
             face: right,
         };
-        self.he_mut(tdb).next = t;
-        self.he_mut(tdb).face = right;
-        self.set_face_link(left, h);
-        self.set_face_link(right, t);
-        *self.v_halfedge_mut(a) = h;
-        *self.v_halfedge_mut(b) = hc;
+        self.he_mut::<J>(tdb).next = t;
+        self.he_mut::<J>(tdb).face = right;
+        self.set_face_link::<J>(left, h);
+        self.set_face_link::<J>(right, t);
+        *self.v_halfedge_mut::<J>(a) = h;
+        *self.v_halfedge_mut::<J>(b) = hc;
         // da took d -> b's place in f_d (a hole, maybe): d keeps a half-edge
         // in that face.
         if self.v_halfedge[d] == tdb {
-            *self.v_halfedge_mut(d) = da;
+            *self.v_halfedge_mut::<J>(d) = da;
         }
         if b_on_boundary {
-            self.point_at_hole(a);
-            self.point_at_hole(b);
+            self.point_at_hole::<J>(a);
+            self.point_at_hole::<J>(b);
         }
         // Attributes.
         self.attrs
@@ -195,7 +209,7 @@ impl Mesh {
         }
         self.attrs.face.interpolate(left.index(), &[]);
         self.attrs.face.interpolate(right.index(), &[]);
-        self.end_op();
+        self.end_op::<J>();
         Ok(self.hkey(h))
     }
 }

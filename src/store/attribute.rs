@@ -52,31 +52,34 @@ pub trait Attribute: Clone + Default + Send + Sync + 'static {
         None
     }
 
-    /// Whether two values are the same, as operators see it: corners whose
-    /// values are the same on both sides of an edge belong to one *wedge*
-    /// (no UV seam there), so a collapse interpolates them together.
-    /// Defaults to comparing [`to_value`](Attribute::to_value) (unequal
-    /// when not portable, so such a column counts as a seam everywhere and
-    /// its corners keep their values); the stock types compare with `==`.
+    /// Whether two values are the same, bit for bit where floats are
+    /// concerned (`0.0` and `-0.0` differ, a NaN equals itself). One
+    /// comparison serves everything that asks:
+    ///
+    /// - operators: corners whose values are the same on both sides of an
+    ///   edge belong to one *wedge* (no UV seam there), so a collapse
+    ///   interpolates them together;
+    /// - the [journal](crate::journal), which leaves out writes that put
+    ///   back the same value (a collapse that keeps `b`'s position writes
+    ///   it unchanged).
+    ///
+    /// So it must be `true` only for values that are interchangeable in
+    /// every respect the type cares about. Defaults to comparing
+    /// [`to_value`](Attribute::to_value) the same way, bit for bit;
+    /// `false` when the type is not portable (such a column counts as a
+    /// seam everywhere, its corners keep their values, and the journal
+    /// records every write to it: always correct, only larger). The stock
+    /// types implement it directly.
     ///
     /// ```
     /// use meshloom::attr::Attribute;
     /// assert!([0.5f32, 0.25].same_value(&[0.5, 0.25]));
     /// assert!(!1.0f64.same_value(&2.0));
+    /// assert!(!0.0f64.same_value(&-0.0));
+    /// assert!(f64::NAN.same_value(&f64::NAN));
     /// ```
     fn same_value(&self, other: &Self) -> bool {
-        matches!((self.to_value(), other.to_value()), (Some(a), Some(b)) if a == b)
-    }
-
-    /// Whether `self` and `other` are the same value, bit for bit where
-    /// floats are concerned (`0.0` and `-0.0` differ, a NaN equals itself).
-    /// The [journal](crate::journal) uses it to leave out writes that
-    /// changed nothing (a collapse that keeps `b`'s position writes it
-    /// unchanged). Defaults to `false`: every write is recorded, which is
-    /// always correct, only larger. The stock types implement it.
-    fn same_as(&self, other: &Self) -> bool {
-        let _ = other;
-        false
+        matches!((self.to_value(), other.to_value()), (Some(a), Some(b)) if bitwise_equal(&a, &b))
     }
 }
 
@@ -85,7 +88,7 @@ macro_rules! scalar_attribute {
         impl Attribute for $t {
             type Rule = $rule;
             #[inline]
-            fn same_as(&self, other: &Self) -> bool {
+            fn same_value(&self, other: &Self) -> bool {
                 $same(self, other)
             }
             fn to_value(&self) -> Option<Value> {
@@ -96,10 +99,6 @@ macro_rules! scalar_attribute {
                     Value::$variant(x) => Some(x.clone()),
                     _ => None,
                 }
-            }
-            #[inline]
-            fn same_value(&self, other: &Self) -> bool {
-                self == other
             }
         }
     )*};
@@ -119,7 +118,7 @@ macro_rules! array_attribute {
         {
             type Rule = Interpolate;
             #[inline]
-            fn same_as(&self, other: &Self) -> bool {
+            fn same_value(&self, other: &Self) -> bool {
                 self.iter().zip(other).all(|(a, b)| a.to_bits() == b.to_bits())
             }
             fn to_value(&self) -> Option<Value> {
@@ -139,10 +138,6 @@ macro_rules! array_attribute {
                 }
                 Some(out)
             }
-            #[inline]
-            fn same_value(&self, other: &Self) -> bool {
-                self == other
-            }
         }
     )*};
 }
@@ -151,8 +146,8 @@ array_attribute!(f32 => F32, f64 => F64);
 
 impl Attribute for Value {
     type Rule = Dynamic;
-    fn same_as(&self, other: &Self) -> bool {
-        same_value(self, other)
+    fn same_value(&self, other: &Self) -> bool {
+        bitwise_equal(self, other)
     }
     fn to_value(&self) -> Option<Value> {
         Some(self.clone())
@@ -160,18 +155,15 @@ impl Attribute for Value {
     fn from_value(value: &Value) -> Option<Self> {
         Some(value.clone())
     }
-    fn same_value(&self, other: &Self) -> bool {
-        self == other
-    }
 }
 
 /// Values equal bit for bit (floats by their bits, lists item by item).
-fn same_value(a: &Value, b: &Value) -> bool {
+fn bitwise_equal(a: &Value, b: &Value) -> bool {
     match (a, b) {
         (Value::F32(x), Value::F32(y)) => x.to_bits() == y.to_bits(),
         (Value::F64(x), Value::F64(y)) => x.to_bits() == y.to_bits(),
         (Value::List(x), Value::List(y)) => {
-            x.len() == y.len() && x.iter().zip(y).all(|(p, q)| same_value(p, q))
+            x.len() == y.len() && x.iter().zip(y).all(|(p, q)| bitwise_equal(p, q))
         }
         (Value::F32(_) | Value::F64(_) | Value::List(_), _) => false,
         _ => a == b,
@@ -183,18 +175,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn same_as_is_bitwise() {
-        assert!(1.5f64.same_as(&1.5));
-        assert!(!0.0f64.same_as(&-0.0));
-        assert!(f64::NAN.same_as(&f64::NAN));
-        assert!([1.0f32, -0.0].same_as(&[1.0, -0.0]));
-        assert!(![1.0f32, -0.0].same_as(&[1.0, 0.0]));
-        assert!(7u8.same_as(&7) && !7u8.same_as(&8));
+    fn same_value_is_bitwise() {
+        assert!(1.5f64.same_value(&1.5));
+        assert!(!0.0f64.same_value(&-0.0));
+        assert!(f64::NAN.same_value(&f64::NAN));
+        assert!([1.0f32, -0.0].same_value(&[1.0, -0.0]));
+        assert!(![1.0f32, -0.0].same_value(&[1.0, 0.0]));
+        assert!(7u8.same_value(&7) && !7u8.same_value(&8));
         let l = Value::List(vec![Value::F64(-0.0), Value::Text("a".into())]);
-        assert!(l.same_as(&l.clone()));
-        assert!(!l.same_as(&Value::List(vec![Value::F64(0.0), Value::Text("a".into())])));
-        assert!(!Value::F32(1.0).same_as(&Value::F64(1.0)));
-        assert!(Value::U8(3).same_as(&Value::U8(3)));
+        assert!(l.same_value(&l.clone()));
+        assert!(!l.same_value(&Value::List(vec![Value::F64(0.0), Value::Text("a".into())])));
+        assert!(!Value::F32(1.0).same_value(&Value::F64(1.0)));
+        assert!(Value::U8(3).same_value(&Value::U8(3)));
     }
 
     #[test]

@@ -277,7 +277,7 @@ impl<T: Attribute, R> Column<T, R> {
     #[inline]
     fn unchanged(&self, e: &Saved<T>) -> bool {
         let i = e.slot as usize;
-        self.has(i) == e.present && (!e.present || self.values[i].same_as(&e.value))
+        self.has(i) == e.present && (!e.present || self.values[i].same_value(&e.value))
     }
 
     /// Seal the open step's saved values: the oldest per slot, left out
@@ -310,7 +310,7 @@ impl<T: Attribute, R> Column<T, R> {
         entries.retain(|e| match saved.binary_search_by_key(&e.slot, |s| s.slot) {
             Ok(k) => {
                 let s = &saved[k];
-                !(s.present == e.present && (!e.present || s.value.same_as(&e.value)))
+                !(s.present == e.present && (!e.present || s.value.same_value(&e.value)))
             }
             Err(_) => !self.unchanged(e),
         });

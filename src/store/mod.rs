@@ -196,8 +196,16 @@ impl Columns {
         }
     }
 
-    /// Merge rule on every column.
+    /// Merge rule on every column (nothing to do, and nothing to save,
+    /// when the arena has no columns: that check is inlined).
+    #[inline]
     pub(crate) fn merge(&mut self, dst: usize, inputs: &[(usize, f64)]) {
+        if !self.cols.is_empty() {
+            self.merge_columns(dst, inputs);
+        }
+    }
+
+    fn merge_columns(&mut self, dst: usize, inputs: &[(usize, f64)]) {
         self.save(dst);
         for (_, c) in &mut self.cols {
             c.merge(dst, inputs);
@@ -205,7 +213,14 @@ impl Columns {
     }
 
     /// Interpolate rule on every column.
+    #[inline]
     pub(crate) fn interpolate(&mut self, dst: usize, inputs: &[(usize, f64)]) {
+        if !self.cols.is_empty() {
+            self.interpolate_columns(dst, inputs);
+        }
+    }
+
+    fn interpolate_columns(&mut self, dst: usize, inputs: &[(usize, f64)]) {
         self.save(dst);
         for (_, c) in &mut self.cols {
             c.interpolate(dst, inputs);
@@ -213,7 +228,14 @@ impl Columns {
     }
 
     /// Split rule on every column.
+    #[inline]
     pub(crate) fn split(&mut self, src: usize, pieces: &[(usize, f64)]) {
+        if !self.cols.is_empty() {
+            self.split_columns(src, pieces);
+        }
+    }
+
+    fn split_columns(&mut self, src: usize, pieces: &[(usize, f64)]) {
         for &(dst, _) in pieces {
             self.save(dst);
         }
@@ -223,7 +245,14 @@ impl Columns {
     }
 
     /// Copy slot `from` to `to` in every column.
+    #[inline]
     pub(crate) fn copy(&mut self, from: usize, to: usize) {
+        if !self.cols.is_empty() {
+            self.copy_columns(from, to);
+        }
+    }
+
+    fn copy_columns(&mut self, from: usize, to: usize) {
         self.save(to);
         for (_, c) in &mut self.cols {
             c.copy(from, to);

@@ -2,6 +2,8 @@
 //! the shared meshes, conserved totals.
 #![allow(dead_code)]
 
+pub mod ops;
+
 use meshloom::attr::{Conserved, FaceAttr, VertexAttr};
 use meshloom::{FaceKey, HalfedgeKey, Mesh, VertexKey};
 

@@ -172,6 +172,11 @@ pub fn lod_chain(
 /// collapses are made on it and handed over at the end, so an error
 /// leaves `mesh` as it was).
 pub fn replay(mesh: &mut Mesh, collapses: &[Collapse]) -> Result<usize> {
+    mesh.as_one_step("Replay collapses", |mesh| replay_run(mesh, collapses))
+}
+
+/// [`replay`] itself, outside the journal's step.
+fn replay_run(mesh: &mut Mesh, collapses: &[Collapse]) -> Result<usize> {
     let mut work = mesh.clone();
     for c in collapses {
         work.collapse_edge_to(c.halfedge, c.position)?;
