@@ -12,7 +12,9 @@ use std::cell::RefCell;
 use meshloom::algo::curvature::{add_curvature, curvature, BoundaryCurvature, CurvatureOptions};
 use meshloom::algo::decimate::{decimate, lod_chain, Keep, LodOptions, Target};
 use meshloom::algo::fair::{fair, FairOptions, FairRegion};
+use meshloom::algo::fill_hole::{fill_holes, FillHoleOptions};
 use meshloom::algo::laplacian::LaplaceWeights;
+use meshloom::algo::remesh::{remesh, BoundaryMode, RemeshOptions, Resample, Sizing};
 use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
 use meshloom::algo::subdivision::SubdivisionReport;
 use meshloom::algo::{
@@ -702,6 +704,158 @@ impl PyMesh {
         d.set_item("moved", r.moved)?;
         d.set_item("constraints", r.constraints)?;
         d.set_item("max_displacement", r.max_displacement)?;
+        Ok(d.unbind())
+    }
+
+    /// Isotropic remeshing (Botsch-Kobbelt) of a triangle mesh in place:
+    /// split long edges, collapse short ones, flip towards valence 6,
+    /// relax tangentially, project back onto the input. The target is
+    /// `edge_length` (default: the input's mean edge length) or `adaptive`
+    /// (an approximation tolerance in mesh units; edges follow the
+    /// curvature, clamped to `min_length`..`max_length`). `iterations`
+    /// (default 10), `smoothing_steps` per round (default 5), `project`;
+    /// `keep_boundary`: boundaries stay exactly as they are (default: they
+    /// are remeshed, their vertices sliding along them). Kept lines:
+    /// `feature_angle` (radians) or `feature_edges` (a bool edge column),
+    /// `seams` (UV seams of the resampled corner columns, default True),
+    /// `locked` (a bool vertex column of vertices that never move).
+    /// `resample`: `"linear"` (every linear vertex and corner column, the
+    /// default), `"off"`, or a list of column names, resampled from the
+    /// input surface so UVs do not drift. Returns the report (a dict:
+    /// `iterations`, `splits`, `collapses`, `flips`, `target_length`, and
+    /// the counts before and after). One undo unit; a cancelled or failed
+    /// run leaves the mesh as it was.
+    #[pyo3(signature = (edge_length = None, *, adaptive = None, min_length = None, max_length = None, iterations = 10, smoothing_steps = 5, project = true, keep_boundary = false, feature_angle = None, feature_edges = None, seams = true, locked = None, resample = None, progress = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn remesh(
+        slf: &Bound<'_, Self>,
+        edge_length: Option<f64>,
+        adaptive: Option<f64>,
+        min_length: Option<f64>,
+        max_length: Option<f64>,
+        iterations: usize,
+        smoothing_steps: usize,
+        project: bool,
+        keep_boundary: bool,
+        feature_angle: Option<f64>,
+        feature_edges: Option<String>,
+        seams: bool,
+        locked: Option<String>,
+        resample: Option<&Bound<'_, PyAny>>,
+        progress: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyDict>> {
+        let py = slf.py();
+        let sizing = match (edge_length, adaptive) {
+            (Some(_), Some(_)) => {
+                return Err(PyValueError::new_err(
+                    "give edge_length or adaptive, not both",
+                ))
+            }
+            (Some(l), None) => Sizing::Uniform(l),
+            (None, Some(tolerance)) => Sizing::Adaptive {
+                tolerance,
+                min_length,
+                max_length,
+            },
+            (None, None) => Sizing::MeanEdgeLength,
+        };
+        let resample = match resample {
+            None => Resample::Linear,
+            Some(r) => {
+                if let Ok(s) = r.extract::<String>() {
+                    match s.as_str() {
+                        "linear" => Resample::Linear,
+                        "off" => Resample::Off,
+                        other => {
+                            return Err(PyValueError::new_err(format!(
+                                "resample is \"linear\", \"off\" or a list of column names, not {other:?}"
+                            )))
+                        }
+                    }
+                } else {
+                    Resample::Columns(r.extract::<Vec<String>>().map_err(|_| {
+                        PyTypeError::new_err(
+                            "resample is \"linear\", \"off\" or a list of column names",
+                        )
+                    })?)
+                }
+            }
+        };
+        let boundary = if keep_boundary {
+            BoundaryMode::Fixed
+        } else {
+            BoundaryMode::Slide
+        };
+        let cb = Callback::new(progress)?;
+        let r = cb.finish(edit(slf, |m| {
+            let o = RemeshOptions {
+                sizing,
+                iterations,
+                smoothing_steps,
+                project,
+                boundary,
+                feature_angle,
+                feature_edges: feature_edges
+                    .as_deref()
+                    .map(|n| m.attr_handle::<EdgeKey, bool, Contagion>(n))
+                    .transpose()?,
+                seams,
+                locked: locked
+                    .as_deref()
+                    .map(|n| m.attr_handle::<VertexKey, bool, Contagion>(n))
+                    .transpose()?,
+                resample: resample.clone(),
+            };
+            cb.run(|p| remesh(m, &o, p))
+        }))?;
+        let d = PyDict::new(py);
+        d.set_item("iterations", r.iterations)?;
+        d.set_item("splits", r.splits)?;
+        d.set_item("collapses", r.collapses)?;
+        d.set_item("flips", r.flips)?;
+        d.set_item("target_length", r.target_length)?;
+        d.set_item("vertices_before", r.vertices_before)?;
+        d.set_item("faces_before", r.faces_before)?;
+        d.set_item("vertices", r.vertices)?;
+        d.set_item("faces", r.faces)?;
+        Ok(d.unbind())
+    }
+
+    /// Fill every hole in place by Liepa's method: the least-weight
+    /// triangulation of the rim (dihedral angle, then area), refined to the
+    /// rim's edge length (`refine`), its new vertices faired (`fair`,
+    /// k-harmonic of `fair_order` 1 to 3, default 2). Holes with more than
+    /// `max_rim` rim edges are left open. Attributes come from the rim:
+    /// face values from the neighbouring face, rim corners (UVs) continue
+    /// the outer corners, new vertices interpolate. Returns the report (a
+    /// dict: `holes_filled`, `faces_added`, `vertices_added`,
+    /// `ear_clipped`, `skipped`). One undo unit; a cancelled or failed run
+    /// leaves the mesh as it was.
+    #[pyo3(signature = (*, refine = true, fair = true, fair_order = 2, max_rim = None, progress = None))]
+    fn fill_holes(
+        slf: &Bound<'_, Self>,
+        refine: bool,
+        fair: bool,
+        fair_order: u32,
+        max_rim: Option<usize>,
+        progress: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyDict>> {
+        let py = slf.py();
+        let o = FillHoleOptions {
+            max_rim,
+            refine,
+            fair,
+            fair_order,
+            ..FillHoleOptions::default()
+        };
+        let cb = Callback::new(progress)?;
+        let r = cb.finish(edit(slf, |m| cb.run(|p| fill_holes(m, &o, p))))?;
+        let d = PyDict::new(py);
+        d.set_item("holes_filled", r.holes_filled)?;
+        d.set_item("faces_added", r.faces_added)?;
+        d.set_item("vertices_added", r.vertices_added)?;
+        d.set_item("ear_clipped", r.ear_clipped)?;
+        d.set_item("skipped", r.skipped.len())?;
         Ok(d.unbind())
     }
 

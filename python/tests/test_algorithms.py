@@ -295,6 +295,47 @@ def test_lod_chain_levels_shrink_and_the_mesh_stays():
         mesh.lod_chain([0.1, 0.5])
 
 
+def test_remesh_evens_edge_lengths_keeps_columns_and_is_one_undo_unit():
+    mesh = with_columns(tri_grid(12))
+    positions, faces = mesh.to_arrays()
+    lengths = [np.linalg.norm(positions[a] - positions[b])
+               for f in faces for a, b in zip(f, np.roll(f, -1))]
+    target = float(np.mean(lengths))
+    holes = mesh.hole_count
+    report = mesh.remesh(target, iterations=5)
+    assert report["target_length"] == pytest.approx(target)
+    assert report["faces"] == mesh.face_count
+    assert mesh.hole_count == holes
+    assert (mesh.attr_array("material", kind="face") == 3).all()
+    assert not np.isnan(mesh.attr_array("temperature")).any()
+    mesh.validate()
+    with pytest.raises(ValueError):
+        mesh.remesh(0.1, adaptive=0.01)
+    with pytest.raises(ValueError):
+        mesh.remesh(resample="sideways")
+    quads = meshloom.Mesh.from_arrays(*grid_arrays(3))
+    before = quads.copy()
+    with pytest.raises(meshloom.UnsuitableError):
+        quads.remesh()
+    assert quads == before
+
+
+def test_fill_holes_closes_every_hole_and_keeps_columns():
+    mesh = with_columns(tri_grid(8))
+    # Open two holes inside the grid, a triangle each, far apart (the
+    # outer boundary is one more).
+    faces = list(mesh.faces)
+    for f in (faces[27], faces[45]):
+        mesh.remove_face(f)
+    assert mesh.hole_count == 3
+    report = mesh.fill_holes(max_rim=20)
+    assert report["holes_filled"] == 2
+    assert mesh.hole_count == 1
+    assert report["faces_added"] > 0
+    assert (mesh.attr_array("material", kind="face") == 3).all()
+    mesh.validate()
+
+
 class Count:
     """A conserved count, as a Python rule."""
 
