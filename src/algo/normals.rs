@@ -36,10 +36,12 @@
 //! series rather than libm's `atan2`, the third angle is π minus the other
 //! two). Corner normals add a pass over the edges to find the vertices at
 //! sharp edges, a pass over the corners (elsewhere a corner takes its
-//! vertex's normal), and a walk around each vertex at a sharp edge. With the `parallel` feature, meshes of more than
-//! 20,000 faces are cut into one block of faces per thread, each summing
-//! into its own array, and the arrays are added at the end: results equal
-//! the serial ones up to the rounding of that last sum.
+//! vertex's normal), and a walk around each vertex at a sharp edge. With the `parallel` feature, face normals of
+//! meshes of more than 20,000 faces are computed in blocks on rayon's
+//! threads (1.51x on 2 threads, 2M-vertex grid), as is the walk around
+//! vertices at sharp edges; vertex normals stay serial, since summing into
+//! one array per thread measured slower (0.72x), the pass being bound by
+//! memory (`bench/parallel.sh`).
 //!
 //! ```
 //! use meshloom::algo::normals::{self, CornerNormalOptions, VertexNormalOptions};
@@ -479,38 +481,9 @@ fn vertex_and_face_normals(
     } else {
         Vec::new()
     };
-    #[cfg(feature = "parallel")]
-    if nf >= PARALLEL_MIN_FACES && rayon::current_num_threads() > 1 {
-        use rayon::prelude::*;
-        let blocks = rayon::current_num_threads();
-        let size = nf.div_ceil(blocks);
-        let chunks: Vec<Option<&mut [FaceRecord]>> = if want_faces {
-            faces.chunks_mut(size).map(Some).collect()
-        } else {
-            (0..blocks).map(|_| None).collect()
-        };
-        let mut parts: Vec<Vec<V3>> = chunks
-            .into_par_iter()
-            .enumerate()
-            .map(|(b, chunk)| {
-                let mut acc = vec![[0.0; 3]; nv];
-                let range = b * size..((b + 1) * size).min(nf);
-                accumulate(mesh, p, weight, range, &mut acc, chunk);
-                acc
-            })
-            .collect();
-        let mut out = parts.swap_remove(0);
-        let parts = &parts;
-        out.par_chunks_mut(4096).enumerate().for_each(|(c, chunk)| {
-            for (i, n) in chunk.iter_mut().enumerate() {
-                for part in parts {
-                    add_scaled(n, part[c * 4096 + i], 1.0);
-                }
-                *n = unit(*n);
-            }
-        });
-        return Ok((out, faces));
-    }
+    // Serial even with `parallel`: one accumulator per thread, summed at
+    // the end, measured 0.72x (slower) on 2 threads for the 2M-vertex grid
+    // (`bench/parallel.sh`, 2026-11-25): the pass is bound by memory.
     let mut out = vec![[0.0; 3]; nv];
     let records = want_faces.then_some(&mut faces[..]);
     accumulate(mesh, p, weight, 0..nf, &mut out, records);
