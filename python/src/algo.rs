@@ -24,8 +24,8 @@ use meshloom::algo::{
     NormalWeight, Progress, ProgressInfo, SubdivisionOptions, VertexInterpolation,
     VertexNormalOptions,
 };
-use meshloom::attr::{Contagion, Element, VertexAttr};
-use meshloom::{EdgeKey, Mesh, VertexKey};
+use meshloom::attr::{Attr, Contagion, Element, VertexAttr};
+use meshloom::{Mesh, VertexKey};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -177,13 +177,22 @@ fn mask_of(mask: Option<&Bound<'_, PyAny>>) -> PyResult<Mask> {
     Ok(Mask::Array(v))
 }
 
+/// The handle of the boolean column (a vertex mask, locked vertices, hard
+/// or feature edges) a keyword names, or `None` when the keyword was not
+/// given. One lookup for every algorithm keyword that names a flag column.
+pub(crate) fn flag_column<K: Element>(
+    mesh: &Mesh,
+    name: Option<&str>,
+) -> meshloom::Result<Option<Attr<K, bool, Contagion>>> {
+    name.map(|n| mesh.attr_handle::<K, bool, Contagion>(n))
+        .transpose()
+}
+
 /// The mask's column handle, adding the temporary column for an array.
 fn mask_handle(mesh: &mut Mesh, mask: &Mask) -> meshloom::Result<Option<VertexAttr<bool>>> {
     match mask {
         Mask::None => Ok(None),
-        Mask::Column(name) => mesh
-            .attr_handle::<VertexKey, bool, Contagion>(name)
-            .map(Some),
+        Mask::Column(name) => flag_column::<VertexKey>(mesh, Some(name)),
         Mask::Array(values) => {
             let keys: Vec<VertexKey> = mesh.vertices().collect();
             if values.len() != keys.len() {
@@ -326,17 +335,9 @@ impl DecimateKw {
             boundary: self.boundary,
             seams: self.seams,
             material: self.material.clone(),
-            locked: self
-                .locked
-                .as_deref()
-                .map(|n| mesh.attr_handle::<VertexKey, bool, Contagion>(n))
-                .transpose()?,
+            locked: flag_column(mesh, self.locked.as_deref())?,
             feature_angle: self.feature_angle,
-            feature_edges: self
-                .feature_edges
-                .as_deref()
-                .map(|n| mesh.attr_handle::<EdgeKey, bool, Contagion>(n))
-                .transpose()?,
+            feature_edges: flag_column(mesh, self.feature_edges.as_deref())?,
             attributes: self
                 .attributes
                 .iter()
@@ -414,10 +415,7 @@ impl PyMesh {
             Ok(CornerNormalOptions {
                 weight,
                 crease_angle,
-                hard_edges: hard_edges
-                    .as_deref()
-                    .map(|n| m.attr_handle::<EdgeKey, bool, Contagion>(n))
-                    .transpose()?,
+                hard_edges: flag_column(m, hard_edges.as_deref())?,
             })
         };
         let vertex = VertexNormalOptions { weight };
@@ -795,15 +793,9 @@ impl PyMesh {
                 project,
                 boundary,
                 feature_angle,
-                feature_edges: feature_edges
-                    .as_deref()
-                    .map(|n| m.attr_handle::<EdgeKey, bool, Contagion>(n))
-                    .transpose()?,
+                feature_edges: flag_column(m, feature_edges.as_deref())?,
                 seams,
-                locked: locked
-                    .as_deref()
-                    .map(|n| m.attr_handle::<VertexKey, bool, Contagion>(n))
-                    .transpose()?,
+                locked: flag_column(m, locked.as_deref())?,
                 resample: resample.clone(),
             };
             cb.run(|p| remesh(m, &o, p))

@@ -141,10 +141,7 @@ impl PyMesh {
                     )))
                 }
             };
-            let hard = hard_edges
-                .as_deref()
-                .map(|n| mesh.attr_handle::<meshloom::EdgeKey, bool, meshloom::attr::Contagion>(n))
-                .transpose()
+            let hard = crate::algo::flag_column(mesh, hard_edges.as_deref())
                 .map_err(|e| crate::errors::mesh_err(py, &slf.clone().unbind(), e))?;
             options.normals = Some(meshloom::algo::CornerNormalOptions {
                 weight: w,
