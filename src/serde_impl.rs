@@ -129,11 +129,11 @@ impl Serialize for Mesh {
         let f_live = |i: usize| self.f_slots.is_live(i);
         let data = MeshData {
             vertex_halfedge: self.v_halfedge.as_slice().to_vec(),
-            vertex_generations: self.v_slots.generations().to_vec(),
+            vertex_generations: self.v_slots.generations().into_owned(),
             halfedges: self.he.as_slice().to_vec(),
-            edge_generations: self.e_slots.generations().to_vec(),
+            edge_generations: self.e_slots.generations().into_owned(),
             face_halfedge: self.f_halfedge.as_slice().to_vec(),
-            face_generations: self.f_slots.generations().to_vec(),
+            face_generations: self.f_slots.generations().into_owned(),
             vertex_base: self.v_slots.base(),
             edge_base: self.e_slots.base(),
             face_base: self.f_slots.base(),

@@ -58,15 +58,30 @@
 //! loaded and not edited costs what indexing a `Vec` costs. Both paths
 //! survive compaction, which leaves every arena pristine and intact at its
 //! new base.
+//!
+//! # Implied generations
+//!
+//! While an arena is intact every generation is the base, so the arena
+//! stores none: `generations` stays empty and `slots` counts the slots. The
+//! vector is written out (at the base) the first time a slot is freed or a
+//! generation has to differ, and stays written out from then on. A built
+//! or compacted mesh thus carries no generation bytes at all: 24 fewer heap
+//! bytes per vertex on a triangle mesh (about V + E + F = 6V slots of 4
+//! bytes), and the build does not write them (measured in the README's
+//! heap-per-vertex line and ml_bench's `build` note).
 
 /// The largest generation a live slot gets. Freeing it gives the even
 /// `MAX_LIVE_GENERATION + 1`, which is never reissued.
 pub(crate) const MAX_LIVE_GENERATION: u32 = u32::MAX - 2;
 
 /// Generations and the free list of one arena.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug)]
 pub(crate) struct Slots {
+    /// One generation per slot, or empty while every generation is
+    /// implied (the base; only while `Intact`, see the module docs).
     generations: Vec<u32>,
+    /// Slots ever allocated (live or vacant).
+    slots: usize,
     free: Vec<u32>,
     live: usize,
     /// Odd; a new slot starts here, and no slot's generation is below it.
@@ -79,6 +94,23 @@ pub(crate) struct Slots {
     /// (see the module docs). Equal to `base` until an undo raises it.
     fresh: u32,
 }
+
+impl PartialEq for Slots {
+    /// Equal when they hold the same slots at the same generations, the
+    /// same free list and the same fast-path state, whether or not the
+    /// generations are written out.
+    fn eq(&self, other: &Self) -> bool {
+        self.slots == other.slots
+            && self.free == other.free
+            && self.live == other.live
+            && self.base == other.base
+            && self.state == other.state
+            && self.fresh == other.fresh
+            && (0..self.slots).all(|i| self.generation(i) == other.generation(i))
+    }
+}
+
+impl Eq for Slots {}
 
 /// What every slot is known to be.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Default)]
@@ -96,7 +128,7 @@ pub(crate) enum State {
 
 impl Default for Slots {
     fn default() -> Self {
-        Slots::with_capacity(0)
+        Slots::empty()
     }
 }
 
@@ -104,10 +136,11 @@ impl Slots {
     /// The base of a built arena.
     pub(crate) const FIRST_BASE: u32 = 1;
 
-    /// Slots with room for `n` elements reserved.
-    pub(crate) fn with_capacity(n: usize) -> Self {
+    /// An empty arena.
+    pub(crate) fn empty() -> Self {
         Slots {
-            generations: Vec::with_capacity(n),
+            generations: Vec::new(),
+            slots: 0,
             free: Vec::new(),
             live: 0,
             base: Self::FIRST_BASE,
@@ -125,7 +158,8 @@ impl Slots {
     fn full_at(n: usize, base: u32) -> Self {
         debug_assert!(base & 1 == 1 && base <= MAX_LIVE_GENERATION);
         Slots {
-            generations: vec![base; n],
+            generations: Vec::new(),
+            slots: n,
             free: Vec::new(),
             live: n,
             base,
@@ -143,7 +177,23 @@ impl Slots {
     /// Slots ever allocated (live or vacant): the length of every column.
     #[inline]
     pub(crate) fn slot_count(&self) -> usize {
-        self.generations.len()
+        self.slots
+    }
+
+    /// Whether the generations are implied (all the base, none stored).
+    #[inline]
+    fn implied(&self) -> bool {
+        self.generations.len() != self.slots
+    }
+
+    /// The generations, written out at the base first if they were
+    /// implied: every path that changes a generation goes through here.
+    fn generations_mut(&mut self) -> &mut Vec<u32> {
+        if self.implied() {
+            debug_assert!(self.generations.is_empty() && self.state == State::Intact);
+            self.generations = vec![self.base; self.slots];
+        }
+        &mut self.generations
     }
 
     /// The base generation: every generation in the arena is at least this.
@@ -155,7 +205,11 @@ impl Slots {
     /// The generation of slot `i`; `None` past the end.
     #[inline]
     pub(crate) fn generation(&self, i: usize) -> Option<u32> {
-        self.generations.get(i).copied()
+        if self.implied() {
+            (i < self.slots).then_some(self.base)
+        } else {
+            self.generations.get(i).copied()
+        }
     }
 
     /// The current generation of a slot known to be live.
@@ -172,7 +226,7 @@ impl Slots {
     #[inline]
     pub(crate) fn is_current(&self, index: u32, generation: u32) -> bool {
         if self.state == State::Intact {
-            generation == self.base && (index as usize) < self.generations.len()
+            generation == self.base && (index as usize) < self.slots
         } else {
             generation & 1 == 1 && self.generations.get(index as usize) == Some(&generation)
         }
@@ -195,7 +249,11 @@ impl Slots {
     /// Whether slot `i` is occupied.
     #[inline]
     pub(crate) fn is_live(&self, i: usize) -> bool {
-        self.generations.get(i).is_some_and(|g| g & 1 == 1)
+        if self.state == State::Intact {
+            i < self.slots
+        } else {
+            self.generations.get(i).is_some_and(|g| g & 1 == 1)
+        }
     }
 
     /// Slot `i`'s index and generation, if it is live.
@@ -212,16 +270,23 @@ impl Slots {
         self.live += 1;
         if let Some(i) = self.free.pop() {
             self.state = State::Mixed;
-            let g = &mut self.generations[i as usize];
+            let fresh = self.fresh;
+            let g = &mut self.generations_mut()[i as usize];
             // The free list holds only slots whose next generation exists
             // (`reusable`, checked when the slot was freed), and `fresh` is
             // at most MAX_LIVE_GENERATION: no overflow. Both are odd.
-            *g = (*g + 1).max(self.fresh);
+            *g = (*g + 1).max(fresh);
             debug_assert!(*g & 1 == 1 && *g <= MAX_LIVE_GENERATION);
             (i, *g, false)
         } else {
-            let i = u32::try_from(self.generations.len()).expect("more than 2^32 slots");
-            self.generations.push(self.fresh);
+            let i = u32::try_from(self.slots).expect("more than 2^32 slots");
+            if self.implied() {
+                // Intact: the fresh floor is the base, which is implied.
+                debug_assert!(self.fresh == self.base);
+            } else {
+                self.generations.push(self.fresh);
+            }
+            self.slots += 1;
             (i, self.fresh, true)
         }
     }
@@ -230,6 +295,7 @@ impl Slots {
     /// generation would pass [`MAX_LIVE_GENERATION`] is retired instead of
     /// reused, so no key is ever reissued.
     pub(crate) fn free(&mut self, i: u32) {
+        self.generations_mut();
         let g = &mut self.generations[i as usize];
         debug_assert!(*g & 1 == 1, "freeing a vacant slot");
         if self.state == State::Intact {
@@ -255,11 +321,14 @@ impl Slots {
 
     /// The live slot indices, in slot order.
     pub(crate) fn live_indices(&self) -> impl Iterator<Item = u32> + '_ {
-        self.generations
-            .iter()
-            .enumerate()
-            .filter(|(_, g)| *g & 1 == 1)
-            .map(|(i, _)| i as u32)
+        let all = if self.implied() { self.slots } else { 0 };
+        (0..all as u32).chain(
+            self.generations
+                .iter()
+                .enumerate()
+                .filter(|(_, g)| *g & 1 == 1)
+                .map(|(i, _)| i as u32),
+        )
     }
 
     /// A copy of this arena with `n` more live slots at the end, at the
@@ -267,6 +336,13 @@ impl Slots {
     /// one allocation of exactly the size needed. Keys to the existing
     /// slots keep their meaning.
     pub(crate) fn extended(&self, n: usize) -> Slots {
+        if self.implied() {
+            // Intact, fresh floor at the base: the new slots are implied too.
+            let mut s = self.clone();
+            s.slots += n;
+            s.live += n;
+            return s;
+        }
         let mut generations = Vec::with_capacity(self.generations.len() + n);
         generations.extend_from_slice(&self.generations);
         // New slots get the fresh floor, as `alloc` gives them: after an
@@ -274,6 +350,7 @@ impl Slots {
         generations.resize(self.generations.len() + n, self.fresh);
         Slots {
             generations,
+            slots: self.slots + n,
             free: self.free.clone(),
             live: self.live + n,
             base: self.base,
@@ -294,7 +371,7 @@ impl Slots {
     /// base would pass [`MAX_LIVE_GENERATION`]: the arena cannot be
     /// compacted without reissuing a generation.
     pub(crate) fn compacted(&self, live: usize) -> Option<Slots> {
-        let highest = self.generations.iter().copied().max().unwrap_or(0);
+        let highest = self.highest_stored();
         // Generations below `fresh` may have been issued to elements an
         // undo took back: the new base is not below it either.
         let above = (highest.max(self.base).checked_add(1)? | 1).max(self.fresh);
@@ -327,11 +404,14 @@ impl Slots {
     /// `Intact`, a fresh floor above the base rules out `Pristine`.
     pub(crate) fn restore_state(&mut self, state: State) {
         let mut s = state;
-        if s == State::Intact && self.live < self.generations.len() {
+        if s == State::Intact && self.live < self.slots {
             s = State::Pristine;
         }
         if self.fresh != self.base {
             s = State::Mixed;
+        }
+        if s != State::Intact {
+            self.generations_mut();
         }
         self.state = s;
     }
@@ -343,6 +423,7 @@ impl Slots {
     pub(crate) fn raise_fresh(&mut self, g: u32) {
         let g = (g | 1).min(MAX_LIVE_GENERATION);
         if g > self.fresh {
+            self.generations_mut();
             self.fresh = g;
             self.state = State::Mixed;
         }
@@ -354,6 +435,7 @@ impl Slots {
     /// back on it (`push`); a slot that was new is held vacant off the
     /// list, for a redo to revive ([`release`](Slots::release) lets it go).
     pub(crate) fn unbirth(&mut self, i: u32, push: bool) {
+        self.generations_mut();
         let g = &mut self.generations[i as usize];
         debug_assert!(*g & 1 == 1, "undoing the birth of a vacant slot");
         *g += 1;
@@ -367,7 +449,7 @@ impl Slots {
     /// again at the same generation as before. `pop`: it was put back on
     /// the free list (and is on top of it).
     pub(crate) fn rebirth(&mut self, i: u32, pop: bool) {
-        let g = &mut self.generations[i as usize];
+        let g = &mut self.generations_mut()[i as usize];
         debug_assert!(*g & 1 == 0, "redoing the birth of a live slot");
         let reusable = Self::reusable(*g);
         *g -= 1;
@@ -381,6 +463,7 @@ impl Slots {
     /// again at `g`, the generation the reuse gave it (set, not derived:
     /// undoing an earlier death may have moved the slot's generation).
     pub(crate) fn rebirth_at(&mut self, i: u32, g: u32) {
+        self.generations_mut();
         debug_assert!(
             self.generations[i as usize] & 1 == 0,
             "redoing the reuse of a live slot"
@@ -407,7 +490,7 @@ impl Slots {
     /// (it is on top, if its death put it there). When later elements in
     /// this slot were undone, the fresh floor rises above them.
     pub(crate) fn undeath(&mut self, i: u32, g: u32) {
-        let current = self.generations[i as usize];
+        let current = self.generations_mut()[i as usize];
         debug_assert!(
             current & 1 == 0 && current > g,
             "undoing a death that did not happen"
@@ -425,18 +508,22 @@ impl Slots {
     /// The highest generation any slot holds (live or vacant), at least
     /// the fresh floor: every key this arena issued is at or below it.
     pub(crate) fn highest_issued(&self) -> u32 {
-        self.generations
-            .iter()
-            .copied()
-            .max()
-            .unwrap_or(0)
-            .max(self.fresh)
+        self.highest_stored().max(self.fresh)
+    }
+
+    /// The highest generation any slot holds (0 with no slot).
+    fn highest_stored(&self) -> u32 {
+        if self.implied() {
+            self.base
+        } else {
+            self.generations.iter().copied().max().unwrap_or(0)
+        }
     }
 
     /// Put a vacant slot that [`unbirth`](Slots::unbirth) held for a redo
     /// back on the free list (the redo was dropped).
     pub(crate) fn release(&mut self, i: u32) {
-        if let Some(&g) = self.generations.get(i as usize) {
+        if let Some(g) = self.generation(i as usize) {
             if g & 1 == 0 && Self::reusable(g) {
                 self.free.push(i);
             }
@@ -495,6 +582,7 @@ impl Slots {
             State::Mixed
         };
         Ok(Slots {
+            slots: generations.len(),
             generations,
             free,
             live,
@@ -504,8 +592,17 @@ impl Slots {
         })
     }
 
-    /// The raw generations (serialization).
-    pub(crate) fn generations(&self) -> &[u32] {
+    /// The generations, one per slot (serialization), written out.
+    pub(crate) fn generations(&self) -> std::borrow::Cow<'_, [u32]> {
+        if self.implied() {
+            std::borrow::Cow::Owned(vec![self.base; self.slots])
+        } else {
+            std::borrow::Cow::Borrowed(&self.generations)
+        }
+    }
+
+    /// The stored generations: empty while they are implied (intact).
+    pub(crate) fn stored_generations(&self) -> &[u32] {
         &self.generations
     }
 }
@@ -542,6 +639,34 @@ mod tests {
     }
 
     #[test]
+    fn intact_arena_stores_no_generation() {
+        let mut s = Slots::full(1000);
+        assert_eq!(s.heap_bytes(), 0);
+        assert_eq!(s.slot_count(), 1000);
+        assert_eq!(s.generation(999), Some(1));
+        assert_eq!(s.generation(1000), None);
+        let (i, g, new) = s.alloc();
+        assert_eq!((i, g, new), (1000, 1, true));
+        assert_eq!(s.heap_bytes(), 0, "a new slot at the base stays implied");
+        assert_eq!(s.live_indices().count(), 1001);
+        let written = Slots::from_generations(vec![1; 1001], 1, 1).unwrap();
+        assert_eq!(s, written, "implied and written-out generations compare equal");
+        s.free(7);
+        assert!(s.heap_bytes() >= 1001 * 4, "the first free writes them out");
+        assert_eq!(s.generation(7), Some(2));
+        assert_eq!(s.generation(8), Some(1));
+        assert_eq!(s.live_indices().count(), 1000);
+        assert_ne!(s, written);
+    }
+
+    #[test]
+    fn extending_an_intact_arena_keeps_it_implied() {
+        let s = Slots::full(3).extended(2);
+        assert_eq!((s.slot_count(), s.live(), s.heap_bytes()), (5, 5, 0));
+        assert!(s.intact() && s.is_current(4, 1) && !s.is_current(5, 1));
+    }
+
+    #[test]
     fn intact_until_first_free() {
         let mut s = Slots::full(2);
         assert!(s.intact() && s.is_current(1, 1) && !s.is_current(2, 1) && !s.is_current(0, 3));
@@ -569,7 +694,7 @@ mod tests {
         s.free(2); // generation 2: vacant
         let c = s.compacted(2).unwrap();
         assert_eq!(c.base(), 5);
-        assert_eq!(c.generations(), [5, 5]);
+        assert_eq!(*c.generations(), [5, 5]);
         assert!(c.intact() && c.pristine());
         for (i, g) in [(0, 1), (1, 3), (1, 1), (2, 1)] {
             assert!(!c.is_current(i, g), "({i}, {g})");

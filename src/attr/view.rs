@@ -82,8 +82,11 @@ pub struct AttrView<'m, K, T> {
     pub(crate) mesh: &'m Mesh,
     pub(crate) values: &'m [T],
     pub(crate) present: Option<&'m [u64]>,
-    /// The arena's generations (odd = live).
+    /// The arena's stored generations (odd = live); empty while they are
+    /// implied (`intact`: every slot live at the base).
     pub(crate) generations: &'m [u32],
+    /// The arena's slot count.
+    pub(crate) slot_count: usize,
     /// The arena's base generation.
     pub(crate) base: u32,
     /// No slot of the arena was freed since it was built or compacted
@@ -124,7 +127,7 @@ impl<'m, K: Element, T> AttrView<'m, K, T> {
         // waits for one cache miss, not two in a row.
         let value = self.values.get(i);
         let live = if self.intact {
-            (key.generation_of_key() == self.base) & ((i >> K::SHIFT) < self.generations.len())
+            (key.generation_of_key() == self.base) & ((i >> K::SHIFT) < self.slot_count)
         } else {
             current(self.generations, i >> K::SHIFT, key.generation_of_key())
         };
@@ -184,8 +187,13 @@ impl<'m, K: Element, T> AttrView<'m, K, T> {
     /// holes included).
     pub fn iter(&self) -> impl Iterator<Item = (K, &'m T)> + '_ {
         let (generations, present) = (self.generations, self.present);
+        let (intact, base, slot_count) = (self.intact, self.base, self.slot_count);
         self.values.iter().enumerate().filter_map(move |(i, v)| {
-            let g = *generations.get(i >> K::SHIFT)?;
+            let g = if intact {
+                ((i >> K::SHIFT) < slot_count).then_some(base)?
+            } else {
+                *generations.get(i >> K::SHIFT)?
+            };
             (g & 1 == 1 && bit(present, i)).then(|| (K::from_parts(i as u32, g), v))
         })
     }
