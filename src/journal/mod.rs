@@ -144,6 +144,7 @@
 
 mod codec;
 mod hooks;
+mod pages;
 mod recorder;
 
 pub(crate) use hooks::{journaled, Journaling, Recorded, Unrecorded};
