@@ -72,6 +72,10 @@ impl Mesh {
     /// Record half-edge `h`'s links before a write.
     #[inline(always)]
     fn log_he<J: Journaling>(&mut self, h: Hid) {
+        // Read as before the page log existed (callgrind, `poke_face` with
+        // no journal on the 40k grid: 2.8 % more instructions than before
+        // the page log without these reads, 1.8 % with them).
+        let _current = self.he[h];
         if J::ON {
             if let Some(r) = self.rec.as_deref_mut() {
                 r.save_he(h, self.he.as_slice());
@@ -108,6 +112,7 @@ impl Mesh {
     /// Vertex `v`'s half-edge, mutably (recorded first).
     #[inline(always)]
     pub(crate) fn v_halfedge_mut<J: Journaling>(&mut self, v: Vid) -> &mut Hid {
+        let _current = self.v_halfedge[v];
         if J::ON {
             if let Some(r) = self.rec.as_deref_mut() {
                 r.save_vh(v, self.v_halfedge.as_slice());
@@ -119,6 +124,7 @@ impl Mesh {
     /// Face `f`'s link, mutably (recorded first).
     #[inline(always)]
     pub(crate) fn f_halfedge_mut<J: Journaling>(&mut self, f: Fid) -> &mut FaceLink {
+        let _current = self.f_halfedge[f];
         if J::ON {
             if let Some(r) = self.rec.as_deref_mut() {
                 r.save_fl(f, self.f_halfedge.as_slice());
