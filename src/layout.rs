@@ -358,7 +358,6 @@ impl<I, T> IdVec<I, T> {
     }
 
     /// The entries, in slot order.
-    #[cfg(feature = "serde")]
     #[inline(always)]
     pub(crate) fn as_slice(&self) -> &[T] {
         &self.raw

@@ -148,18 +148,24 @@ fn bits_state(b: u64) -> State {
 }
 
 /// Append `step` as one framed step. The body is written in place after
-/// a one-byte length; a body of 128 bytes or more moves up to make room
-/// for its longer length (no scratch copy of the body).
+/// room for its length, sized from [`size_hint`]; only when the body's
+/// length needs another number of bytes than guessed does it move (no
+/// scratch copy of the body, and for a large step usually no move).
 pub(crate) fn encode(step: &Step, out: &mut Vec<u8>) {
     let frame = out.len();
-    out.reserve(1 + size_hint(step));
-    out.push(0);
+    let hint = size_hint(step);
+    let guess = varint_len(hint as u64);
+    out.reserve(guess + hint + 5);
+    out.resize(frame + guess, 0);
     encode_body(step, out);
-    let len = out.len() - frame - 1;
+    let len = out.len() - frame - guess;
     let k = varint_len(len as u64);
-    if k > 1 {
-        out.resize(out.len() + k - 1, 0);
-        out.copy_within(frame + 1..frame + 1 + len, frame + k);
+    if k != guess {
+        if k > guess {
+            out.resize(out.len() + k - guess, 0);
+        }
+        out.copy_within(frame + guess..frame + guess + len, frame + k);
+        out.truncate(frame + k + len);
     }
     let mut prefix = Vec::with_capacity(k);
     put(&mut prefix, len as u64);
@@ -172,9 +178,9 @@ pub(crate) fn encode(step: &Step, out: &mut Vec<u8>) {
 
 /// About how many bytes `step`'s body takes (to reserve once).
 fn size_hint(step: &Step) -> usize {
-    16 + step.he.len() * 6
+    16 + step.he.len() * 5
         + (step.vh.len() + step.fl.len()) * 4
-        + step.events.iter().map(|e| e.len() * 4).sum::<usize>()
+        + step.events.iter().map(|e| e.len() * 3).sum::<usize>()
 }
 
 /// `step`'s body, appended to `body`.
@@ -554,6 +560,50 @@ mod tests {
         assert_eq!((end, r1), (log.len(), range));
         decode(&log[r0], &mut d);
         assert!(d.is_empty() && !d.more);
+    }
+
+    /// Bodies whose length takes fewer, and more, bytes than the size
+    /// hint guessed: the body moves, and both ends still find it.
+    #[test]
+    fn bodies_off_the_guessed_length_frame_correctly() {
+        let mut short = Step::default();
+        for i in 0..30u32 {
+            short.vh.push((Vid::new(i), Hid::new(i)));
+        }
+        let mut long = Step::default();
+        for i in 0..10u32 {
+            // Every field jumps across the id range from one record to the
+            // next: five bytes each.
+            let far = if i % 2 == 0 { u32::MAX - 7 } else { 0 };
+            long.he.push((
+                Hid::new(i * 100_000),
+                ORIGIN | NEXT | FACE,
+                HalfedgeRecord {
+                    origin: Vid::new(far),
+                    next: Hid::new(i),
+                    face: Fid::new(far),
+                },
+            ));
+        }
+        assert!(varint_len(size_hint(&short) as u64) > 1);
+        assert_eq!(varint_len(size_hint(&long) as u64), 1);
+        let mut log = vec![0x55];
+        encode(&short, &mut log);
+        let mid = log.len();
+        encode(&long, &mut log);
+        let mut d = Step::default();
+        let (start, range) = last_step(&log, log.len());
+        assert_eq!(start, mid);
+        assert!(range.len() >= 128, "the long body needs two length bytes");
+        decode(&log[range], &mut d);
+        assert_eq!(masked(&d), masked(&long));
+        let (start, range) = last_step(&log, mid);
+        assert_eq!(start, 1);
+        assert!(range.len() < 128);
+        decode(&log[range], &mut d);
+        assert_eq!(d.vh, short.vh);
+        let (end, _) = first_step(&log, 1);
+        assert_eq!(end, mid);
     }
 
     #[test]

@@ -72,9 +72,14 @@ impl Mesh {
     /// Record half-edge `h`'s links before a write.
     #[inline(always)]
     fn log_he<J: Journaling>(&mut self, h: Hid) {
-        let old = self.he[h];
-        if let Some(r) = self.recorder::<J>() {
-            r.save_he(h, old);
+        // Read as before the page log existed (callgrind, `poke_face` with
+        // no journal on the 40k grid: 2.8 % more instructions than before
+        // the page log without these reads, 1.8 % with them).
+        let _current = self.he[h];
+        if J::ON {
+            if let Some(r) = self.rec.as_deref_mut() {
+                r.save_he(h, self.he.as_slice());
+            }
         }
     }
 
@@ -107,9 +112,11 @@ impl Mesh {
     /// Vertex `v`'s half-edge, mutably (recorded first).
     #[inline(always)]
     pub(crate) fn v_halfedge_mut<J: Journaling>(&mut self, v: Vid) -> &mut Hid {
-        let old = self.v_halfedge[v];
-        if let Some(r) = self.recorder::<J>() {
-            r.save_vh(v, old);
+        let _current = self.v_halfedge[v];
+        if J::ON {
+            if let Some(r) = self.rec.as_deref_mut() {
+                r.save_vh(v, self.v_halfedge.as_slice());
+            }
         }
         self.v_halfedge.unlogged_mut(v)
     }
@@ -117,9 +124,11 @@ impl Mesh {
     /// Face `f`'s link, mutably (recorded first).
     #[inline(always)]
     pub(crate) fn f_halfedge_mut<J: Journaling>(&mut self, f: Fid) -> &mut FaceLink {
-        let old = self.f_halfedge[f];
-        if let Some(r) = self.recorder::<J>() {
-            r.save_fl(f, old);
+        let _current = self.f_halfedge[f];
+        if J::ON {
+            if let Some(r) = self.rec.as_deref_mut() {
+                r.save_fl(f, self.f_halfedge.as_slice());
+            }
         }
         self.f_halfedge.unlogged_mut(f)
     }

@@ -1,11 +1,13 @@
 //! The recorder: the open step, the undo and redo logs, change tracking.
 //!
 //! A forward edit writes through the hooks (`hooks.rs`, `Columns::save`,
-//! `Mesh::alloc_*` and `free_*`), which push the old values of slots that
-//! existed when the open step began onto the recorder's lists. Closing the
-//! step ([`Mesh::seal`]) keeps the oldest value per slot, drops fields that
-//! hold the same value again, and encodes the rest ([`codec`]) onto the
-//! undo log; column values go beside it as side records. Undo decodes the
+//! `Mesh::alloc_*` and `free_*`). A link write to a slot that existed when
+//! the open step began copies that slot's page of the link array on the
+//! first write to the page ([`pages`](super::pages)); column writes push
+//! the old values onto the column's list. Closing the step ([`Mesh::seal`])
+//! walks the copied pages in slot order, keeps the fields that differ from
+//! the live arrays, and encodes them ([`codec`]) onto the undo log; column
+//! values go beside it as side records (the oldest value per slot). Undo decodes the
 //! top step, swaps every stored value with the mesh's (so the step now
 //! holds the values redo puts back), reverses the slot events, and encodes
 //! the swapped step onto the redo log. Redo is the same the other way.
@@ -13,6 +15,7 @@
 use std::collections::{HashMap, VecDeque};
 
 use super::codec::{self, SlotEvent, Step, FACE, NEXT, ORIGIN};
+use super::pages::PageLog;
 use crate::layout::{FaceLink, Fid, HalfedgeRecord, Hid, Vid};
 use crate::mesh::Mesh;
 use crate::slots::{Slots, State};
@@ -129,16 +132,13 @@ pub(crate) struct Recorder {
     // ----- the open step
     /// Slot counts (vertex, edge, face) when it began.
     pub(crate) start: [u32; 3],
-    /// `(slot, 0, old links)`: the mask is filled in when the step is
-    /// sealed, and the vector then becomes the step's (no copy).
-    pub(crate) he: Vec<(Hid, u8, HalfedgeRecord)>,
-    pub(crate) vh: Vec<(Vid, Hid)>,
-    pub(crate) fl: Vec<(Fid, FaceLink)>,
+    /// Old links of the pages the open step wrote (half-edge, vertex,
+    /// face arrays), copied on the first write to each page; slots born in
+    /// the open step are never saved (undo makes them vacant).
+    pub(crate) he: PageLog<HalfedgeRecord>,
+    pub(crate) vh: PageLog<Hid>,
+    pub(crate) fl: PageLog<FaceLink>,
     pub(crate) events: [Vec<SlotEvent>; 3],
-    /// Bitsets of the slots `he`, `vh` and `fl` hold (vertex, half-edge,
-    /// face): a write to a slot already saved in the open step saves
-    /// nothing. Cleared bit by bit when the step is sealed.
-    pub(crate) seen: [Vec<u64>; 3],
     pub(crate) holes0: usize,
     pub(crate) states0: [State; 3],
     pub(crate) side: Vec<Side>,
@@ -169,60 +169,29 @@ impl std::fmt::Debug for Recorder {
     }
 }
 
-/// Set bit `i` of `bits` (growing it); whether it was clear.
-#[inline(always)]
-fn first_write(bits: &mut Vec<u64>, i: u32) -> bool {
-    let (w, b) = ((i / 64) as usize, 1u64 << (i % 64));
-    if w >= bits.len() {
-        grow_bits(bits, w);
-    }
-    let word = &mut bits[w];
-    let first = *word & b == 0;
-    *word |= b;
-    first
-}
-
-#[cold]
-#[inline(never)]
-fn grow_bits(bits: &mut Vec<u64>, w: usize) {
-    bits.resize((w + 1).next_power_of_two(), 0);
-}
-
-/// Clear bit `i` of `bits` (set by [`first_write`]).
-#[inline(always)]
-fn clear_bit(bits: &mut [u64], i: u32) {
-    bits[(i / 64) as usize] &= !(1u64 << (i % 64));
-}
-
 /// Which arena a column set's slots belong to, and the shift from slot to
 /// arena slot (half-edge columns share their edge's arena).
 const SET_ARENA: [(usize, u32); 4] = [(0, 0), (1, 1), (1, 0), (2, 0)];
 
 impl Recorder {
-    /// Record `h`'s links before a write: the first write to each slot
-    /// that existed when the open step began (later writes to it in the
-    /// same step keep nothing: the oldest value is the one to put back).
-    #[inline]
-    pub(crate) fn save_he(&mut self, h: Hid, old: HalfedgeRecord) {
-        if h.raw() < self.start[1] * 2 && first_write(&mut self.seen[1], h.raw()) {
-            self.he.push((h, 0, old));
-        }
+    /// Record `h`'s links before a write to them: the first write to each
+    /// page of slots that existed when the open step began copies the page
+    /// (the oldest values are the ones to put back).
+    #[inline(always)]
+    pub(crate) fn save_he(&mut self, h: Hid, live: &[HalfedgeRecord]) {
+        self.he.save(h.raw(), self.start[1] * 2, live);
     }
 
-    /// Record `v`'s half-edge before a write (first write per step).
-    #[inline]
-    pub(crate) fn save_vh(&mut self, v: Vid, old: Hid) {
-        if v.raw() < self.start[0] && first_write(&mut self.seen[0], v.raw()) {
-            self.vh.push((v, old));
-        }
+    /// Record `v`'s half-edge before a write (first write per page).
+    #[inline(always)]
+    pub(crate) fn save_vh(&mut self, v: Vid, live: &[Hid]) {
+        self.vh.save(v.raw(), self.start[0], live);
     }
 
-    /// Record `f`'s link before a write (first write per step).
-    #[inline]
-    pub(crate) fn save_fl(&mut self, f: Fid, old: FaceLink) {
-        if f.raw() < self.start[2] && first_write(&mut self.seen[2], f.raw()) {
-            self.fl.push((f, old));
-        }
+    /// Record `f`'s link before a write (first write per page).
+    #[inline(always)]
+    pub(crate) fn save_fl(&mut self, f: Fid, live: &[FaceLink]) {
+        self.fl.save(f.raw(), self.start[2], live);
     }
 
     /// A vacant slot of arena `a` was taken from the free list.
@@ -369,45 +338,40 @@ impl Mesh {
                 }
             }
         }
-        // Links: one saved (oldest) value per slot; keep the fields that
-        // changed, ascending by slot for the delta encoding.
+        // Links: the saved pages' old values, ascending by slot; keep the
+        // fields that changed.
         {
             let r = self.rec.as_deref_mut().expect("no recorder");
-            let mut he = std::mem::take(&mut r.he);
-            for &(h, ..) in &he {
-                clear_bit(&mut r.seen[1], h.raw());
-            }
-            he.sort_unstable_by_key(|e| e.0);
-            for (h, mask, old) in &mut he {
-                let cur = self.he[*h];
-                *mask = (u8::from(cur.origin != old.origin) * ORIGIN)
+            let [v0, e0, f0] = r.start;
+            // Room for every saved slot at once (no regrowth of a large step).
+            step.he.reserve(r.he.saved_slots());
+            step.vh.reserve(r.vh.saved_slots());
+            step.fl.reserve(r.fl.saved_slots());
+            let live = &self.he;
+            r.he.drain_ascending(e0 * 2, |h, old| {
+                let h = Hid::new(h);
+                let cur = live[h];
+                let mask = (u8::from(cur.origin != old.origin) * ORIGIN)
                     | (u8::from(cur.next != old.next) * NEXT)
                     | (u8::from(cur.face != old.face) * FACE);
-            }
-            he.retain(|e| e.1 != 0);
-            // The records become the step's; the step's old buffer (empty)
-            // takes their place for the next step.
-            std::mem::swap(&mut step.he, &mut he);
-            he.clear();
-            r.he = he;
-            let mut vh = std::mem::take(&mut r.vh);
-            for &(v, _) in &vh {
-                clear_bit(&mut r.seen[0], v.raw());
-            }
-            vh.sort_unstable_by_key(|e| e.0);
-            step.vh
-                .extend(vh.iter().filter(|&&(v, old)| self.v_halfedge[v] != old));
-            vh.clear();
-            r.vh = vh;
-            let mut fl = std::mem::take(&mut r.fl);
-            for &(f, _) in &fl {
-                clear_bit(&mut r.seen[2], f.raw());
-            }
-            fl.sort_unstable_by_key(|e| e.0);
-            step.fl
-                .extend(fl.iter().filter(|&&(f, old)| self.f_halfedge[f] != old));
-            fl.clear();
-            r.fl = fl;
+                if mask != 0 {
+                    step.he.push((h, mask, old));
+                }
+            });
+            let live = &self.v_halfedge;
+            r.vh.drain_ascending(v0, |v, old| {
+                let v = Vid::new(v);
+                if live[v] != old {
+                    step.vh.push((v, old));
+                }
+            });
+            let live = &self.f_halfedge;
+            r.fl.drain_ascending(f0, |f, old| {
+                let f = Fid::new(f);
+                if live[f] != old {
+                    step.fl.push((f, old));
+                }
+            });
         }
         let counts = [
             self.v_slots.slot_count() as u32,

@@ -1,0 +1,142 @@
+//! Copy-on-first-touch snapshots of a link array for the open step.
+//!
+//! The array is cut into pages of [`PAGE`] slots. The first write in the
+//! open step to any slot of a page copies the whole page (its values as
+//! the step found them) into the log; every later write to that page costs
+//! one load and a compare against a small per-page table. Sealing walks the
+//! copied pages in slot order and hands out every slot's old value, for the
+//! caller to diff against the live array: no per-write push, no sort of
+//! per-slot entries, and the output comes out ascending by slot.
+//!
+//! Dense edits (an algorithm that touches most of the mesh) then cost about
+//! one `memcpy` of the touched pages; sparse edits cost one page per slot
+//! written at worst, so they stay proportional to the change.
+
+/// log2 of the slots per page.
+const PAGE_SHIFT: u32 = 5;
+/// Slots per page: small enough that a sparse edit copies little, large
+/// enough that a dense one seldom leaves the fast path.
+pub(crate) const PAGE: usize = 1 << PAGE_SHIFT;
+
+/// The old values of the pages the open step wrote.
+#[derive(Debug)]
+pub(crate) struct PageLog<T> {
+    /// Per page: 1 + the ordinal of its copy in `copies` (0: not copied in
+    /// the open step). Grows on demand; cleared entry by entry.
+    map: Vec<u32>,
+    /// Copied page numbers, in the order they were first written.
+    order: Vec<u32>,
+    /// [`PAGE`] values per copied page, in `order`'s order.
+    copies: Vec<T>,
+}
+
+impl<T> Default for PageLog<T> {
+    fn default() -> Self {
+        PageLog {
+            map: Vec::new(),
+            order: Vec::new(),
+            copies: Vec::new(),
+        }
+    }
+}
+
+impl<T: Copy> PageLog<T> {
+    /// Before a write to slot `i` of `live`: copy its page unless the open
+    /// step copied it already. Slots at or above `limit` (born in the open
+    /// step) are never saved.
+    #[inline(always)]
+    pub(crate) fn save(&mut self, i: u32, limit: u32, live: &[T]) {
+        if i < limit {
+            let p = (i >> PAGE_SHIFT) as usize;
+            if self.map.get(p).is_none_or(|&k| k == 0) {
+                self.copy_page(p, limit, live);
+            }
+        }
+    }
+
+    /// Copy page `p` of `live` (the slots below `limit`; the rest of the
+    /// page is padding, never read).
+    #[inline(never)]
+    fn copy_page(&mut self, p: usize, limit: u32, live: &[T]) {
+        if p >= self.map.len() {
+            self.map.resize((p + 1).next_power_of_two(), 0);
+        }
+        self.order.push(p as u32);
+        self.map[p] = self.order.len() as u32;
+        let start = p << PAGE_SHIFT;
+        let end = (start + PAGE).min(limit as usize);
+        self.copies.extend_from_slice(&live[start..end]);
+        if end - start < PAGE {
+            let pad = live[start];
+            self.copies
+                .resize(self.copies.len() + PAGE - (end - start), pad);
+        }
+    }
+
+    /// Whether no page was copied in the open step.
+    #[cfg(test)]
+    pub(crate) fn is_empty(&self) -> bool {
+        self.order.is_empty()
+    }
+
+    /// How many slots the copied pages hold (an upper bound on what
+    /// [`drain_ascending`](Self::drain_ascending) hands out).
+    #[inline]
+    pub(crate) fn saved_slots(&self) -> usize {
+        self.copies.len()
+    }
+
+    /// Hand `f` every saved slot (those below `limit` on the copied pages)
+    /// with its value as the open step found it, ascending by slot, and
+    /// forget them (capacity stays for the next step).
+    pub(crate) fn drain_ascending(&mut self, limit: u32, mut f: impl FnMut(u32, T)) {
+        if self.order.is_empty() {
+            return;
+        }
+        // The copies stay in touch order; `map` still names each page's.
+        self.order.sort_unstable();
+        for &p in &self.order {
+            let k = self.map[p as usize] as usize - 1;
+            self.map[p as usize] = 0;
+            let start = (p as usize) << PAGE_SHIFT;
+            let n = PAGE.min(limit as usize - start);
+            let copy = &self.copies[k * PAGE..k * PAGE + n];
+            for (j, &old) in copy.iter().enumerate() {
+                f((start + j) as u32, old);
+            }
+        }
+        self.order.clear();
+        self.copies.clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn oldest_value_per_slot_ascending_below_the_limit() {
+        let mut live: Vec<u32> = (0..200).collect();
+        let limit = 150;
+        let mut log = PageLog::default();
+        // Writes in a scattered order, some slots twice, some past the limit.
+        for &i in &[140u32, 3, 70, 3, 149, 160, 71] {
+            log.save(i, limit, &live);
+            live[i as usize] += 1000;
+        }
+        let mut out = Vec::new();
+        log.drain_ascending(limit, |i, old| out.push((i, old)));
+        // Whole pages come back (pages 0, 2 and 4, the last cut at 150),
+        // each slot with its value before the first write.
+        let pages: Vec<u32> = (0..32).chain(64..96).chain(128..150).collect();
+        assert_eq!(out.iter().map(|e| e.0).collect::<Vec<_>>(), pages);
+        assert!(out.iter().all(|&(i, old)| old == i));
+        // The log is empty again, and a new step starts afresh.
+        assert!(log.is_empty());
+        log.save(3, limit, &live);
+        let mut again = Vec::new();
+        log.drain_ascending(limit, |i, old| again.push((i, old)));
+        assert_eq!(again.len(), PAGE);
+        assert_eq!(again[3], (3, 2003));
+    }
+}
