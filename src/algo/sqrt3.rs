@@ -456,22 +456,27 @@ impl<'a> VertexRules<'a> {
     }
 
     /// The move of live vertex `v`.
-    #[inline]
+    #[inline(always)]
     fn of_vertex(&self, v: Vid) -> VertexMove {
         let m = self.mesh;
-        let boundary = m.in_hole(m.v_halfedge[v]);
-        if !boundary {
-            return if self.features.is_special(v) {
+        if !m.in_hole(m.v_halfedge[v]) {
+            if self.features.is_special(v) {
                 VertexMove::Stay
             } else {
                 VertexMove::Smooth
-            };
+            }
+        } else if !self.trisect {
+            VertexMove::Stay
+        } else {
+            self.boundary_move(v)
         }
-        if !self.trisect {
-            return VertexMove::Stay;
-        }
+    }
+
+    /// The move of boundary vertex `v` at an even level.
+    #[inline(never)]
+    fn boundary_move(&self, v: Vid) -> VertexMove {
         let mut ring = Vec::new();
-        let on_boundary = self.features.gather(m, v, &mut ring);
+        let on_boundary = self.features.gather(self.mesh, v, &mut ring);
         match self.features.rule(v, &ring, on_boundary).parent {
             Rule::Crease(a, b) => VertexMove::Curve(a, b),
             _ => VertexMove::Stay,
@@ -549,17 +554,18 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
                                             // Side 0: origin(h) -> c, in the triangle beside p's edge at
                                             // dest(p): across the flipped edge, in p's own kept piece,
                                             // or on the last third of p's trisected edge.
-            he.push(if let Some(r) = l.trisected(p.edge()) {
-                HalfedgeRecord {
-                    origin: rec.origin,
-                    next: l.extra_edge(r, 3).halfedge(1),
-                    face: l.extra_face(r, 1),
-                }
-            } else if l.kept(p.edge()) {
-                HalfedgeRecord {
-                    origin: rec.origin,
-                    next: l.spoke(p).halfedge(1),
-                    face: l.triangle(p),
+            he.push(if l.kept(p.edge()) {
+                match l.trisected(p.edge()) {
+                    Some(r) => HalfedgeRecord {
+                        origin: rec.origin,
+                        next: l.extra_edge(r, 3).halfedge(1),
+                        face: l.extra_face(r, 1),
+                    },
+                    None => HalfedgeRecord {
+                        origin: rec.origin,
+                        next: l.spoke(p).halfedge(1),
+                        face: l.triangle(p),
+                    },
                 }
             } else {
                 HalfedgeRecord {
@@ -595,7 +601,7 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
         let e = Eid::new(ei as u32);
         let hs = e.halfedges();
         let kept = l.kept(e);
-        let third = l.trisected(e);
+        let third = if kept { l.trisected(e) } else { None };
         for s in 0..2 {
             let (own, other) = (hs[s], hs[1 - s]);
             let rec = mesh.he[own];
@@ -628,7 +634,8 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
     // Per trisected edge (inner half-edge h from a to b, face point m,
     // boundary points a' and b'): the middle third a'b', the last third
     // b'b, the spokes a'm and b'm.
-    for ei in 0..ne_slots {
+    let trisected_slots = if l.boundary > 0 { ne_slots } else { 0 };
+    for ei in 0..trisected_slots {
         let e = Eid::new(ei as u32);
         let Some(r) = l.trisected(e) else { continue };
         let Some(h) = boundary_inner(mesh, e) else {
@@ -713,7 +720,7 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
         }
     }
     // Boundary points leave along the hole: a' -> a, b' -> a'.
-    for ei in 0..ne_slots {
+    for ei in 0..trisected_slots {
         let e = Eid::new(ei as u32);
         let Some(r) = l.trisected(e) else { continue };
         let Some(h) = boundary_inner(mesh, e) else {
