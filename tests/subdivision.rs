@@ -1301,3 +1301,253 @@ fn sqrt3_keeps_uv_seams() {
     assert_eq!(plain.edge_count(), seamed.edge_count());
     assert_eq!(seams(&seamed), before);
 }
+
+// ----- √3 boundary trisection -------------------------------------------------
+
+/// A small open triangle grid with a bump, so that every stencil moves
+/// something.
+fn bumpy_grid() -> Mesh {
+    let mut m = meshloom::shapes::grid(4, 3, meshloom::shapes::GridFaces::Triangles);
+    let vs: Vec<VertexKey> = m.vertices().collect();
+    for (i, v) in vs.into_iter().enumerate() {
+        let p = m.position(v).unwrap();
+        let z = 0.1 * (p[0] * 1.7).sin() + 0.05 * (p[1] * 2.3).cos() + 0.01 * i as f64;
+        m.set_position(v, [p[0], p[1], z]).unwrap();
+    }
+    m
+}
+
+fn boundary_edge_count(m: &Mesh) -> usize {
+    m.edges()
+        .filter(|&e| m.edge(e).unwrap().is_boundary())
+        .count()
+}
+
+/// The vertex loops of the holes.
+fn hole_loops(m: &Mesh) -> Vec<Vec<VertexKey>> {
+    m.faces_and_holes()
+        .filter(|&f| m.face(f).unwrap().is_hole())
+        .map(|f| m.face(f).unwrap().vertices().collect())
+        .collect()
+}
+
+/// Two levels in one call: the first keeps the boundary, the second
+/// trisects every boundary edge (V + F + 2B, E + 3F + 4B, 3F + 2B).
+#[test]
+fn sqrt3_trisects_the_boundary_every_second_level() {
+    let mut meshes = vec![
+        bumpy_grid(),
+        common::boundary_fan(),
+        common::one_ring(),
+        meshloom::shapes::grid(5, 4, meshloom::shapes::GridFaces::Triangles),
+    ];
+    for file in [
+        "boundary/cgal_mesh_with_border.off",
+        "boundary/cgal_open_cube.off",
+        "boundary/cgal_triangular_hole.off",
+        "boundary/cgal_holes.off",
+    ] {
+        meshes.push(read_off(&mesh_path(file)));
+    }
+    for mut m in meshes {
+        let before = topology(&m);
+        let (v, e, f, h) = counts(&m);
+        let b = boundary_edge_count(&m);
+        assert!(b > 0);
+        let r = sqrt3_subdivide(&mut m, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+        m.validate().unwrap();
+        assert_eq!(topology(&m), before);
+        let (v1, e1, f1) = (v + f, e + 3 * f, 3 * f);
+        assert_eq!(
+            counts(&m),
+            (v1 + f1 + 2 * b, e1 + 3 * f1 + 4 * b, 3 * f1 + 2 * b, h)
+        );
+        assert_eq!(boundary_edge_count(&m), 3 * b);
+        assert!(!r.levels[0].boundary_trisected && r.levels[1].boundary_trisected);
+        assert!(m.faces().all(|f| m.face(f).unwrap().degree() == 3));
+        // Four levels: the boundary is trisected twice.
+        let mut m4 = m.clone();
+        sqrt3_subdivide(&mut m4, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+        m4.validate().unwrap();
+        assert_eq!(boundary_edge_count(&m4), 9 * b);
+    }
+}
+
+/// The second level's boundary against the ternary cubic B-spline rules,
+/// computed here from the first level's mesh: an old boundary vertex goes
+/// to (4 a + 19 v + 4 b) / 27, the point a third along a → b to
+/// (p + 16 a + 10 b) / 27 with p the boundary vertex before a; interior
+/// vertices take Kobbelt's rule, face points are centroids.
+#[test]
+fn sqrt3_boundary_stencils_on_an_open_mesh() {
+    let mut one = bumpy_grid();
+    sqrt3_subdivide(&mut one, &SubdivisionOptions::default(), Progress::none()).unwrap();
+    let mut two = bumpy_grid();
+    sqrt3_subdivide(&mut two, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+    let old: Vec<VertexKey> = one.vertices().collect();
+    let p = |v: VertexKey| one.position(v).unwrap();
+    let q = |v: VertexKey| two.position(v).unwrap();
+    let loops = hole_loops(&two);
+    assert_eq!(loops.len(), 1);
+    let ring = &loops[0];
+    let n = ring.len();
+    assert_eq!(n, 3 * boundary_edge_count(&one));
+    // Old vertices sit at every third place of the new boundary loop.
+    let start = ring.iter().position(|v| old.contains(v)).unwrap();
+    let ring: Vec<VertexKey> = (0..n).map(|i| ring[(start + i) % n]).collect();
+    let corners: Vec<VertexKey> = ring.iter().step_by(3).copied().collect();
+    assert!(ring
+        .iter()
+        .enumerate()
+        .all(|(i, v)| old.contains(v) == (i % 3 == 0)));
+    let k = corners.len();
+    let mut checked = 0;
+    for i in 0..k {
+        let (before, a, b, after) = (
+            corners[(i + k - 1) % k],
+            corners[i],
+            corners[(i + 1) % k],
+            corners[(i + 2) % k],
+        );
+        let expected_a = scale(
+            add(
+                add(scale(p(before), 4.0), scale(p(a), 19.0)),
+                scale(p(b), 4.0),
+            ),
+            1.0 / 27.0,
+        );
+        assert!(close(q(a), expected_a), "old boundary vertex {i}");
+        let (x1, x2) = (ring[3 * i + 1], ring[3 * i + 2]);
+        let near_a = scale(
+            add(add(p(before), scale(p(a), 16.0)), scale(p(b), 10.0)),
+            1.0 / 27.0,
+        );
+        let near_b = scale(
+            add(add(scale(p(a), 10.0), scale(p(b), 16.0)), p(after)),
+            1.0 / 27.0,
+        );
+        assert!(close(q(x1), near_a), "point a third along edge {i}");
+        assert!(close(q(x2), near_b), "point two thirds along edge {i}");
+        checked += 3;
+    }
+    assert_eq!(checked, n);
+    // An interior vertex: Kobbelt's rule over its first-level neighbours.
+    let inner: Vec<VertexKey> = old
+        .iter()
+        .copied()
+        .filter(|&v| !one.vertex(v).unwrap().is_boundary())
+        .collect();
+    assert!(!inner.is_empty());
+    for v in inner {
+        let nb: Vec<VertexKey> = one.vertex(v).unwrap().neighbors().collect();
+        let deg = nb.len() as f64;
+        let alpha = (4.0 - 2.0 * (std::f64::consts::TAU / deg).cos()) / 9.0;
+        let sum = nb.iter().fold([0.0; 3], |s, &u| add(s, p(u)));
+        let expected = add(scale(p(v), 1.0 - alpha), scale(sum, alpha / deg));
+        assert!(close(q(v), expected));
+    }
+    // Linear precision: a straight, evenly spaced boundary stays straight
+    // and evenly spaced (the new points at thirds), away from the corners.
+    let mut flat = meshloom::shapes::grid(7, 2, meshloom::shapes::GridFaces::Triangles);
+    sqrt3_subdivide(&mut flat, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+    flat.validate().unwrap();
+    let on_line = hole_loops(&flat)[0]
+        .iter()
+        .map(|&v| flat.position(v).unwrap())
+        .filter(|p| p[1] == 0.0)
+        .count();
+    // The bottom side (y = 0) keeps its interior points on the line.
+    assert!(on_line >= 3 * 4, "{on_line} points on y = 0");
+}
+
+/// UVs along a trisected boundary: the corners at a new boundary point
+/// interpolate the two corners of the parent face at the edge's ends (a
+/// third and two thirds along), the same in both triangles there; a UV
+/// seam inside stays a seam; face and edge columns follow their rules.
+#[test]
+fn sqrt3_boundary_attributes() {
+    let mut m = bumpy_grid();
+    // Two charts: faces left of x = 1.5 and the others, shifted by 10.
+    let tc = m.add_halfedge_attr::<[f64; 2]>("texcoord").unwrap();
+    let flag = m.add_edge_attr::<bool>("hard").unwrap();
+    let totals = add_totals(&mut m);
+    let faces: Vec<FaceKey> = m.faces().collect();
+    for f in faces {
+        let hs: Vec<_> = m.face(f).unwrap().halfedges().collect();
+        let at = |m: &Mesh, h| m.position(m.halfedge(h).unwrap().origin().key()).unwrap();
+        let x: f64 = hs.iter().map(|&h| at(&m, h)[0]).sum::<f64>() / 3.0;
+        let shift = if x < 1.5 { 0.0 } else { 10.0 };
+        for h in hs {
+            let p = at(&m, h);
+            m.set_attr(&tc, h, [p[0] + shift, p[1]]).unwrap();
+        }
+    }
+    let edges: Vec<EdgeKey> = m.edges().collect();
+    for e in edges {
+        if m.edge(e).unwrap().is_boundary() {
+            m.set_attr(&flag, e, true).unwrap();
+        }
+    }
+    let seams_before = seams(&m);
+    assert!(seams_before >= 2);
+    let total = face_total(&m, &totals);
+    let mut one = m.clone();
+    sqrt3_subdivide(&mut one, &SubdivisionOptions::default(), Progress::none()).unwrap();
+    sqrt3_subdivide(&mut m, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+    m.validate().unwrap();
+    assert_eq!(seams(&m), seams_before);
+    assert!((face_total(&m, &totals) - total).abs() < 1e-9);
+    // Every boundary edge is flagged (the three children of each), no
+    // inside edge is.
+    for e in m.edges() {
+        let boundary = m.edge(e).unwrap().is_boundary();
+        assert_eq!(m.attr(&flag, e).unwrap() == Some(&true), boundary);
+    }
+    // Corners at the boundary points, from the first level's corners.
+    let old: Vec<VertexKey> = one.vertices().collect();
+    let uv_at = |m: &Mesh, h: meshloom::HalfedgeKey| *m.attr(&tc, h).unwrap().unwrap();
+    let mut checked = 0;
+    for e in one.edges() {
+        let ev = one.edge(e).unwrap();
+        if !ev.is_boundary() {
+            continue;
+        }
+        let inner = [ev.halfedge(0), ev.halfedge(1)]
+            .into_iter()
+            .find(|h| !h.face().is_hole())
+            .unwrap();
+        let (a, b) = (inner.origin().key(), inner.dest().key());
+        let (ua, ub) = (uv_at(&one, inner.key()), uv_at(&one, inner.next().key()));
+        // The new boundary path a -> x1 -> x2 -> b in the second level.
+        let fresh_boundary =
+            |x: &VertexKey| !old.contains(x) && m.vertex(*x).unwrap().is_boundary();
+        let x2_of = |x1: VertexKey| {
+            m.vertex(x1)
+                .unwrap()
+                .neighbors()
+                .find(|y| fresh_boundary(y) && m.vertex(*y).unwrap().neighbors().any(|z| z == b))
+        };
+        let x1 = m
+            .vertex(a)
+            .unwrap()
+            .neighbors()
+            .find(|x| fresh_boundary(x) && x2_of(*x).is_some())
+            .unwrap();
+        let x2 = x2_of(x1).unwrap();
+        for (x, t) in [(x1, 1.0 / 3.0), (x2, 2.0 / 3.0)] {
+            let expected = [ua[0] + t * (ub[0] - ua[0]), ua[1] + t * (ub[1] - ua[1])];
+            let corners: Vec<[f64; 2]> = m
+                .vertex(x)
+                .unwrap()
+                .outgoing()
+                .filter(|&h| !m.halfedge(h).unwrap().face().is_hole())
+                .map(|h| uv_at(&m, h))
+                .collect();
+            assert_eq!(corners.len(), 2);
+            assert_eq!(corners[0], corners[1], "one value at a boundary point");
+            assert!((0..2).all(|i| (corners[0][i] - expected[i]).abs() < 1e-12));
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 2 * boundary_edge_count(&one));
+}

@@ -217,8 +217,9 @@ fn loop_positions(
     progress: &mut Progress<'_>,
 ) -> Result<(Vec<[f64; 3]>, RuleCounts)> {
     let nv = r.nv as usize;
-    let mut out = vec![[0.0f64; 3]; r.vertex_slots()];
-    let (old, edge_points) = out.split_at_mut(nv);
+    // Filled by pushing, in slot order: no zeroing pass over the largest
+    // array of the level (24 bytes per new vertex).
+    let mut out: Vec<[f64; 3]> = Vec::with_capacity(r.vertex_slots());
     let betas: Vec<f64> = (0..64).map(loop_beta).collect();
     let mut counts = RuleCounts::default();
     let mut sink = PointSink::new(p);
@@ -226,9 +227,10 @@ fn loop_positions(
     let budget = mesh.he.len();
 
     let mut stage = Stage::new(progress, ALGORITHM, level, "vertices", nv)?;
-    for (vi, out) in old.iter_mut().enumerate() {
+    for vi in 0..nv {
         stage.tick(vi)?;
         if !mesh.v_slots.is_live(vi) {
+            out.push([0.0; 3]);
             continue;
         }
         let v = Vid::new(vi as u32);
@@ -264,11 +266,11 @@ fn loop_positions(
             }
             let b = betas.get(n).copied().unwrap_or_else(|| loop_beta(n));
             let a = 1.0 - n as f64 * b;
-            *out = [
+            out.push([
                 a * pv[0] + b * sum[0],
                 a * pv[1] + b * sum[1],
                 a * pv[2] + b * sum[2],
-            ];
+            ]);
         } else {
             let boundary = features.gather(mesh, v, &mut ring);
             if !boundary && ring.len() == 2 {
@@ -279,14 +281,13 @@ fn loop_positions(
             let rule = features.rule(v, &ring, boundary);
             counts.count(&rule);
             emit_vertex(&LoopMask, mesh, v, &ring, rule, &mut sink);
-            *out = sink.take();
+            out.push(sink.take());
         }
     }
     stage.finish()?;
 
     let ne = mesh.e_slots.slot_count();
     let mut stage = Stage::new(progress, ALGORITHM, level, "edge points", ne)?;
-    let mut k = 0usize;
     for ei in 0..ne {
         stage.tick(ei)?;
         if !mesh.e_slots.is_live(ei) {
@@ -300,7 +301,7 @@ fn loop_positions(
         } else {
             features.sharpness(e)
         };
-        edge_points[k] = if s == 0.0 {
+        out.push(if s == 0.0 {
             let (rh, rt) = (mesh.he[h], mesh.he[t]);
             let (a, b) = (p[rh.origin.index()], p[rt.origin.index()]);
             let c = p[mesh.origin(rh.next.twin()).index()];
@@ -313,9 +314,9 @@ fn loop_positions(
         } else {
             emit_edge(&LoopMask, mesh, e, s, &mut sink);
             sink.take()
-        };
-        k += 1;
+        });
     }
     stage.finish()?;
+    debug_assert_eq!(out.len(), r.vertex_slots());
     Ok((out, counts))
 }

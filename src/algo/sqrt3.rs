@@ -5,19 +5,33 @@
 //! vertices).
 //!
 //! **Counts** per level: V' = V + F, F' = 3F, E' = E + 3F (3E on a closed
-//! mesh); holes keep their number and their sides. Triangles only:
-//! [`Error::Unsuitable`] names the first face that is not a triangle, or an
-//! interior vertex of valence 2.
+//! mesh); at a level that trisects the boundary (below) add 2B vertices,
+//! 2B faces and 4B edges for the B boundary edges. Holes keep their
+//! number. Triangles only: [`Error::Unsuitable`] names the first face that
+//! is not a triangle, or an interior vertex of valence 2.
 //!
-//! **Boundary.** Boundary edges (and seams, below) are not flipped: the
-//! piece of the triangle beside one stays, and boundary vertices stay
-//! where they are.
-//! The boundary is therefore not refined: Kobbelt's rule (trisect the
-//! boundary every second level, with its own curve stencils) is not
-//! implemented, so after many levels long thin triangles line the
-//! boundary. Closed meshes are not affected.
+//! **Boundary** (Kobbelt's rule). Boundary edges are never flipped. The
+//! first level of a call (and every odd one: 1, 3, 5, ...) keeps them as
+//! they are: the triangle beside one is the piece of its parent between
+//! the edge and the face point, and boundary vertices stay where they are.
+//! The second level (and every even one) trisects every boundary edge:
+//! two boundary points on it, joined to the face point, so the piece
+//! becomes three triangles, and the boundary moves by the ternary cubic
+//! B-spline rules (mask `(1, 4, 10, 16, 19, 16, 10, 4, 1) / 27`): an old
+//! boundary vertex `v` between boundary neighbours `a` and `b` goes to
+//! `(4a + 19v + 4b) / 27`, the point a third of the way from `a` to `b`
+//! to `(p + 16a + 10b) / 27` (`p` the boundary vertex before `a`), the
+//! point two thirds of the way symmetrically. Two levels thus refine the
+//! boundary by 3 where the inside is refined by √3² = 3, and the boundary
+//! converges to a cubic B-spline curve. A boundary vertex that stays (a
+//! corner: [`Boundary::CreaseAndCorners`](crate::algo::Boundary) at
+//! valence 2, the corner column, a vertex on more than two boundary
+//! edges) ends the curve: the new points beside it lie at the thirds of
+//! the straight edge. Levels are counted within one call: two calls of
+//! one level each never trisect; ask for `levels: 2`. Seams (below) are
+//! kept but not trisected.
 //!
-//! **Rules.** Face point: the centroid. Old vertex
+//! **Rules.** Face point: the centroid. Old interior vertex
 //! `(1 − αₙ) v + αₙ/n Σ uᵢ` with `αₙ = (4 − 2 cos(2π/n)) / 9`.
 //! [`SubdivisionOptions::corner_column`] keeps marked vertices where they
 //! are; a crease column is refused (every old edge is flipped away, so no
@@ -25,7 +39,9 @@
 //!
 //! **Attributes.** Vertex columns as in
 //! [`subdivision`](crate::algo::subdivision) (the face point is the
-//! centroid for both smooth and linear data). Every new triangle covers
+//! centroid for both smooth and linear data; a boundary point takes the
+//! curve stencil above, or the thirds of its edge for linear data). Every
+//! new triangle covers
 //! half of one parent piece on each side of a flipped edge: its face
 //! columns get the two pieces merged and halved, as
 //! [`Mesh::flip_edge`](crate::Mesh::flip_edge) does (a conserved value
@@ -37,9 +53,14 @@
 //! column differs across it (a UV seam, a split corner normal) is kept,
 //! not flipped, as a boundary edge is; the triangles beside it stay in
 //! their own parent face, and the corners on each side keep their own
-//! chart's values. Edge columns: every new edge gets `interpolate` of
-//! nothing (no edge runs along a parent edge), a kept edge keeps its
-//! value.
+//! chart's values. On a trisected boundary edge the corners at a boundary
+//! point take the parent face's two corners at the edge's ends, a third
+//! and two thirds of the way (the hole's side likewise), and the three
+//! triangles of the piece get a ninth of the parent's face values each.
+//! Edge columns: every new edge gets `interpolate` of nothing (no edge
+//! runs along a parent edge but the boundary), a kept edge keeps its
+//! value, the three thirds of a trisected edge get `split(value, ⅓)`
+//! (flags are copied, conserved values divided).
 //!
 //! **Built wholesale**, not by `poke_face` and `flip_edge` on every
 //! element: one pass over the edges writes the six half-edges of each, in
@@ -58,7 +79,7 @@
 use std::f64::consts::PI;
 
 use crate::algo::progress::Progress;
-use crate::algo::subdivision::creases::Features;
+use crate::algo::subdivision::creases::{Features, PlanSink, PointSink, Rule, Sink};
 use crate::algo::subdivision::refine::{fresh_slots, valence_two_error, CutRule, Ranks, Topology};
 use crate::algo::subdivision::{
     check_columns, finish_columns, run_levels, unsuitable, ColumnPlans, LevelReport, Stage,
@@ -72,7 +93,8 @@ use crate::store::plan::ColumnPlan;
 const ALGORITHM: &str = "sqrt3_subdivide";
 
 /// Apply `options.levels` levels of √3 subdivision to a triangle mesh
-/// (boundary edges and vertices are kept, see the module doc).
+/// (the boundary is kept at odd levels and trisected at even ones, see the
+/// module doc).
 ///
 /// # Errors
 /// [`Error::Unsuitable`] for a face that is not a triangle, an interior
@@ -138,16 +160,29 @@ fn alpha(n: usize) -> f64 {
 }
 
 /// The new layout, with `C` the corners (half-edges in faces, numbered in
-/// slot order): vertices `[0, nv)` old, `[nv, nv + F)` face points by face
-/// rank; edges `[0, C)` spokes (corner `h`'s joins `origin(h)` to the face
-/// point of `face(h)`, side 0 leaving `origin(h)`), `[C, C + E)` one per
-/// old edge by rank: the flipped edge of an interior edge (side `s` from
-/// the face point of side `s`'s face), the boundary edge itself, kept;
-/// faces `[0, C)` the triangle at each corner (at `origin(h)`, beside
-/// `h`'s old edge), `[C, C + H)` the holes.
+/// slot order), `B` the boundary edges trisected at this level (none at an
+/// odd level) and `r(e)` a trisected edge's rank among them: vertices
+/// `[0, nv)` old, `[nv, nv + F)` face points by face rank, then two
+/// boundary points per trisected edge (`nv + F + 2r(e)` a third along its
+/// inner half-edge, `+ 1` two thirds along); edges `[0, C)` spokes
+/// (corner `h`'s joins `origin(h)` to the face point of `face(h)`, side 0
+/// leaving `origin(h)`), `[C, C + E)` one per old edge by rank: the
+/// flipped edge of an interior edge (side `s` from the face point of side
+/// `s`'s face), the boundary edge itself, kept (trisected: its first third,
+/// from the inner half-edge's origin), then four per trisected edge at
+/// `C + E + 4r(e)`: the middle third, the last third (side 0 along the
+/// inner half-edge) and the spokes from the two boundary points to the
+/// face point (side 0 leaving the boundary point); faces `[0, C)` the
+/// triangle at each corner (at `origin(h)`, beside `h`'s old edge), then
+/// two per trisected edge at `C + 2r(e)` (the middle third's triangle,
+/// the last third's), then the holes.
 struct Layout {
     nv: u32,
     corners: u32,
+    /// Live faces (not holes) of the parent.
+    faces: u32,
+    /// Live edges of the parent.
+    edges: u32,
     edge_rank: Ranks,
     /// Per old half-edge slot: its corner id + 1, 0 in holes.
     corner: Vec<u32>,
@@ -156,6 +191,11 @@ struct Layout {
     /// Per old edge slot: whether the edge is kept instead of flipped (a
     /// boundary edge, or a seam of a corner column).
     kept: Vec<bool>,
+    /// Per old edge slot: its rank among the trisected boundary edges + 1,
+    /// 0 when not trisected (every slot at an odd level).
+    trisected: Vec<u32>,
+    /// Boundary edges trisected at this level.
+    boundary: u32,
 }
 
 impl Layout {
@@ -193,10 +233,48 @@ impl Layout {
 
     #[inline(always)]
     fn hole(&self, f: Fid) -> Fid {
-        Fid::new(self.corners + self.face_rank[f.index()])
+        Fid::new(self.corners + 2 * self.boundary + self.face_rank[f.index()])
     }
 
-    fn of(mesh: &Mesh) -> Layout {
+    /// The rank of `e` among the trisected edges, if it is one.
+    #[inline(always)]
+    fn trisected(&self, e: Eid) -> Option<u32> {
+        self.trisected.get(e.index()).and_then(|r| r.checked_sub(1))
+    }
+
+    /// Extra edge `k` of trisected edge rank `r`: 0 the middle third, 1
+    /// the last third, 2 and 3 the spokes from the first and the second
+    /// boundary point.
+    #[inline(always)]
+    fn extra_edge(&self, r: u32, k: u32) -> Eid {
+        Eid::new(self.corners + self.edges + 4 * r + k)
+    }
+
+    /// Extra triangle `k` of trisected edge rank `r`: 0 on the middle
+    /// third, 1 on the last third.
+    #[inline(always)]
+    fn extra_face(&self, r: u32, k: u32) -> Fid {
+        Fid::new(self.corners + 2 * r + k)
+    }
+
+    /// Boundary point `k` (0 a third along the inner half-edge, 1 two
+    /// thirds) of trisected edge rank `r`.
+    #[inline(always)]
+    fn boundary_point(&self, r: u32, k: u32) -> Vid {
+        Vid::new(self.nv + self.faces + 2 * r + k)
+    }
+
+    /// The new hole half-edge leaving `origin(t)` along old hole half-edge
+    /// `t`: the last third's hole side if `t`'s edge is trisected.
+    #[inline(always)]
+    fn hole_start(&self, t: Hid) -> Hid {
+        match self.trisected(t.edge()) {
+            Some(r) => self.extra_edge(r, 1).halfedge(1),
+            None => self.edge(t.edge()).halfedge(t.side()),
+        }
+    }
+
+    fn of(mesh: &Mesh, trisect: bool) -> Layout {
         let mut corner = vec![0u32; mesh.he.len()];
         let mut next = 0u32;
         for e in mesh.eids() {
@@ -218,14 +296,41 @@ impl Layout {
             face_rank[f.index()] = *count;
             *count += 1;
         }
+        let mut trisected = Vec::new();
+        let mut boundary = 0u32;
+        if trisect {
+            trisected = vec![0u32; mesh.e_slots.slot_count()];
+            for e in mesh.eids() {
+                if boundary_inner(mesh, e).is_some() {
+                    boundary += 1;
+                    trisected[e.index()] = boundary;
+                }
+            }
+        }
         Layout {
             nv: mesh.v_slots.slot_count() as u32,
             corners: next,
+            faces,
+            edges: mesh.edge_count() as u32,
             edge_rank: Ranks::of(&mesh.e_slots),
             corner,
             face_rank,
             kept: kept_edges(mesh),
+            trisected,
+            boundary,
         }
+    }
+}
+
+/// The inner half-edge of boundary edge `e` (the one in a face; its twin
+/// is in a hole), `None` for an interior edge.
+#[inline]
+fn boundary_inner(mesh: &Mesh, e: Eid) -> Option<Hid> {
+    let [h, t] = e.halfedges();
+    match (mesh.in_hole(h), mesh.in_hole(t)) {
+        (false, true) => Some(h),
+        (true, false) => Some(t),
+        _ => None,
     }
 }
 
@@ -287,20 +392,25 @@ fn sqrt3_level(
         options.corner_column.as_deref(),
         None,
     )?;
-    let l = Layout::of(mesh);
+    // Levels 2, 4, ... (index 1, 3, ...) trisect the boundary.
+    let trisect = level % 2 == 1;
+    let l = Layout::of(mesh, trisect);
     let topology = build(mesh, &l, level, progress)?;
-    let mut report = LevelReport::default();
+    let mut report = LevelReport {
+        boundary_trisected: trisect,
+        ..LevelReport::default()
+    };
     let dense = mesh
         .attrs
         .positions()
         .filter(|c| c.present_bits().is_none())
         .map(|c| c.raw());
-    // Boundary vertices stay where they are, as do pinned ones.
-    let pinned = |v: Vid| features.is_special(v) || mesh.in_hole(mesh.v_halfedge[v]);
+    let rules = VertexRules::of(mesh, &features, trisect);
     let positions = match dense {
         Some(p) => {
-            let (positions, corners) = positions(mesh, &l, p, &pinned, level, progress)?;
-            report.corner_vertices = corners;
+            let (positions, counts) = positions(mesh, &l, &rules, p, level, progress)?;
+            report.corner_vertices = counts.corner;
+            report.crease_vertices = counts.crease;
             Some(positions)
         }
         None => None,
@@ -308,10 +418,102 @@ fn sqrt3_level(
     let plans = Plans {
         mesh,
         l: &l,
-        pinned: &pinned,
+        rules: &rules,
     };
     let attrs = finish_columns(mesh, &plans, positions, &options.vertex_data, None);
     Ok((topology.into_mesh(attrs), report))
+}
+
+/// What each old vertex does at one level.
+#[derive(Copy, Clone, Debug, PartialEq)]
+enum VertexMove {
+    /// Kobbelt's interior rule.
+    Smooth,
+    /// Stays where it is: pinned by the corner column or
+    /// [`Boundary::CreaseAndCorners`](crate::algo::subdivision::Boundary),
+    /// a non-manifold boundary vertex, or any boundary vertex at an odd
+    /// level.
+    Stay,
+    /// The boundary curve rule `(4 a + 19 v + 4 b) / 27`, `a` and `b` the
+    /// boundary neighbours (even levels).
+    Curve(Vid, Vid),
+}
+
+/// The moves of the old vertices at one level.
+struct VertexRules<'a> {
+    mesh: &'a Mesh,
+    features: &'a Features,
+    trisect: bool,
+}
+
+impl<'a> VertexRules<'a> {
+    fn of(mesh: &'a Mesh, features: &'a Features, trisect: bool) -> VertexRules<'a> {
+        VertexRules {
+            mesh,
+            features,
+            trisect,
+        }
+    }
+
+    /// The move of live vertex `v`.
+    #[inline(always)]
+    fn of_vertex(&self, v: Vid) -> VertexMove {
+        let m = self.mesh;
+        if !m.in_hole(m.v_halfedge[v]) {
+            if self.features.is_special(v) {
+                VertexMove::Stay
+            } else {
+                VertexMove::Smooth
+            }
+        } else if !self.trisect {
+            VertexMove::Stay
+        } else {
+            self.boundary_move(v)
+        }
+    }
+
+    /// The move of boundary vertex `v` at an even level.
+    #[inline(never)]
+    fn boundary_move(&self, v: Vid) -> VertexMove {
+        let mut ring = Vec::new();
+        let on_boundary = self.features.gather(self.mesh, v, &mut ring);
+        match self.features.rule(v, &ring, on_boundary).parent {
+            Rule::Crease(a, b) => VertexMove::Curve(a, b),
+            _ => VertexMove::Stay,
+        }
+    }
+
+    /// The boundary neighbour of curve vertex `v` other than `u`, `None`
+    /// when `v` stays (a corner: the curve ends there).
+    #[inline]
+    fn beyond(&self, v: Vid, u: Vid) -> Option<Vid> {
+        match self.of_vertex(v) {
+            VertexMove::Curve(a, b) => Some(if a == u { b } else { a }),
+            _ => None,
+        }
+    }
+
+    /// The stencil of boundary point `k` (0: a third along `h`, 1: two
+    /// thirds) on trisected edge `h` (the inner half-edge): the ternary
+    /// cubic B-spline rule `(p₋ + 16 a + 10 b) / 27` for the point next to
+    /// `a`, with `p₋` `a`'s other boundary neighbour; next to a corner,
+    /// the point a third of the way (the curve ends at the corner).
+    fn boundary_point<S: Sink>(&self, h: Hid, k: u32, sink: &mut S) {
+        let m = self.mesh;
+        let (a, b) = (m.origin(h), m.origin(h.twin()));
+        let (near, far) = if k == 0 { (a, b) } else { (b, a) };
+        match self.beyond(near, far) {
+            Some(before) => {
+                sink.vertex(before, 1.0 / 27.0);
+                sink.vertex(near, 16.0 / 27.0);
+                sink.vertex(far, 10.0 / 27.0);
+            }
+            None => {
+                sink.vertex(near, 2.0 / 3.0);
+                sink.vertex(far, 1.0 / 3.0);
+            }
+        }
+    }
 }
 
 /// The connectivity of the new level (see [`Layout`]).
@@ -319,8 +521,9 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
     let e = mesh.edge_count();
     let c = l.corners as usize;
     let faces = mesh.face_count();
-    let new_edges = c + e;
-    let too_big = u32::try_from(l.nv as usize + faces).is_err()
+    let b = l.boundary as usize;
+    let new_edges = c + e + 4 * b;
+    let too_big = u32::try_from(l.nv as usize + faces + 2 * b).is_err()
         || Eid::halfedge_slots(new_edges) >= (1usize << 31);
     if too_big {
         return Err(unsuitable(
@@ -332,7 +535,7 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
     let mut he: IdVec<Hid, HalfedgeRecord> =
         IdVec::from_vec(Vec::with_capacity(Eid::halfedge_slots(new_edges)));
     let mut f_halfedge: IdVec<Fid, FaceLink> =
-        IdVec::from_vec(Vec::with_capacity(c + mesh.hole_count()));
+        IdVec::from_vec(Vec::with_capacity(c + 2 * b + mesh.hole_count()));
     let ne_slots = mesh.e_slots.slot_count();
     let mut stage = Stage::new(progress, ALGORITHM, level, "spokes", ne_slots)?;
     // Spokes, in corner order.
@@ -349,12 +552,20 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
             let cf = l.face_point(rec.face);
             let p = mesh.he[rec.next].next; // prev(h) in a triangle
                                             // Side 0: origin(h) -> c, in the triangle beside p's edge at
-                                            // dest(p): across the flipped edge, or in p's own kept piece.
+                                            // dest(p): across the flipped edge, in p's own kept piece,
+                                            // or on the last third of p's trisected edge.
             he.push(if l.kept(p.edge()) {
-                HalfedgeRecord {
-                    origin: rec.origin,
-                    next: l.spoke(p).halfedge(1),
-                    face: l.triangle(p),
+                match l.trisected(p.edge()) {
+                    Some(r) => HalfedgeRecord {
+                        origin: rec.origin,
+                        next: l.extra_edge(r, 3).halfedge(1),
+                        face: l.extra_face(r, 1),
+                    },
+                    None => HalfedgeRecord {
+                        origin: rec.origin,
+                        next: l.spoke(p).halfedge(1),
+                        face: l.triangle(p),
+                    },
                 }
             } else {
                 HalfedgeRecord {
@@ -380,7 +591,8 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
     }
     stage.finish()?;
     // Per old edge: flipped (side s from the face point of side s's face
-    // to the other, in the triangle at the origin of side 1 − s), or kept.
+    // to the other, in the triangle at the origin of side 1 − s), or kept
+    // (trisected: its first third).
     let mut holes: Vec<FaceLink> = Vec::with_capacity(mesh.hole_count());
     for ei in 0..ne_slots {
         if !mesh.e_slots.is_live(ei) {
@@ -389,6 +601,7 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
         let e = Eid::new(ei as u32);
         let hs = e.halfedges();
         let kept = l.kept(e);
+        let third = if kept { l.trisected(e) } else { None };
         for s in 0..2 {
             let (own, other) = (hs[s], hs[1 - s]);
             let rec = mesh.he[own];
@@ -400,28 +613,94 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
                 }
             } else if mesh.in_hole(own) {
                 HalfedgeRecord {
-                    origin: rec.origin,
-                    next: l.edge(rec.next.edge()).halfedge(rec.next.side()),
+                    // Trisected: from the first boundary point to the
+                    // inner half-edge's origin.
+                    origin: third.map_or(rec.origin, |r| l.boundary_point(r, 0)),
+                    next: l.hole_start(rec.next),
                     face: l.hole(rec.face),
                 }
             } else {
                 HalfedgeRecord {
                     origin: rec.origin,
-                    next: l.spoke(rec.next).halfedge(0),
+                    next: match third {
+                        Some(r) => l.extra_edge(r, 2).halfedge(0),
+                        None => l.spoke(rec.next).halfedge(0),
+                    },
                     face: l.triangle(own),
                 }
             });
         }
     }
+    // Per trisected edge (inner half-edge h from a to b, face point m,
+    // boundary points a' and b'): the middle third a'b', the last third
+    // b'b, the spokes a'm and b'm.
+    let trisected_slots = if l.boundary > 0 { ne_slots } else { 0 };
+    for ei in 0..trisected_slots {
+        let e = Eid::new(ei as u32);
+        let Some(r) = l.trisected(e) else { continue };
+        let Some(h) = boundary_inner(mesh, e) else {
+            continue;
+        };
+        let t = h.twin();
+        let rec = mesh.he[h];
+        let m = l.face_point(rec.face);
+        let hole = l.hole(mesh.he[t].face);
+        let (a1, b1) = (l.boundary_point(r, 0), l.boundary_point(r, 1));
+        let [mid, last, spoke_a, spoke_b] = [0, 1, 2, 3].map(|k| l.extra_edge(r, k));
+        let (tri_mid, tri_last) = (l.extra_face(r, 0), l.extra_face(r, 1));
+        he.push(HalfedgeRecord {
+            origin: a1,
+            next: spoke_b.halfedge(0),
+            face: tri_mid,
+        });
+        he.push(HalfedgeRecord {
+            origin: b1,
+            next: l.edge(e).halfedge(t.side()),
+            face: hole,
+        });
+        he.push(HalfedgeRecord {
+            origin: b1,
+            next: l.spoke(rec.next).halfedge(0),
+            face: tri_last,
+        });
+        he.push(HalfedgeRecord {
+            origin: mesh.he[t].origin,
+            next: mid.halfedge(1),
+            face: hole,
+        });
+        he.push(HalfedgeRecord {
+            origin: a1,
+            next: l.spoke(h).halfedge(1),
+            face: l.triangle(h),
+        });
+        he.push(HalfedgeRecord {
+            origin: m,
+            next: mid.halfedge(0),
+            face: tri_mid,
+        });
+        he.push(HalfedgeRecord {
+            origin: b1,
+            next: spoke_a.halfedge(1),
+            face: tri_mid,
+        });
+        he.push(HalfedgeRecord {
+            origin: m,
+            next: last.halfedge(0),
+            face: tri_last,
+        });
+        f_halfedge.push(FaceLink::new(mid.halfedge(0), false));
+        f_halfedge.push(FaceLink::new(last.halfedge(0), false));
+    }
+    debug_assert_eq!(he.len(), Eid::halfedge_slots(new_edges));
     for f in mesh.fids() {
         if mesh.is_hole(f) {
             let h = mesh.face_halfedge(f);
-            holes.push(FaceLink::new(l.edge(h.edge()).halfedge(h.side()), true));
+            holes.push(FaceLink::new(l.hole_start(h), true));
         }
     }
     f_halfedge.extend_from(&holes);
     let nv = l.nv as usize;
-    let mut v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(Vec::with_capacity(nv + faces));
+    let mut v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(Vec::with_capacity(nv + faces + 2 * b));
     for vi in 0..nv {
         let v = Vid::new(vi as u32);
         v_halfedge.push(if !mesh.v_slots.is_live(vi) {
@@ -429,7 +708,7 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
         } else {
             let h = mesh.v_halfedge[v];
             if mesh.in_hole(h) {
-                l.edge(h.edge()).halfedge(h.side())
+                l.hole_start(h)
             } else {
                 l.spoke(h).halfedge(0)
             }
@@ -440,8 +719,18 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
             v_halfedge.push(l.spoke(mesh.face_halfedge(f)).halfedge(1));
         }
     }
+    // Boundary points leave along the hole: a' -> a, b' -> a'.
+    for ei in 0..trisected_slots {
+        let e = Eid::new(ei as u32);
+        let Some(r) = l.trisected(e) else { continue };
+        let Some(h) = boundary_inner(mesh, e) else {
+            continue;
+        };
+        v_halfedge.push(l.edge(e).halfedge(h.twin().side()));
+        v_halfedge.push(l.extra_edge(r, 0).halfedge(1));
+    }
     Ok(Topology {
-        v_slots: mesh.v_slots.extended(faces),
+        v_slots: mesh.v_slots.extended(faces + 2 * b),
         e_slots: fresh_slots(&mesh.e_slots, new_edges, ALGORITHM)?,
         f_slots: fresh_slots(&mesh.f_slots, f_halfedge.len(), ALGORITHM)?,
         v_halfedge,
@@ -451,21 +740,29 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
     })
 }
 
-/// Positions: old vertices by Kobbelt's rule (pinned ones stay), then the
-/// face points.
+/// How many old vertices moved by which rule.
+#[derive(Default)]
+struct MoveCounts {
+    corner: usize,
+    crease: usize,
+}
+
+/// Positions: old vertices by Kobbelt's rule (pinned ones stay; boundary
+/// ones stay at odd levels, follow the curve rule at even ones), then the
+/// face points, then the boundary points.
 fn positions(
     mesh: &Mesh,
     l: &Layout,
+    rules: &VertexRules<'_>,
     p: &[[f64; 3]],
-    pinned: &dyn Fn(Vid) -> bool,
     level: u32,
     progress: &mut Progress<'_>,
-) -> Result<(Vec<[f64; 3]>, usize)> {
+) -> Result<(Vec<[f64; 3]>, MoveCounts)> {
     let nv = l.nv as usize;
-    let mut out = Vec::with_capacity(nv + mesh.face_count());
+    let mut out = Vec::with_capacity(nv + mesh.face_count() + 2 * l.boundary as usize);
     let alphas: Vec<f64> = (0..64).map(alpha).collect();
     let budget = mesh.he.len();
-    let mut corners = 0;
+    let mut counts = MoveCounts::default();
     let mut stage = Stage::new(progress, ALGORITHM, level, "vertices", nv)?;
     for vi in 0..nv {
         stage.tick(vi)?;
@@ -481,10 +778,20 @@ fn positions(
                 position: pv,
             });
         }
-        if pinned(v) {
-            corners += 1;
-            out.push(pv);
-            continue;
+        match rules.of_vertex(v) {
+            VertexMove::Smooth => {}
+            VertexMove::Stay => {
+                counts.corner += 1;
+                out.push(pv);
+                continue;
+            }
+            VertexMove::Curve(a, b) => {
+                counts.crease += 1;
+                let mut sink = PointSink::new(p);
+                curve_vertex(v, a, b, &mut sink);
+                out.push(sink.take());
+                continue;
+            }
         }
         let h0 = mesh.v_halfedge[v];
         let (mut sum, mut n, mut h) = ([0.0f64; 3], 0usize, h0);
@@ -528,14 +835,38 @@ fn positions(
         ]);
     }
     debug_assert_eq!(l.face_point(Fid::new(0)).index(), nv);
-    Ok((out, corners))
+    if l.boundary > 0 {
+        let mut sink = PointSink::new(p);
+        for e in mesh.eids() {
+            if l.trisected(e).is_none() {
+                continue;
+            }
+            let Some(h) = boundary_inner(mesh, e) else {
+                continue;
+            };
+            for k in 0..2 {
+                rules.boundary_point(h, k, &mut sink);
+                out.push(sink.take());
+            }
+        }
+    }
+    Ok((out, counts))
+}
+
+/// The boundary curve rule at `v` between boundary neighbours `a` and `b`
+/// (the ternary cubic B-spline's vertex rule).
+#[inline]
+fn curve_vertex<S: Sink>(v: Vid, a: Vid, b: Vid, sink: &mut S) {
+    sink.vertex(a, 4.0 / 27.0);
+    sink.vertex(v, 19.0 / 27.0);
+    sink.vertex(b, 4.0 / 27.0);
 }
 
 /// The attribute plans of a √3 level.
 struct Plans<'a> {
     mesh: &'a Mesh,
     l: &'a Layout,
-    pinned: &'a dyn Fn(Vid) -> bool,
+    rules: &'a VertexRules<'a>,
 }
 
 impl Plans<'_> {
@@ -556,6 +887,14 @@ impl Plans<'_> {
         }
     }
 
+    /// The inner half-edges of the trisected edges, in rank order.
+    fn trisected(&self) -> impl Iterator<Item = Hid> + '_ {
+        let m = self.mesh;
+        m.eids()
+            .filter(|&e| self.l.trisected(e).is_some())
+            .filter_map(move |e| boundary_inner(m, e))
+    }
+
     /// The mean of the three corners of `h`'s face.
     ///
     /// Always summed from the face's own half-edge, whichever corner `h`
@@ -571,44 +910,93 @@ impl Plans<'_> {
     }
 }
 
+/// The corner value `k` thirds along `from` towards `to` (`k` 1 or 2).
+fn thirds(from: Hid, to: Hid, k: u32) -> [(u32, f64); 2] {
+    let t = f64::from(k) / 3.0;
+    [(from.raw(), 1.0 - t), (to.raw(), t)]
+}
+
 impl ColumnPlans for Plans<'_> {
     fn vertex_linear(&self) -> ColumnPlan {
+        let m = self.mesh;
         let nv = self.l.nv;
-        let mut plan = ColumnPlan::with_capacity(nv as usize + self.mesh.face_count(), 0);
+        let b = 2 * self.l.boundary as usize;
+        let mut plan = ColumnPlan::with_capacity(nv as usize + m.face_count() + b, 2 * b);
         for v in 0..nv {
             plan.copy(v);
         }
         self.face_points(&mut plan);
+        for h in self.trisected() {
+            let (a, b) = (m.origin(h).raw(), m.origin(h.twin()).raw());
+            plan.interpolate([(a, 2.0 / 3.0), (b, 1.0 / 3.0)]);
+            plan.interpolate([(a, 1.0 / 3.0), (b, 2.0 / 3.0)]);
+        }
         plan
     }
 
     fn vertex_smooth(&self) -> ColumnPlan {
         let m = self.mesh;
         let nv = self.l.nv;
-        let mut plan = ColumnPlan::with_capacity(nv as usize + m.face_count(), 8 * nv as usize);
+        let b = 2 * self.l.boundary as usize;
+        let mut plan =
+            ColumnPlan::with_capacity(nv as usize + m.face_count() + b, 8 * nv as usize + 3 * b);
         for vi in 0..nv {
             let v = Vid::new(vi);
-            if !m.v_slots.is_live(vi as usize) || (self.pinned)(v) {
+            if !m.v_slots.is_live(vi as usize) {
                 plan.copy(vi);
                 continue;
             }
-            let n = m.outgoing(v).count();
-            let a = alpha(n);
-            let start = plan.begin_interpolate();
-            plan.push_input(vi, 1.0 - a);
-            for h in m.outgoing(v) {
-                plan.push_input(m.origin(h.twin()).raw(), a / n as f64);
+            match self.rules.of_vertex(v) {
+                VertexMove::Stay => plan.copy(vi),
+                VertexMove::Curve(a, b) => {
+                    let start = plan.begin_interpolate();
+                    curve_vertex(
+                        v,
+                        a,
+                        b,
+                        &mut PlanSink {
+                            mesh: m,
+                            plan: &mut plan,
+                        },
+                    );
+                    plan.end_interpolate(start);
+                }
+                VertexMove::Smooth => {
+                    let n = m.outgoing(v).count();
+                    let a = alpha(n);
+                    let start = plan.begin_interpolate();
+                    plan.push_input(vi, 1.0 - a);
+                    for h in m.outgoing(v) {
+                        plan.push_input(m.origin(h.twin()).raw(), a / n as f64);
+                    }
+                    plan.end_interpolate(start);
+                }
             }
-            plan.end_interpolate(start);
         }
         self.face_points(&mut plan);
+        for h in self.trisected() {
+            for k in 0..2 {
+                let start = plan.begin_interpolate();
+                self.rules.boundary_point(
+                    h,
+                    k,
+                    &mut PlanSink {
+                        mesh: m,
+                        plan: &mut plan,
+                    },
+                );
+                plan.end_interpolate(start);
+            }
+        }
         plan
     }
 
     fn halfedge(&self) -> ColumnPlan {
         let m = self.mesh;
         let (c, e) = (self.l.corners as usize, m.edge_count());
-        let mut plan = ColumnPlan::with_capacity(Eid::halfedge_slots(c + e), 8 * c);
+        let b = self.l.boundary as usize;
+        let mut plan =
+            ColumnPlan::with_capacity(Eid::halfedge_slots(c + e + 4 * b), 8 * c + 16 * b);
         for edge in m.eids() {
             for h in edge.halfedges() {
                 if m.in_hole(h) {
@@ -629,13 +1017,33 @@ impl ColumnPlans for Plans<'_> {
         }
         for edge in m.eids() {
             let kept = self.l.kept(edge);
+            let trisected = self.l.trisected(edge).is_some();
             for h in edge.halfedges() {
-                if kept {
+                if trisected && m.in_hole(h) {
+                    // From the first boundary point, a third along the
+                    // inner half-edge, on the hole's side.
+                    plan.interpolate(thirds(m.next(h), h, 1));
+                } else if kept {
                     plan.copy(h.raw());
                 } else {
                     self.face_corners(h, &mut plan);
                 }
             }
+        }
+        // Per trisected edge: the middle third (inner side from a', hole
+        // side from b'), the last third (inner from b', hole from b), the
+        // spokes from a' and b' (their face-point sides).
+        for h in self.trisected() {
+            let (t, hn) = (h.twin(), m.next(h));
+            let tn = m.next(t);
+            plan.interpolate(thirds(h, hn, 1));
+            plan.interpolate(thirds(tn, t, 2));
+            plan.interpolate(thirds(h, hn, 2));
+            plan.copy(t.raw());
+            plan.interpolate(thirds(h, hn, 1));
+            self.face_corners(h, &mut plan);
+            plan.interpolate(thirds(h, hn, 2));
+            self.face_corners(h, &mut plan);
         }
         plan
     }
@@ -643,16 +1051,27 @@ impl ColumnPlans for Plans<'_> {
     fn edge(&self) -> ColumnPlan {
         let m = self.mesh;
         let c = self.l.corners as usize;
-        let mut plan = ColumnPlan::with_capacity(c + m.edge_count(), 0);
+        let b = self.l.boundary as usize;
+        let mut plan = ColumnPlan::with_capacity(c + m.edge_count() + 4 * b, 3 * b);
         for _ in 0..c {
             plan.interpolate([]);
         }
+        let third = 1.0 / 3.0;
         for edge in m.eids() {
-            if self.l.kept(edge) {
+            if self.l.trisected(edge).is_some() {
+                plan.split(edge.raw(), third);
+            } else if self.l.kept(edge) {
                 plan.copy(edge.raw());
             } else {
                 plan.interpolate([]);
             }
+        }
+        for h in self.trisected() {
+            let e = h.edge().raw();
+            plan.split(e, third);
+            plan.split(e, third);
+            plan.interpolate([]);
+            plan.interpolate([]);
         }
         plan
     }
@@ -660,15 +1079,20 @@ impl ColumnPlans for Plans<'_> {
     fn face(&self) -> ColumnPlan {
         let m = self.mesh;
         let c = self.l.corners as usize;
-        let mut plan = ColumnPlan::with_capacity(c + m.hole_count(), 2 * c);
+        let b = self.l.boundary as usize;
+        let mut plan = ColumnPlan::with_capacity(c + 2 * b + m.hole_count(), 2 * c + 2 * b);
         let third = 1.0 / 3.0;
+        let ninth = 1.0 / 9.0;
         for edge in m.eids() {
             for h in edge.halfedges() {
                 if m.in_hole(h) {
                     continue;
                 }
                 let (own, other) = (m.face_of(h).raw(), m.face_of(h.twin()));
-                if self.l.kept(edge) {
+                if self.l.trisected(edge).is_some() {
+                    // The first of three triangles on the kept piece.
+                    plan.split(own, ninth);
+                } else if self.l.kept(edge) {
                     // The kept piece beside a boundary or seam edge.
                     plan.split(own, third);
                 } else {
@@ -677,6 +1101,11 @@ impl ColumnPlans for Plans<'_> {
                     plan.flip_piece(own, third, other.raw(), third);
                 }
             }
+        }
+        for h in self.trisected() {
+            let own = m.face_of(h).raw();
+            plan.split(own, ninth);
+            plan.split(own, ninth);
         }
         for f in m.fids() {
             if m.is_hole(f) {

@@ -324,6 +324,9 @@ fn corner_angle_matches_atan2() {
         (1.0, -1.0),
         (1e-300, 1.0),
         (1.0, -1e-300),
+        (1.5e308, 1e308),
+        (1e308, -1.7e308),
+        (f64::MAX, -f64::MAX),
     ] {
         worst = worst.max((super::corner_angle(y, x) - f64::atan2(y, x)).abs());
     }
