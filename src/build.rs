@@ -3,8 +3,9 @@
 //! The builder runs in time linear in the input: corners are bucketed by
 //! their lower vertex with a counting sort, each bucket (a vertex's edges,
 //! a handful) is sorted to pair every directed edge with its twin, edges are
-//! numbered in face order for locality, and the unpaired sides are linked
-//! into hole faces. Where several boundary loops meet at one vertex (a
+//! numbered in the order the faces first use them (as when faces are added
+//! one by one, so edge slots follow the input's face order), and the
+//! unpaired sides are linked into hole faces. Where several boundary loops meet at one vertex (a
 //! bowtie), the hole passes through it once per fan and the fans are chained
 //! so that turning around the vertex still visits every half-edge.
 
