@@ -634,6 +634,9 @@ fn flip_back(input: &Input) -> (Elapsed, String) {
 
 /// Every edge slot in order, flipped once where the checked flip allows
 /// it (the peers check `is_flip_ok` first; meshloom's flip checks itself).
+/// The builder numbers edges as the faces first use them, as the peers'
+/// `add_face` does, so the slots come in the peers' order and the flips
+/// (and their count) are the same.
 fn flip_all(input: &Input) -> (Elapsed, String) {
     let mut m = input.mesh.clone();
     let mut flipped = 0usize;

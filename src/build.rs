@@ -3,8 +3,9 @@
 //! The builder runs in time linear in the input: corners are bucketed by
 //! their lower vertex with a counting sort, each bucket (a vertex's edges,
 //! a handful) is sorted to pair every directed edge with its twin, edges are
-//! numbered in face order for locality, and the unpaired sides are linked
-//! into hole faces. Where several boundary loops meet at one vertex (a
+//! numbered in the order the faces first use them (as when faces are added
+//! one by one, so edge slots follow the input's face order), and the
+//! unpaired sides are linked into hole faces. Where several boundary loops meet at one vertex (a
 //! bowtie), the hole passes through it once per fan and the fans are chained
 //! so that turning around the vertex still visits every half-edge.
 
@@ -553,18 +554,25 @@ fn build_flat<P: Point>(
 ) -> Result<Built> {
     let input = Flat { offsets, indices };
     check_size(input)?;
-    check_index_range(input, n_in)?;
-    check_faces(input)?;
-    let vertices = UsedVertices::of(input, n_in);
+    let vertices = match scan_corners(input, n_in) {
+        Some(vertices) => vertices,
+        None => {
+            // Some face is bad: the stages one by one name the first defect.
+            check_index_range(input, n_in)?;
+            check_faces(input)?;
+            UsedVertices::of(input, n_in)
+        }
+    };
     check_positions(positions, &vertices)?;
     let faces = input.with_indices(&vertices.indices);
     let sides = bucket_sides(faces, vertices.count);
-    let twins = pair_twins(faces, sides, &vertices)?;
-    let mut links = link_faces(faces, vertices.count, &twins);
+    let mates = pair_twins(faces, sides, &vertices)?;
+    let (mut links, twins) = link_faces(faces, vertices.count, mates);
     link_boundary(&mut links, &twins.boundary, &vertices)?;
-    let (f_halfedge, holes) = make_hole_faces(&mut links.he, faces, &twins);
+    let edges = twins.edges;
+    let (f_halfedge, holes) = make_hole_faces(&mut links.he, faces, twins);
     check_vertex_rings(&links, &vertices)?;
-    let mesh = assemble(links, twins.edges, f_halfedge, holes, positions, &vertices);
+    let mesh = assemble(links, edges, f_halfedge, holes, positions, &vertices);
     debug_assert_eq!(mesh.validate(), Ok(()));
     let (keys, face_keys) = if want_keys {
         input_keys(&mesh, n_in, faces.face_count(), &vertices)
@@ -636,6 +644,42 @@ fn check_faces(input: Flat<'_>) -> Result<()> {
     Ok(())
 }
 
+/// Stages 1 and 2 in one pass over the corners, for good input: every
+/// index in range, every face with three or more distinct corners, and the
+/// used vertices marked as it goes. `None` when some face is bad (the
+/// separate stages then name the first defect) or when the indices are
+/// spread too wide for a bitset (the sorting path).
+fn scan_corners(input: Flat<'_>, n_in: usize) -> Option<UsedVertices<'_>> {
+    let span = n_in.min(UsedVertices::dense_span_limit(input.indices.len()));
+    let mut used = vec![0u64; span.div_ceil(64)];
+    let mut mark = |v: u32| used[v as usize / 64] |= 1 << (v % 64);
+    for w in input.offsets.windows(2) {
+        let face = input.indices.get(w[0] as usize..w[1] as usize)?;
+        match *face {
+            [a, b, c] => {
+                if a == b || b == c || c == a || a.max(b).max(c) as usize >= span {
+                    return None;
+                }
+                mark(a);
+                mark(b);
+                mark(c);
+            }
+            _ => {
+                if face.len() < 3 || face.len() > 8 {
+                    return None;
+                }
+                for (i, &v) in face.iter().enumerate() {
+                    if v as usize >= span || face[..i].contains(&v) {
+                        return None;
+                    }
+                    mark(v);
+                }
+            }
+        }
+    }
+    Some(UsedVertices::from_bitset(input.indices, n_in, span, &used))
+}
+
 /// Stage 2: the input vertices some face uses, numbered densely (a vertex
 /// exists only while an edge touches it), and the corners renumbered.
 struct UsedVertices<'a> {
@@ -663,6 +707,11 @@ impl<'a> UsedVertices<'a> {
         for &i in indices {
             used[i as usize / 64] |= 1 << (i % 64);
         }
+        Self::from_bitset(indices, n_in, span, &used)
+    }
+
+    /// The used vertices from a bitset over the index span `0..span`.
+    fn from_bitset(indices: &'a [u32], n_in: usize, span: usize, used: &[u64]) -> Self {
         let count = used.iter().map(|w| w.count_ones() as usize).sum::<usize>();
         if count == n_in {
             return UsedVertices {
@@ -675,7 +724,6 @@ impl<'a> UsedVertices<'a> {
             .filter(|&i| used[i / 64] >> (i % 64) & 1 == 1)
             .map(|i| i as u32)
             .collect();
-        drop(used);
         let mut slot_of = vec![u32::MAX; span];
         for (slot, &i) in input_of_slot.iter().enumerate() {
             slot_of[i as usize] = slot as u32;
@@ -742,24 +790,11 @@ fn check_positions<P: Point>(positions: Option<&[P]>, vertices: &UsedVertices<'_
 /// Stage 3's result: every side in a bucket of its lower vertex. Entry `x`
 /// packs the higher vertex (`x >> 33`), the direction (bit 32: 1 when the
 /// side runs from the higher vertex) and the corner (the low 32 bits), so a
-/// bucket sorts as plain integers.
-///
-/// The buckets lie in the order in which the faces first use their vertex
-/// (`order`), not in vertex order: edges are numbered bucket by bucket, so
-/// the edges of a vertex still sit together, and the edge arena follows the
-/// input's face order, as the faces do. Measured on the icosphere(7) of the
-/// peers kit, whose vertex numbers are far from its face order (the 41k
-/// vertices of the coarser levels come first): `flip_back` (which walks the
-/// edges in slot order) 47.5 to 31.2 ms, thread-CPU medians of 3 on a
-/// loaded machine; one-ring sums 2.4 to 4.9 ms (the rings of the coarse
-/// vertices now lie apart; still a third of the best peer's); the build
-/// itself +6 % instructions (the extra pass over the corners).
+/// bucket sorts as plain integers. Buckets lie in vertex order; the edges
+/// are numbered later, in face order (stage 5).
 struct Buckets {
-    /// Vertices in the order their buckets lie in `entries`.
-    order: Vec<u32>,
-    /// Bucket `v` is `entries[begin[v]..end[v]]`.
-    begin: Vec<u32>,
-    end: Vec<u32>,
+    /// Bucket `v` is `entries[ends[v - 1]..ends[v]]` (from 0 for `v = 0`).
+    ends: Vec<u32>,
     entries: Vec<u64>,
 }
 
@@ -775,131 +810,158 @@ impl Buckets {
     fn corner(x: u64) -> usize {
         (x & 0xffff_ffff) as usize
     }
+
+    /// The entries of vertex `v`'s bucket.
+    fn range(&self, v: usize) -> std::ops::Range<usize> {
+        let begin = if v == 0 { 0 } else { self.ends[v - 1] };
+        begin as usize..self.ends[v] as usize
+    }
 }
 
-/// Stage 3: bucket the sides by their lower vertex (a counting sort), the
-/// buckets in the order the faces first use their vertex.
+/// Stage 3: bucket the sides by their lower vertex (a counting sort). One
+/// array of `nv` counts becomes the buckets' starts, and placing advances
+/// each start to its bucket's end.
 fn bucket_sides(faces: Flat<'_>, nv: usize) -> Buckets {
-    let mut count = vec![0u32; nv];
-    faces.for_each_side(|_, a, b| count[a.min(b) as usize] += 1);
-    // Every vertex slot is used by some corner (stage 2), so `order` ends
-    // up holding each exactly once.
-    let mut seen = vec![false; nv];
-    let mut order = Vec::with_capacity(nv);
-    for &v in faces.indices {
-        if !seen[v as usize] {
-            seen[v as usize] = true;
-            order.push(v);
-        }
-    }
-    drop(seen);
-    debug_assert_eq!(order.len(), nv);
-    let mut begin = count;
+    let mut ends = vec![0u32; nv];
+    faces.for_each_side(|_, a, b| ends[a.min(b) as usize] += 1);
     let mut at = 0u32;
-    for &v in &order {
-        let n = begin[v as usize];
-        begin[v as usize] = at;
+    for slot in &mut ends {
+        let n = *slot;
+        *slot = at;
         at += n;
     }
-    // Placing advances end[lo] from the start to the end of bucket lo.
-    let mut end = begin.clone();
     let mut entries = vec![0u64; faces.indices.len()];
     faces.for_each_side(|c, a, b| {
         let (lo, hi, dir) = if a < b { (a, b, 0) } else { (b, a, 1) };
-        let slot = &mut end[lo as usize];
+        let slot = &mut ends[lo as usize];
         entries[*slot as usize] = (u64::from(hi) << 33) | (dir << 32) | c as u64;
         *slot += 1;
     });
-    Buckets {
-        order,
-        begin,
-        end,
-        entries,
+    Buckets { ends, entries }
+}
+
+/// Stage 4's result: each corner's twin corner, one past it (`mate[c] = 0`:
+/// the side starting at `c` has no twin, a hole lies beyond it).
+struct Mates {
+    mate: Vec<u32>,
+    /// Number of paired sides (interior edges).
+    pairs: usize,
+}
+
+/// Stage 4: pair each directed side with its twin, bucket by bucket. On
+/// bad input the error is the one met first when the buckets are taken in
+/// the order in which the faces first use their vertex.
+fn pair_twins(faces: Flat<'_>, mut sides: Buckets, vertices: &UsedVertices<'_>) -> Result<Mates> {
+    let mut mates = Mates {
+        mate: vec![0u32; faces.indices.len()],
+        pairs: 0,
+    };
+    let nv = sides.ends.len();
+    for v in 0..nv {
+        let range = sides.range(v);
+        let group = &mut sides.entries[range];
+        if pair_bucket(faces, v as u32, group, &mut mates, vertices).is_err() {
+            return Err(first_bucket_error(faces, &mut sides, vertices));
+        }
     }
+    Ok(mates)
 }
 
-/// Stage 4's result: each corner's half-edge, the hole half-edges with their
-/// origins, and the number of edges.
-struct Twins {
-    /// The half-edge of the side that starts at corner `c`.
-    he_of: Vec<Hid>,
-    /// Each unpaired side's twin (it lies in a hole) and its origin.
-    boundary: Vec<(Hid, Vid)>,
-    edges: usize,
-}
-
-/// Stage 4: pair each directed side with its twin and number the edges in
-/// bucket order, so the edges of a vertex sit together in memory.
-fn pair_twins(faces: Flat<'_>, mut sides: Buckets, vertices: &UsedVertices<'_>) -> Result<Twins> {
-    let mut he_of = vec![Hid::NONE; faces.indices.len()];
-    let mut boundary: Vec<(Hid, Vid)> = Vec::new();
-    let mut ne = 0u32;
-    for &v in &sides.order {
-        let (begin, end) = (sides.begin[v as usize], sides.end[v as usize]);
-        let group = &mut sides.entries[begin as usize..end as usize];
-        group.sort_unstable();
-        let mut i = 0;
-        while i < group.len() {
-            let hi = Buckets::higher(group[i]);
-            let mut j = i + 1;
-            while j < group.len() && Buckets::higher(group[j]) == hi {
-                j += 1;
-            }
-            let edge = Eid::new(ne);
-            match j - i {
-                1 => {
-                    // The hole half-edge runs against the corner's side.
-                    let x = group[i];
-                    let origin = if Buckets::from_higher(x) { v } else { hi };
-                    let [inner, outer] = edge.halfedges();
-                    he_of[Buckets::corner(x)] = inner;
-                    boundary.push((outer, Vid::new(origin)));
-                }
-                2 => {
-                    let (c0, c1) = (group[i], group[i + 1]);
-                    if Buckets::from_higher(c0) == Buckets::from_higher(c1) {
-                        let (lo, hi) = (vertices.input(v), vertices.input(hi));
-                        let (a, b) = if Buckets::from_higher(c0) {
-                            (hi, lo)
-                        } else {
-                            (lo, hi)
-                        };
-                        return Err(BuildError::InconsistentOrientation {
-                            a,
-                            b,
-                            faces: [
-                                faces.face_of_corner(Buckets::corner(c0)),
-                                faces.face_of_corner(Buckets::corner(c1)),
-                            ],
-                        }
-                        .into());
-                    }
-                    [he_of[Buckets::corner(c0)], he_of[Buckets::corner(c1)]] = edge.halfedges();
-                }
-                _ => {
-                    let mut fs: Vec<usize> = group[i..j]
-                        .iter()
-                        .map(|&x| faces.face_of_corner(Buckets::corner(x)))
-                        .collect();
-                    fs.sort_unstable();
-                    let (a, b) = (vertices.input(v), vertices.input(hi));
-                    return Err(BuildError::NonManifoldEdge {
-                        a: a.min(b),
-                        b: a.max(b),
-                        faces: [fs[0], fs[1], fs[2]],
+/// Sort one bucket and pair its sides; an edge used by three sides or
+/// twice in one direction is an error.
+fn pair_bucket(
+    faces: Flat<'_>,
+    v: u32,
+    group: &mut [u64],
+    mates: &mut Mates,
+    vertices: &UsedVertices<'_>,
+) -> Result<()> {
+    group.sort_unstable();
+    let mut i = 0;
+    while i < group.len() {
+        let hi = Buckets::higher(group[i]);
+        let mut j = i + 1;
+        while j < group.len() && Buckets::higher(group[j]) == hi {
+            j += 1;
+        }
+        match j - i {
+            1 => {}
+            2 => {
+                let (c0, c1) = (group[i], group[i + 1]);
+                if Buckets::from_higher(c0) == Buckets::from_higher(c1) {
+                    let (lo, hi) = (vertices.input(v), vertices.input(hi));
+                    let (a, b) = if Buckets::from_higher(c0) {
+                        (hi, lo)
+                    } else {
+                        (lo, hi)
+                    };
+                    return Err(BuildError::InconsistentOrientation {
+                        a,
+                        b,
+                        faces: [
+                            faces.face_of_corner(Buckets::corner(c0)),
+                            faces.face_of_corner(Buckets::corner(c1)),
+                        ],
                     }
                     .into());
                 }
+                let (k0, k1) = (Buckets::corner(c0), Buckets::corner(c1));
+                mates.mate[k0] = k1 as u32 + 1;
+                mates.mate[k1] = k0 as u32 + 1;
+                mates.pairs += 1;
             }
-            ne += 1;
-            i = j;
+            _ => {
+                let mut fs: Vec<usize> = group[i..j]
+                    .iter()
+                    .map(|&x| faces.face_of_corner(Buckets::corner(x)))
+                    .collect();
+                fs.sort_unstable();
+                let (a, b) = (vertices.input(v), vertices.input(hi));
+                return Err(BuildError::NonManifoldEdge {
+                    a: a.min(b),
+                    b: a.max(b),
+                    faces: [fs[0], fs[1], fs[2]],
+                }
+                .into());
+            }
+        }
+        i = j;
+    }
+    Ok(())
+}
+
+/// The error path of stage 4: the first bad bucket in the order in which
+/// the faces first use their vertex (the order the builder reported in
+/// before it paired in vertex order).
+fn first_bucket_error(faces: Flat<'_>, sides: &mut Buckets, vertices: &UsedVertices<'_>) -> Error {
+    let nv = sides.ends.len();
+    let mut seen = vec![false; nv];
+    let mut scratch = Mates {
+        mate: vec![0u32; faces.indices.len()],
+        pairs: 0,
+    };
+    for &v in faces.indices {
+        if std::mem::replace(&mut seen[v as usize], true) {
+            continue;
+        }
+        let range = sides.range(v as usize);
+        let group = &mut sides.entries[range];
+        if let Err(e) = pair_bucket(faces, v, group, &mut scratch, vertices) {
+            return e;
         }
     }
-    Ok(Twins {
-        he_of,
-        boundary,
-        edges: ne as usize,
-    })
+    unreachable!("stage 4 found an error in some bucket")
+}
+
+/// Stage 5's result: the hole half-edges with their origins, the number of
+/// edges, and each input face's half-edge.
+struct Twins {
+    /// Each unpaired side's twin (it lies in a hole) and its origin.
+    boundary: Vec<(Hid, Vid)>,
+    edges: usize,
+    /// The half-edge of each input face's first corner (room is left for
+    /// the holes of stage 7).
+    f_halfedge: Vec<FaceLink>,
 }
 
 /// The links being built.
@@ -910,30 +972,104 @@ struct Links {
     out_degree: IdVec<Vid, u32>,
 }
 
-/// Stage 5: the half-edges of the faces, and a half-edge for every vertex.
-fn link_faces(faces: Flat<'_>, nv: usize, twins: &Twins) -> Links {
-    let he_of = &twins.he_of;
+/// Numbering state of stage 5: `mate` as stage 4 left it, except that an
+/// entry with the high bit set is the half-edge of a side whose twin was
+/// numbered first.
+struct Numbering {
+    mate: Vec<u32>,
+    edges: u32,
+    boundary: Vec<(Hid, Vid)>,
+}
+
+impl Numbering {
+    const NUMBERED: u32 = 1 << 31;
+
+    /// The half-edge of the side from corner `c` to vertex `dest`: a new
+    /// edge (its half-edge 0) unless its twin side came first.
+    #[inline(always)]
+    fn halfedge(&mut self, c: usize, dest: u32) -> Hid {
+        let m = self.mate[c];
+        if m & Self::NUMBERED != 0 {
+            return Hid::new(m & !Self::NUMBERED);
+        }
+        let [inner, outer] = Eid::new(self.edges).halfedges();
+        self.edges += 1;
+        if m == 0 {
+            self.boundary.push((outer, Vid::new(dest)));
+        } else {
+            self.mate[m as usize - 1] = outer.raw() | Self::NUMBERED;
+        }
+        inner
+    }
+}
+
+impl Links {
+    /// Link the half-edge of a face's side starting at `origin`.
+    #[inline(always)]
+    fn link(&mut self, h: Hid, origin: u32, next: Hid, face: Fid) {
+        let origin = Vid::new(origin);
+        self.he[h] = HalfedgeRecord { origin, next, face };
+        self.v_halfedge[origin] = h;
+        self.out_degree[origin] += 1;
+    }
+}
+
+/// Stage 5: number the edges in face order, as the faces first use them
+/// (half-edge 0 runs along that first side, as when faces are added one
+/// by one), and link the half-edges of the faces; every vertex names a
+/// half-edge. Consecutive faces get consecutive edges, so the arena
+/// follows the input's face order.
+fn link_faces(faces: Flat<'_>, nv: usize, mates: Mates) -> (Links, Twins) {
+    let corners = faces.indices.len();
+    let edges = corners - mates.pairs;
+    let unpaired = corners - 2 * mates.pairs;
+    let nf = faces.face_count();
     let mut links = Links {
-        he: IdVec::filled(HalfedgeRecord::VACANT, Eid::halfedge_slots(twins.edges)),
+        he: IdVec::filled(HalfedgeRecord::VACANT, Eid::halfedge_slots(edges)),
         v_halfedge: IdVec::filled(Hid::NONE, nv),
         out_degree: IdVec::filled(0, nv),
     };
-    for f in 0..faces.face_count() {
+    let mut numbering = Numbering {
+        mate: mates.mate,
+        edges: 0,
+        boundary: Vec::with_capacity(unpaired),
+    };
+    let mut f_halfedge = Vec::with_capacity(nf + unpaired);
+    let idx = faces.indices;
+    let mut ring: Vec<Hid> = Vec::new();
+    for f in 0..nf {
         let (s, e) = (faces.offsets[f] as usize, faces.offsets[f + 1] as usize);
+        let face = Fid::new(f as u32);
+        if let [a, b, c] = idx[s..e] {
+            let h0 = numbering.halfedge(s, b);
+            let h1 = numbering.halfedge(s + 1, c);
+            let h2 = numbering.halfedge(s + 2, a);
+            links.link(h0, a, h1, face);
+            links.link(h1, b, h2, face);
+            links.link(h2, c, h0, face);
+            f_halfedge.push(FaceLink::new(h0, false));
+            continue;
+        }
+        ring.clear();
         for c in s..e {
             let n = if c + 1 < e { c + 1 } else { s };
-            let h = he_of[c];
-            let origin = Vid::new(faces.indices[c]);
-            links.he[h] = HalfedgeRecord {
-                origin,
-                next: he_of[n],
-                face: Fid::new(f as u32),
-            };
-            links.v_halfedge[origin] = h;
-            links.out_degree[origin] += 1;
+            ring.push(numbering.halfedge(c, idx[n]));
         }
+        for (k, c) in (s..e).enumerate() {
+            let next = ring.get(k + 1).copied().unwrap_or(ring[0]);
+            links.link(ring[k], idx[c], next, face);
+        }
+        f_halfedge.push(FaceLink::new(ring[0], false));
     }
-    links
+    debug_assert_eq!(numbering.edges as usize, edges);
+    (
+        links,
+        Twins {
+            boundary: numbering.boundary,
+            edges,
+            f_halfedge,
+        },
+    )
 }
 
 /// Stage 6: the hole half-edges' origins, and each one's `next`: the hole
@@ -1044,17 +1180,17 @@ fn link_bowties(
 fn make_hole_faces(
     he: &mut IdVec<Hid, HalfedgeRecord>,
     faces: Flat<'_>,
-    twins: &Twins,
+    twins: Twins,
 ) -> (IdVec<Fid, FaceLink>, usize) {
     let nf = faces.face_count();
     let boundary = &twins.boundary;
-    let mut hole_starts = Vec::new();
+    let mut f_halfedge = twins.f_halfedge;
     for &(g, _) in boundary {
         if !he[g].face.is_none() {
             continue;
         }
-        let f = Fid::new((nf + hole_starts.len()) as u32);
-        hole_starts.push(g);
+        let f = Fid::new(f_halfedge.len() as u32);
+        f_halfedge.push(FaceLink::new(g, true));
         let mut h = g;
         for _ in 0..=boundary.len() {
             he[h].face = f;
@@ -1064,14 +1200,8 @@ fn make_hole_faces(
             }
         }
     }
-    let mut f_halfedge = IdVec::from_vec(Vec::with_capacity(nf + hole_starts.len()));
-    for &c in &faces.offsets[..nf] {
-        f_halfedge.push(FaceLink::new(twins.he_of[c as usize], false));
-    }
-    for &g in &hole_starts {
-        f_halfedge.push(FaceLink::new(g, true));
-    }
-    (f_halfedge, hole_starts.len())
+    let holes = f_halfedge.len() - nf;
+    (IdVec::from_vec(f_halfedge), holes)
 }
 
 /// Stage 8: every vertex's ring must reach all its half-edges (faces that
