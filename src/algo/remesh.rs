@@ -24,6 +24,18 @@
 //!    (our own, `remesh/bvh.rs`: median split, warm-started with the
 //!    triangle each vertex was last projected onto).
 //!
+//! After the rounds, [`RemeshOptions::remove_caps`] (default on) flips
+//! each edge opposite an angle over 170° where that lowers the largest
+//! angle of its two triangles, as pmp-library does.
+//!
+//! **Quality reached** (default options, mean edge length; measured by
+//! `measure_real_meshes` in `tests/remesh.rs`): on smooth shapes 95 % or
+//! more of the edges lie within [4/5, 4/3] L; on real meshes 82 % to 92 %
+//! (armadillo 89.9, bunny 90.6, cow 90.6, elephant 91.8, res2 dragon 87.7,
+//! a CGAL mesh with holes 90.1), every miss an edge shorter than 4/5 L
+//! whose collapse would make an edge longer than 4/3 L; mean valence
+//! within 0.03 of 6.
+//!
 //! **Target length** ([`Sizing`]): uniform (a length, or by default the
 //! input's mean edge length), or adaptive: from the largest absolute
 //! principal curvature `κ` at each input vertex (smoothed over its

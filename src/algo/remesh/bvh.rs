@@ -12,8 +12,11 @@
 //! Why our own: the remesher needs the primitive, the closest point and
 //! its barycentric coordinates, a warm start and a filter (corners of a UV
 //! island look only at the island's triangles); the tree is ~250 lines.
-//! On the 250k-vertex grid (498,002 triangles) building it takes about
-//! 0.1 s and a warm-started query a few hundred nanoseconds.
+//! Measured on the kit's 250k-vertex grid (498,002 triangles; the ignored
+//! test `measure_bvh`, release, wall time on a machine at load 7 on 2
+//! cores, so up to ~3× slower than a quiet one): building 0.32–0.39 s; a
+//! query 1.4 µs warm-started (hint = the triangle under the point), 1.5 µs
+//! cold, against 10 ms by brute force over every triangle.
 
 /// A point or vector.
 pub(crate) type V3 = [f64; 3];
