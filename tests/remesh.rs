@@ -661,11 +661,11 @@ fn an_undo_takes_the_whole_remeshing_back() {
 fn real_meshes_reach_their_measured_band_valence_and_distance() {
     // (path, measured share within, Hausdorff bound over the diagonal)
     let cases: &[(&str, f64, f64)] = &[
-        ("closed/cgal_cow.off", 0.906, 0.05),             // Hausdorff 0.045
-        ("closed/npm-bunny_bunny.off", 0.908, 0.025),     // 0.020
-        ("closed/openmesh_sphere840.ply", 0.863, 0.006),  // 0.0045
-        ("closed/cgal_sphere966.off", 0.853, 0.003),      // 0.0020
-        ("boundary/cgal_holes.off", 0.901, 0.002),        // 0.0009
+        ("closed/cgal_cow.off", 0.906, 0.05),         // Hausdorff 0.045
+        ("closed/npm-bunny_bunny.off", 0.908, 0.025), // 0.020
+        ("closed/openmesh_sphere840.ply", 0.863, 0.006), // 0.0045
+        ("closed/cgal_sphere966.off", 0.853, 0.003),  // 0.0020
+        ("boundary/cgal_holes.off", 0.901, 0.002),    // 0.0009
     ];
     for &(path, measured, max_h) in cases {
         let mut input = read(path);
@@ -676,7 +676,11 @@ fn real_meshes_reach_their_measured_band_valence_and_distance() {
         assert!(within >= measured - 0.01, "{path}: {within}");
         let (mean, _) = valences(&mesh);
         assert!((mean - 6.0).abs() < 0.03, "{path}: valence {mean}");
-        assert_eq!(mesh.euler_characteristic(), input.euler_characteristic(), "{path}");
+        assert_eq!(
+            mesh.euler_characteristic(),
+            input.euler_characteristic(),
+            "{path}"
+        );
         assert_eq!(mesh.hole_count(), input.hole_count(), "{path}");
         let h = hausdorff(&mesh, &input);
         assert!(h < max_h, "{path}: Hausdorff {h}");
