@@ -3,7 +3,9 @@
 //! to the sphere, refined edges match the rim, attributes come from the
 //! rim with no new seam, and refusals and cancels change nothing.
 
-use meshloom::algo::fill_hole::{fill_hole, fill_hole_at, fill_holes, FillHoleOptions};
+use meshloom::algo::fill_hole::{
+    fill_hole, fill_hole_at, fill_holes, fill_holes_at, FillHoleOptions,
+};
 use meshloom::algo::{Flow, Progress, ProgressInfo};
 use meshloom::attr::{FaceAttr, HalfedgeAttr, VertexAttr};
 use meshloom::shapes::{self, GridFaces};
@@ -466,4 +468,81 @@ fn a_flat_hole_is_filled_flat_from_any_border_half_edge() {
         .halfedges()
         .find(|&h| !mesh.halfedge(h).unwrap().face().is_hole());
     assert!(fill_hole_at(&mut mesh, inner.unwrap(), &FillHoleOptions::default()).is_err());
+}
+
+/// A flat grid with a strip of `quads` quads (one row, two triangles each)
+/// removed; returns the mesh and a border half-edge of the strip's hole.
+fn flat_strip_hole(quads: usize) -> (Mesh, meshloom::HalfedgeKey) {
+    let mut mesh = shapes::grid(quads + 4, 5, GridFaces::Triangles);
+    let strip: Vec<FaceKey> = mesh
+        .faces()
+        .filter(|&f| {
+            let c = mesh.face_centroid(f).unwrap();
+            c[1] > 2.0 && c[1] < 3.0 && c[0] > 2.0 && c[0] < 2.0 + quads as f64
+        })
+        .collect();
+    assert_eq!(strip.len(), 2 * quads);
+    for f in strip {
+        mesh.remove_face(f).unwrap();
+    }
+    let hole = mesh
+        .holes()
+        .min_by_key(|&h| mesh.face(h).unwrap().degree())
+        .unwrap();
+    let border = mesh.face(hole).unwrap().halfedge().key();
+    (mesh, border)
+}
+
+#[test]
+fn a_flat_strip_is_cut_into_a_zigzag_without_new_vertices() {
+    // Every triangulation of a flat strip has the same angles and areas;
+    // the shortest diagonals win, so no edge is longer than a quad's
+    // diagonal and refinement has nothing to split.
+    let (mut mesh, border) = flat_strip_hole(16);
+    let before = mesh.vertex_count();
+    let r = fill_hole_at(&mut mesh, border, &FillHoleOptions::default()).unwrap();
+    assert_eq!(r.vertices_added, 0);
+    assert_eq!(mesh.vertex_count(), before);
+    assert_eq!(r.faces.len(), 32);
+    for &f in &r.faces {
+        let ps: Vec<V3> = mesh
+            .face(f)
+            .unwrap()
+            .vertices()
+            .map(|v| mesh.position(v).unwrap())
+            .collect();
+        for k in 0..3 {
+            let l = norm(sub(ps[k], ps[(k + 1) % 3]));
+            assert!(l <= 2f64.sqrt() + 1e-9, "edge {l}");
+        }
+    }
+    mesh.validate().unwrap();
+}
+
+#[test]
+fn fill_holes_at_fills_in_one_undo_step_or_changes_nothing() {
+    let mut mesh = read("cgal_holes.off");
+    mesh.enable_history(meshloom::journal::HistoryLimits::default());
+    let holes: Vec<FaceKey> = mesh.holes().collect();
+    assert!(holes.len() > 2);
+    let borders: Vec<_> = holes
+        .iter()
+        .map(|&h| mesh.face(h).unwrap().halfedge().key())
+        .collect();
+    let before = fingerprint(&mesh);
+    let undo_before = mesh.undo_len();
+    let r = fill_holes_at(&mut mesh, &borders, &FillHoleOptions::default()).unwrap();
+    assert_eq!(r.holes_filled, holes.len());
+    assert!(mesh.is_closed());
+    mesh.validate().unwrap();
+    assert_eq!(mesh.undo_len(), undo_before + 1);
+    assert!(mesh.undo());
+    assert_eq!(fingerprint(&mesh), before);
+    // The same border twice: the second is no longer in a hole; refused,
+    // and the first hole is open again.
+    let twice = [borders[0], borders[0]];
+    let e = fill_holes_at(&mut mesh, &twice, &FillHoleOptions::default()).unwrap_err();
+    assert!(matches!(e, Error::Refused { .. }), "{e:?}");
+    assert_eq!(fingerprint(&mesh), before);
+    mesh.validate().unwrap();
 }

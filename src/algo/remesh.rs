@@ -24,6 +24,18 @@
 //!    (our own, `remesh/bvh.rs`: median split, warm-started with the
 //!    triangle each vertex was last projected onto).
 //!
+//! After the rounds, [`RemeshOptions::remove_caps`] (default on) flips
+//! each edge opposite an angle over 170° where that lowers the largest
+//! angle of its two triangles, as pmp-library does.
+//!
+//! **Quality reached** (default options, mean edge length; measured by
+//! `measure_real_meshes` in `tests/remesh.rs`): on smooth shapes 95 % or
+//! more of the edges lie within [4/5, 4/3] L; on real meshes 82 % to 92 %
+//! (armadillo 89.9, bunny 90.6, cow 90.6, elephant 91.8, res2 dragon 87.7,
+//! a CGAL mesh with holes 90.1), every miss an edge shorter than 4/5 L
+//! whose collapse would make an edge longer than 4/3 L; mean valence
+//! within 0.03 of 6.
+//!
 //! **Target length** ([`Sizing`]): uniform (a length, or by default the
 //! input's mean edge length), or adaptive: from the largest absolute
 //! principal curvature `κ` at each input vertex (smoothed over its
@@ -185,6 +197,12 @@ pub struct RemeshOptions {
     /// Which columns are resampled from the input (default: every linear
     /// vertex and corner column).
     pub resample: Resample,
+    /// After the rounds, flip each edge opposite an angle over 170° (a
+    /// *cap*: a flat triangle whose third corner nearly lies on its long
+    /// edge) where the flip lowers the largest angle of the two triangles,
+    /// as pmp-library's `remove_caps` (default true). Lines and edges at
+    /// fixed vertices are never flipped.
+    pub remove_caps: bool,
 }
 
 impl Default for RemeshOptions {
@@ -200,6 +218,7 @@ impl Default for RemeshOptions {
             seams: true,
             locked: None,
             resample: Resample::Linear,
+            remove_caps: true,
         }
     }
 }
@@ -229,8 +248,11 @@ pub struct RemeshReport {
     pub splits: usize,
     /// Edges collapsed.
     pub collapses: usize,
-    /// Edges flipped.
+    /// Edges flipped (valence flips in the rounds).
     pub flips: usize,
+    /// Caps removed by [`RemeshOptions::remove_caps`] (edge flips after
+    /// the rounds).
+    pub caps_removed: usize,
     /// The uniform target length, or the mean of the adaptive targets over
     /// the input's vertices.
     pub target_length: f64,
@@ -320,6 +342,9 @@ pub fn remesh(
             engine.project(&mut work);
         }
         report.iterations += 1;
+    }
+    if options.remove_caps {
+        report.caps_removed = engine.remove_caps(&mut work);
     }
     progress.report(
         ALGORITHM,
@@ -1106,6 +1131,50 @@ impl Engine {
         flips
     }
 
+    /// Flip the edges opposite an angle over 170° where that lowers the
+    /// largest angle of the two triangles (pmp-library's `remove_caps`),
+    /// one pass. Returns the flips made.
+    fn remove_caps(&mut self, mesh: &mut Mesh) -> usize {
+        self.fit(mesh);
+        let mut flips = 0;
+        for i in 0..mesh.e_slots.slot_count() {
+            if !mesh.e_slots.is_live(i) || self.eflags[i] != 0 {
+                continue;
+            }
+            let e = Eid::new(i as u32);
+            let [h, t] = e.halfedges();
+            if mesh.in_hole(h) || mesh.in_hole(t) {
+                continue;
+            }
+            let hn = mesh.next(h);
+            let tn = mesh.next(t);
+            if mesh.next(mesh.next(hn)) != h || mesh.next(mesh.next(tn)) != t {
+                continue;
+            }
+            let (a, b) = (mesh.origin(h), mesh.origin(t));
+            let (c, d) = (mesh.dest(hn), mesh.dest(tn));
+            if [a, b, c, d].iter().any(|v| self.kind[v.index()] == FIXED) {
+                continue;
+            }
+            let pos = positions(mesh);
+            let p = |v: Vid| pos[v.index()];
+            let before =
+                largest_angle_cos(p(a), p(b), p(c)).min(largest_angle_cos(p(b), p(a), p(d)));
+            if before >= CAP_COS {
+                continue;
+            }
+            let after =
+                largest_angle_cos(p(c), p(d), p(b)).min(largest_angle_cos(p(d), p(c), p(a)));
+            if after <= before || !flip_keeps_orientation(pos, [a, b, c, d]) {
+                continue;
+            }
+            if mesh.flip_unvalidated(e).is_ok() {
+                flips += 1;
+            }
+        }
+        flips
+    }
+
     /// One Jacobi step of tangential relaxation.
     fn relax(&mut self, mesh: &mut Mesh) {
         let nv = mesh.slot_counts()[0];
@@ -1492,6 +1561,24 @@ fn positions(mesh: &Mesh) -> &[V3] {
 /// The number of edges at `v`.
 fn valence(mesh: &Mesh, v: Vid) -> usize {
     mesh.outgoing(v).count()
+}
+
+/// The cosine of 170°: an angle over it makes a cap.
+const CAP_COS: f64 = -0.984_807_753_012_208;
+
+/// The cosine of the largest angle of triangle (a, b, c) (the smallest of
+/// its three cosines); 1 for a degenerate one.
+fn largest_angle_cos(a: V3, b: V3, c: V3) -> f64 {
+    let corner = |p: V3, q: V3, r: V3| {
+        let (u, v) = (sub(q, p), sub(r, p));
+        let l = (dot(u, u) * dot(v, v)).sqrt();
+        if l > 0.0 {
+            dot(u, v) / l
+        } else {
+            1.0
+        }
+    };
+    corner(a, b, c).min(corner(b, c, a)).min(corner(c, a, b))
 }
 
 /// Whether flipping the edge a–b of triangles (a, b, c) and (b, a, d) to
