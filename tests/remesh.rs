@@ -649,7 +649,9 @@ fn an_undo_takes_the_whole_remeshing_back() {
 
 /// Real meshes at their mean edge length (default options, 10 rounds):
 /// the share of edges within [4/5, 4/3] L measured on each
-/// (`measure_real_meshes`, 2026-11-25), asserted one point below; every
+/// (`measure_real_meshes`, 2026-11-25, re-measured after the builder
+/// began numbering edges in face order, which moved the cow's Hausdorff
+/// distance from 0.045 to 0.051), asserted one point below; every
 /// miss is an edge shorter than 4/5 L (none longer than 4/3 L): collapsing
 /// it would make an edge longer than 4/3 L (a final collapse pass after
 /// the last relaxation changed no share by more than 0.1 point). The 95 %
@@ -661,11 +663,11 @@ fn an_undo_takes_the_whole_remeshing_back() {
 fn real_meshes_reach_their_measured_band_valence_and_distance() {
     // (path, measured share within, Hausdorff bound over the diagonal)
     let cases: &[(&str, f64, f64)] = &[
-        ("closed/cgal_cow.off", 0.906, 0.05),         // Hausdorff 0.045
-        ("closed/npm-bunny_bunny.off", 0.908, 0.025), // 0.020
-        ("closed/openmesh_sphere840.ply", 0.863, 0.006), // 0.0045
-        ("closed/cgal_sphere966.off", 0.853, 0.003),  // 0.0020
-        ("boundary/cgal_holes.off", 0.901, 0.002),    // 0.0009
+        ("closed/cgal_cow.off", 0.907, 0.06),         // Hausdorff 0.051
+        ("closed/npm-bunny_bunny.off", 0.908, 0.025), // 0.015
+        ("closed/openmesh_sphere840.ply", 0.860, 0.007), // 0.0051
+        ("closed/cgal_sphere966.off", 0.848, 0.003),  // 0.0020
+        ("boundary/cgal_holes.off", 0.903, 0.002),    // 0.0008
     ];
     for &(path, measured, max_h) in cases {
         let mut input = read(path);

@@ -30,9 +30,9 @@
 //!
 //! **Quality reached** (default options, mean edge length; measured by
 //! `measure_real_meshes` in `tests/remesh.rs`): on smooth shapes 95 % or
-//! more of the edges lie within [4/5, 4/3] L; on real meshes 82 % to 92 %
-//! (armadillo 89.9, bunny 90.6, cow 90.6, elephant 91.8, res2 dragon 87.7,
-//! a CGAL mesh with holes 90.1), every miss an edge shorter than 4/5 L
+//! more of the edges lie within [4/5, 4/3] L; on real meshes 84 % to 92 %
+//! (armadillo 90.1, bunny 90.7, cow 90.7, elephant 91.5, res2 dragon 87.8,
+//! a CGAL mesh with holes 90.3), every miss an edge shorter than 4/5 L
 //! whose collapse would make an edge longer than 4/3 L; mean valence
 //! within 0.03 of 6.
 //!
