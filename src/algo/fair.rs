@@ -225,10 +225,10 @@ fn fair_run(
         }
         // Row v of A: e_v, then L, then (M⁻¹ then L) k − 1 times.
         acc.reset_to(v.index(), 1.0);
-        acc.apply_laplacian(&l);
+        acc.apply(&l);
         for _ in 1..k {
             acc.scale(&inv_mass);
-            acc.apply_laplacian(&l);
+            acc.apply(&l);
         }
         let me = local[v];
         let mut rhs = [0.0; 3];
@@ -464,7 +464,48 @@ fn unanchored(mesh: &Mesh, free: &[bool]) -> Option<Vid> {
     None
 }
 
-/// A sparse vector by vertex slot: dense values, the touched slots listed.
+/// A symmetric sparse matrix read row by row: the whole mesh's
+/// Laplacian, or the region-local rows of [`solve_local`].
+trait SymmetricRows {
+    fn diagonal(&self, m: usize) -> f64;
+    fn for_each_off_diagonal(&self, m: usize, f: impl FnMut(u32, f64));
+}
+
+impl SymmetricRows for super::laplacian::Laplacian {
+    #[inline]
+    fn diagonal(&self, m: usize) -> f64 {
+        super::laplacian::Laplacian::diagonal(self, m)
+    }
+    #[inline]
+    fn for_each_off_diagonal(&self, m: usize, mut f: impl FnMut(u32, f64)) {
+        let (cols, ws) = self.row_raw(m);
+        for (&c, &w) in cols.iter().zip(ws) {
+            f(c, w);
+        }
+    }
+}
+
+/// The region-local rows: off-diagonal entries per row and the diagonal.
+struct LocalRows<'a> {
+    rows: &'a [Vec<(u32, f64)>],
+    diagonal: &'a [f64],
+}
+
+impl SymmetricRows for LocalRows<'_> {
+    #[inline]
+    fn diagonal(&self, m: usize) -> f64 {
+        self.diagonal[m]
+    }
+    #[inline]
+    fn for_each_off_diagonal(&self, m: usize, mut f: impl FnMut(u32, f64)) {
+        for &(c, w) in &self.rows[m] {
+            f(c, w);
+        }
+    }
+}
+
+/// A sparse vector by slot (vertex slot, or the region-local numbering):
+/// dense values, the touched slots listed.
 struct Accumulator {
     value: Vec<f64>,
     seen: Vec<bool>,
@@ -505,18 +546,15 @@ impl Accumulator {
         self.value[s] += x;
     }
 
-    /// Replace the vector by `L` times it (`L` is symmetric: column `m`
-    /// is row `m`).
-    fn apply_laplacian(&mut self, l: &super::laplacian::Laplacian) {
+    /// Replace the vector by `A` times it (`A` symmetric: column `m` is
+    /// row `m`; only rows of the vector's support are read).
+    fn apply(&mut self, a: &impl SymmetricRows) {
         let input = std::mem::take(&mut self.list);
         self.scratch.clear();
         for &(m, x) in &input {
             let mi = m as usize;
-            self.add(m, l.diagonal(mi) * x);
-            let (cols, ws) = l.row_raw(mi);
-            for (&c, &w) in cols.iter().zip(ws) {
-                self.add(c, w * x);
-            }
+            self.add(m, a.diagonal(mi) * x);
+            a.for_each_off_diagonal(mi, |c, w| self.add(c, w * x));
         }
         let mut out = std::mem::take(&mut self.scratch);
         for (i, x) in &mut out {
@@ -605,20 +643,24 @@ pub(crate) fn solve_local(
     // the fixed columns go to the right-hand side.
     let nf = free.len();
     let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
-    let mut acc = SparseVec::new(order.len());
+    let local_rows = LocalRows {
+        rows: &rows,
+        diagonal: &diagonal,
+    };
+    let mut acc = Accumulator::new(order.len());
     let mut columns: Vec<Vec<(u32, f64)>> = Vec::with_capacity(nf);
     let mut rhs: Vec<V3> = Vec::with_capacity(nf);
     let mut constrained = vec![false; order.len() - nf];
     for me in 0..nf {
-        acc.reset_to(me as u32);
-        acc.apply(&rows, &diagonal);
+        acc.reset_to(me, 1.0);
+        acc.apply(&local_rows);
         for _ in 1..k {
             acc.scale(&inv_mass);
-            acc.apply(&rows, &diagonal);
+            acc.apply(&local_rows);
         }
         let mut b = [0.0; 3];
         let mut column = Vec::new();
-        for &(j, val) in &acc.list {
+        for &(j, val) in acc.entries() {
             let w = sign * val;
             let j = j as usize;
             if j < nf {
@@ -728,68 +770,6 @@ pub(crate) fn near_boundary(mesh: &Mesh, v: Vid, rings: u32) -> bool {
         front = next;
     }
     false
-}
-
-/// A sparse vector over the local numbering.
-struct SparseVec {
-    value: Vec<f64>,
-    seen: Vec<bool>,
-    list: Vec<(u32, f64)>,
-    scratch: Vec<(u32, f64)>,
-}
-
-impl SparseVec {
-    fn new(n: usize) -> SparseVec {
-        SparseVec {
-            value: vec![0.0; n],
-            seen: vec![false; n],
-            list: Vec::new(),
-            scratch: Vec::new(),
-        }
-    }
-
-    fn reset_to(&mut self, i: u32) {
-        self.list.clear();
-        self.list.push((i, 1.0));
-    }
-
-    fn scale(&mut self, d: &[f64]) {
-        for (i, x) in &mut self.list {
-            *x *= d[*i as usize];
-        }
-    }
-
-    fn add(&mut self, i: u32, x: f64) {
-        let s = i as usize;
-        if !self.seen[s] {
-            self.seen[s] = true;
-            self.scratch.push((i, 0.0));
-        }
-        self.value[s] += x;
-    }
-
-    /// Replace the vector by `L` times it (`L` symmetric; only rows of the
-    /// vector's support are read).
-    fn apply(&mut self, rows: &[Vec<(u32, f64)>], diagonal: &[f64]) {
-        let input = std::mem::take(&mut self.list);
-        self.scratch.clear();
-        for &(m, x) in &input {
-            let mi = m as usize;
-            self.add(m, diagonal[mi] * x);
-            for &(c, w) in &rows[mi] {
-                self.add(c, w * x);
-            }
-        }
-        let mut out = std::mem::take(&mut self.scratch);
-        for (i, x) in &mut out {
-            let s = *i as usize;
-            *x = self.value[s];
-            self.value[s] = 0.0;
-            self.seen[s] = false;
-        }
-        self.scratch = input;
-        self.list = out;
-    }
 }
 
 /// Solve the symmetric positive definite system given by its lower
