@@ -1042,9 +1042,9 @@ fn sqrt3_stencils_on_a_tetrahedron() {
     }
 }
 
-/// Boundary edges are kept (not flipped), boundary vertices stay put.
-#[test]
-fn sqrt3_keeps_the_boundary() {
+/// Open triangle meshes with boundaries of every kind: a small grid, a fan,
+/// a one-ring and the real boundary meshes.
+fn open_triangle_meshes() -> Vec<Mesh> {
     let mut meshes = vec![
         meshloom::shapes::grid(5, 4, meshloom::shapes::GridFaces::Triangles),
         common::boundary_fan(),
@@ -1058,7 +1058,13 @@ fn sqrt3_keeps_the_boundary() {
     ] {
         meshes.push(read_off(&mesh_path(file)));
     }
-    for mut m in meshes {
+    meshes
+}
+
+/// Boundary edges are kept (not flipped), boundary vertices stay put.
+#[test]
+fn sqrt3_keeps_the_boundary() {
+    for mut m in open_triangle_meshes() {
         let before = topology(&m);
         let boundary: Vec<(VertexKey, [f64; 3])> = m
             .vertices()
@@ -1335,20 +1341,8 @@ fn hole_loops(m: &Mesh) -> Vec<Vec<VertexKey>> {
 /// trisects every boundary edge (V + F + 2B, E + 3F + 4B, 3F + 2B).
 #[test]
 fn sqrt3_trisects_the_boundary_every_second_level() {
-    let mut meshes = vec![
-        bumpy_grid(),
-        common::boundary_fan(),
-        common::one_ring(),
-        meshloom::shapes::grid(5, 4, meshloom::shapes::GridFaces::Triangles),
-    ];
-    for file in [
-        "boundary/cgal_mesh_with_border.off",
-        "boundary/cgal_open_cube.off",
-        "boundary/cgal_triangular_hole.off",
-        "boundary/cgal_holes.off",
-    ] {
-        meshes.push(read_off(&mesh_path(file)));
-    }
+    let mut meshes = open_triangle_meshes();
+    meshes.push(bumpy_grid());
     for mut m in meshes {
         let before = topology(&m);
         let (v, e, f, h) = counts(&m);

@@ -34,6 +34,16 @@ use pyo3::types::{PyDict, PyList};
 use crate::elements::PyVertex;
 use crate::mesh::{edit, PyMesh};
 
+/// A dict of a report's named fields: `fields_dict!(py, r; moved, fixed)`
+/// is `{"moved": r.moved, "fixed": r.fixed}` (returns early on an error).
+macro_rules! fields_dict {
+    ($py:expr, $r:expr; $($field:ident),* $(,)?) => {{
+        let d = PyDict::new($py);
+        $(d.set_item(stringify!($field), $r.$field)?;)*
+        d
+    }};
+}
+
 /// A temporary boolean vertex column made from a numpy mask, removed again
 /// inside the same edit.
 const TEMP_MASK: &str = "__meshloom_mask";
@@ -68,11 +78,7 @@ impl<'py> Callback<'py> {
         };
         let py = f.py();
         let answer = (|| -> PyResult<bool> {
-            let d = PyDict::new(py);
-            d.set_item("algorithm", info.algorithm)?;
-            d.set_item("stage", info.stage)?;
-            d.set_item("done", info.done)?;
-            d.set_item("total", info.total)?;
+            let d = fields_dict!(py, info; algorithm, stage, done, total);
             let r = f.call1((d,))?;
             Ok(!r.is_instance_of::<pyo3::types::PyBool>() || r.is_truthy()?)
         })();
@@ -223,11 +229,7 @@ fn drop_mask(mesh: &mut Mesh, h: Option<VertexAttr<bool>>, mask: &Mask) {
 }
 
 fn counts_dict<'py>(py: Python<'py>, c: &meshloom::algo::Counts) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("vertices", c.vertices)?;
-    d.set_item("edges", c.edges)?;
-    d.set_item("faces", c.faces)?;
-    d.set_item("holes", c.holes)?;
+    let d = fields_dict!(py, c; vertices, edges, faces, holes);
     Ok(d)
 }
 
@@ -250,27 +252,17 @@ fn subdivision_report<'py>(py: Python<'py>, r: &SubdivisionReport) -> PyResult<B
 }
 
 fn decimate_report<'py>(py: Python<'py>, r: &DecimateReport) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
     let stopped = match r.stopped_by {
         meshloom::algo::decimate::StopReason::Target => "target",
         meshloom::algo::decimate::StopReason::MaxError => "max_error",
         meshloom::algo::decimate::StopReason::NoCollapses => "no_collapses",
     };
+    let d = fields_dict!(py, r; error, vertices_before, faces_before, vertices, faces, collapses, passes, fixed_vertices);
     d.set_item("stopped_by", stopped)?;
-    d.set_item("error", r.error)?;
-    d.set_item("vertices_before", r.vertices_before)?;
-    d.set_item("faces_before", r.faces_before)?;
-    d.set_item("vertices", r.vertices)?;
-    d.set_item("faces", r.faces)?;
-    d.set_item("collapses", r.collapses)?;
-    d.set_item("passes", r.passes)?;
-    let refused = PyDict::new(py);
-    refused.set_item("topology", r.refused.topology)?;
-    refused.set_item("normal", r.refused.normal)?;
-    refused.set_item("quality", r.refused.quality)?;
-    refused.set_item("valence", r.refused.valence)?;
-    d.set_item("refused", refused)?;
-    d.set_item("fixed_vertices", r.fixed_vertices)?;
+    d.set_item(
+        "refused",
+        fields_dict!(py, r.refused; topology, normal, quality, valence),
+    )?;
     Ok(d)
 }
 
@@ -625,12 +617,7 @@ impl PyMesh {
             drop_mask(m, h, &mask);
             out
         }))?;
-        let d = PyDict::new(py);
-        d.set_item("moved", r.moved)?;
-        d.set_item("fixed", r.fixed)?;
-        d.set_item("iterations", r.iterations)?;
-        d.set_item("max_displacement", r.max_displacement)?;
-        d.set_item("stale", r.stale)?;
+        let d = fields_dict!(py, r; moved, fixed, iterations, max_displacement, stale);
         Ok(d.unbind())
     }
 
@@ -698,10 +685,7 @@ impl PyMesh {
             drop_mask(m, h, &mask);
             out
         }))?;
-        let d = PyDict::new(py);
-        d.set_item("moved", r.moved)?;
-        d.set_item("constraints", r.constraints)?;
-        d.set_item("max_displacement", r.max_displacement)?;
+        let d = fields_dict!(py, r; moved, constraints, max_displacement);
         Ok(d.unbind())
     }
 
@@ -801,16 +785,7 @@ impl PyMesh {
             };
             cb.run(|p| remesh(m, &o, p))
         }))?;
-        let d = PyDict::new(py);
-        d.set_item("iterations", r.iterations)?;
-        d.set_item("splits", r.splits)?;
-        d.set_item("collapses", r.collapses)?;
-        d.set_item("flips", r.flips)?;
-        d.set_item("target_length", r.target_length)?;
-        d.set_item("vertices_before", r.vertices_before)?;
-        d.set_item("faces_before", r.faces_before)?;
-        d.set_item("vertices", r.vertices)?;
-        d.set_item("faces", r.faces)?;
+        let d = fields_dict!(py, r; iterations, splits, collapses, flips, target_length, vertices_before, faces_before, vertices, faces);
         Ok(d.unbind())
     }
 
@@ -843,11 +818,7 @@ impl PyMesh {
         };
         let cb = Callback::new(progress)?;
         let r = cb.finish(edit(slf, |m| cb.run(|p| fill_holes(m, &o, p))))?;
-        let d = PyDict::new(py);
-        d.set_item("holes_filled", r.holes_filled)?;
-        d.set_item("faces_added", r.faces_added)?;
-        d.set_item("vertices_added", r.vertices_added)?;
-        d.set_item("ear_clipped", r.ear_clipped)?;
+        let d = fields_dict!(py, r; holes_filled, faces_added, vertices_added, ear_clipped);
         d.set_item("skipped", r.skipped.len())?;
         Ok(d.unbind())
     }
