@@ -565,8 +565,10 @@ fn build_flat<P: Point>(
     };
     check_positions(positions, &vertices)?;
     let faces = input.with_indices(&vertices.indices);
-    let sides = bucket_sides(faces, vertices.count);
-    let mates = pair_twins(faces, sides, &vertices)?;
+    let mates = match pair_triangle_twins(faces, vertices.count) {
+        Some(mates) => mates,
+        None => pair_twins(faces, bucket_sides(faces, vertices.count), &vertices)?,
+    };
     let (mut links, twins) = link_faces(faces, vertices.count, mates);
     link_boundary(&mut links, &twins.boundary, &vertices)?;
     let edges = twins.edges;
@@ -846,17 +848,21 @@ struct Mates {
     mate: Vec<u32>,
     /// Number of paired sides (interior edges).
     pairs: usize,
+    /// Sides leaving each vertex (its half-edges in faces; stage 6 adds
+    /// those in holes).
+    out_degree: Vec<u32>,
 }
 
 /// Stage 4: pair each directed side with its twin, bucket by bucket. On
 /// bad input the error is the one met first when the buckets are taken in
 /// the order in which the faces first use their vertex.
 fn pair_twins(faces: Flat<'_>, mut sides: Buckets, vertices: &UsedVertices<'_>) -> Result<Mates> {
+    let nv = sides.ends.len();
     let mut mates = Mates {
         mate: vec![0u32; faces.indices.len()],
         pairs: 0,
+        out_degree: Vec::new(),
     };
-    let nv = sides.ends.len();
     for v in 0..nv {
         let range = sides.range(v);
         let group = &mut sides.entries[range];
@@ -864,7 +870,118 @@ fn pair_twins(faces: Flat<'_>, mut sides: Buckets, vertices: &UsedVertices<'_>) 
             return Err(first_bucket_error(faces, &mut sides, vertices));
         }
     }
+    drop(sides);
+    let mut out_degree = vec![0u32; nv];
+    for &v in faces.indices {
+        out_degree[v as usize] += 1;
+    }
+    mates.out_degree = out_degree;
     Ok(mates)
+}
+
+/// Stages 3 and 4 for triangles only, with half the memory: the corners
+/// are bucketed by their origin (a counting sort of `u32` corners; a
+/// corner's destination is the next corner of its triangle), and each side
+/// finds its twin in its destination's bucket. `None` when some directed
+/// edge is used twice, or the input is not all triangles: the general
+/// stages then run and name the defect exactly as they always have.
+fn pair_triangle_twins(faces: Flat<'_>, nv: usize) -> Option<Mates> {
+    let idx = faces.indices;
+    let corners = idx.len();
+    let all_triangles = corners == 3 * faces.face_count()
+        && faces
+            .offsets
+            .iter()
+            .enumerate()
+            .all(|(f, &o)| o as usize == 3 * f);
+    if !all_triangles {
+        return None;
+    }
+    let dest = |c: usize| idx[if c % 3 == 2 { c - 2 } else { c + 1 }];
+    let by_origin = OriginBuckets::of(idx, nv);
+    let mut mate = vec![0u32; corners];
+    let mut pairs = 0;
+    for c in 0..corners {
+        if mate[c] != 0 {
+            continue;
+        }
+        let (a, b) = (idx[c], dest(c));
+        // The first side b -> a. A second one is found when it looks for
+        // its own twin: it finds this side taken, or (no side a -> b at
+        // all) its double in its own bucket.
+        let twin = by_origin.bucket(b).iter().find(|&&d| dest(d as usize) == a);
+        match twin {
+            Some(&d) if mate[d as usize] == 0 => {
+                mate[c] = d + 1;
+                mate[d as usize] = c as u32 + 1;
+                pairs += 1;
+            }
+            Some(_) => return None, // a -> b twice, b -> a once or more
+            None => {
+                let twice = by_origin
+                    .bucket(a)
+                    .iter()
+                    .any(|&k| k as usize != c && dest(k as usize) == b);
+                if twice {
+                    return None; // a -> b twice, on the boundary
+                }
+            }
+        }
+    }
+    Some(Mates {
+        mate,
+        pairs,
+        out_degree: by_origin.into_sizes(),
+    })
+}
+
+/// Corners bucketed by their origin vertex: bucket `v` is
+/// `corners[ends[v - 1]..ends[v]]` (from 0 for `v = 0`).
+struct OriginBuckets {
+    ends: Vec<u32>,
+    corners: Vec<u32>,
+}
+
+impl OriginBuckets {
+    /// A counting sort of the corners by origin (`indices[c] < nv`).
+    fn of(indices: &[u32], nv: usize) -> Self {
+        let mut ends = vec![0u32; nv];
+        for &v in indices {
+            ends[v as usize] += 1;
+        }
+        let mut at = 0u32;
+        for slot in &mut ends {
+            let n = *slot;
+            *slot = at;
+            at += n;
+        }
+        let mut corners = vec![0u32; indices.len()];
+        for (c, &v) in indices.iter().enumerate() {
+            let slot = &mut ends[v as usize];
+            corners[*slot as usize] = c as u32;
+            *slot += 1;
+        }
+        OriginBuckets { ends, corners }
+    }
+
+    /// The corners leaving vertex `v`.
+    #[inline(always)]
+    fn bucket(&self, v: u32) -> &[u32] {
+        let v = v as usize;
+        let begin = if v == 0 { 0 } else { self.ends[v - 1] };
+        &self.corners[begin as usize..self.ends[v] as usize]
+    }
+
+    /// Each bucket's size (the sides leaving each vertex), in the same
+    /// buffer.
+    fn into_sizes(self) -> Vec<u32> {
+        drop(self.corners);
+        let mut ends = self.ends;
+        for v in (1..ends.len()).rev() {
+            ends[v] -= ends[v - 1];
+        }
+        ends
+    }
 }
 
 /// Sort one bucket and pair its sides; an edge used by three sides or
@@ -939,6 +1056,7 @@ fn first_bucket_error(faces: Flat<'_>, sides: &mut Buckets, vertices: &UsedVerti
     let mut scratch = Mates {
         mate: vec![0u32; faces.indices.len()],
         pairs: 0,
+        out_degree: Vec::new(),
     };
     for &v in faces.indices {
         if std::mem::replace(&mut seen[v as usize], true) {
@@ -985,15 +1103,20 @@ impl Numbering {
     const NUMBERED: u32 = 1 << 31;
 
     /// The half-edge of the side from corner `c` to vertex `dest`: a new
-    /// edge (its half-edge 0) unless its twin side came first.
+    /// edge (its half-edge 0) unless its twin side came first. A new edge's
+    /// two records are appended to `he` here, in numbering order, so the
+    /// arena is written once as it grows (no fill pass before).
     #[inline(always)]
-    fn halfedge(&mut self, c: usize, dest: u32) -> Hid {
+    fn halfedge(&mut self, c: usize, dest: u32, he: &mut IdVec<Hid, HalfedgeRecord>) -> Hid {
         let m = self.mate[c];
         if m & Self::NUMBERED != 0 {
             return Hid::new(m & !Self::NUMBERED);
         }
         let [inner, outer] = Eid::new(self.edges).halfedges();
         self.edges += 1;
+        debug_assert_eq!(he.len(), inner.index());
+        he.push(HalfedgeRecord::VACANT);
+        he.push(HalfedgeRecord::VACANT);
         if m == 0 {
             self.boundary.push((outer, Vid::new(dest)));
         } else {
@@ -1010,7 +1133,6 @@ impl Links {
         let origin = Vid::new(origin);
         self.he[h] = HalfedgeRecord { origin, next, face };
         self.v_halfedge[origin] = h;
-        self.out_degree[origin] += 1;
     }
 }
 
@@ -1025,9 +1147,9 @@ fn link_faces(faces: Flat<'_>, nv: usize, mates: Mates) -> (Links, Twins) {
     let unpaired = corners - 2 * mates.pairs;
     let nf = faces.face_count();
     let mut links = Links {
-        he: IdVec::filled(HalfedgeRecord::VACANT, Eid::halfedge_slots(edges)),
+        he: IdVec::from_vec(Vec::with_capacity(Eid::halfedge_slots(edges))),
         v_halfedge: IdVec::filled(Hid::NONE, nv),
-        out_degree: IdVec::filled(0, nv),
+        out_degree: IdVec::from_vec(mates.out_degree),
     };
     let mut numbering = Numbering {
         mate: mates.mate,
@@ -1041,9 +1163,9 @@ fn link_faces(faces: Flat<'_>, nv: usize, mates: Mates) -> (Links, Twins) {
         let (s, e) = (faces.offsets[f] as usize, faces.offsets[f + 1] as usize);
         let face = Fid::new(f as u32);
         if let [a, b, c] = idx[s..e] {
-            let h0 = numbering.halfedge(s, b);
-            let h1 = numbering.halfedge(s + 1, c);
-            let h2 = numbering.halfedge(s + 2, a);
+            let h0 = numbering.halfedge(s, b, &mut links.he);
+            let h1 = numbering.halfedge(s + 1, c, &mut links.he);
+            let h2 = numbering.halfedge(s + 2, a, &mut links.he);
             links.link(h0, a, h1, face);
             links.link(h1, b, h2, face);
             links.link(h2, c, h0, face);
@@ -1053,7 +1175,7 @@ fn link_faces(faces: Flat<'_>, nv: usize, mates: Mates) -> (Links, Twins) {
         ring.clear();
         for c in s..e {
             let n = if c + 1 < e { c + 1 } else { s };
-            ring.push(numbering.halfedge(c, idx[n]));
+            ring.push(numbering.halfedge(c, idx[n], &mut links.he));
         }
         for (k, c) in (s..e).enumerate() {
             let next = ring.get(k + 1).copied().unwrap_or(ring[0]);
@@ -1062,6 +1184,7 @@ fn link_faces(faces: Flat<'_>, nv: usize, mates: Mates) -> (Links, Twins) {
         f_halfedge.push(FaceLink::new(ring[0], false));
     }
     debug_assert_eq!(numbering.edges as usize, edges);
+    debug_assert_eq!(links.he.len(), Eid::halfedge_slots(edges));
     (
         links,
         Twins {
@@ -1080,28 +1203,34 @@ fn link_boundary(
     boundary: &[(Hid, Vid)],
     vertices: &UsedVertices<'_>,
 ) -> Result<()> {
-    // (A vertex's "several hole half-edges leave it" marker: no half-edge
-    // has this id, as a mesh has fewer than 2^31 of them.)
-    const MANY: Hid = Hid::new(u32::MAX - 1);
     let he = &mut links.he;
-    let mut hole_out: IdVec<Vid, Hid> = IdVec::filled(Hid::NONE, links.v_halfedge.len());
+    // Vertices that several hole half-edges leave (one bit each); the
+    // hole half-edge leaving any other boundary vertex is its
+    // `v_halfedge`.
+    let mut several = vec![0u64; links.v_halfedge.len().div_ceil(64)];
     for &(g, o) in boundary {
         he[g].origin = o;
-        // Rule 11: a boundary vertex names a half-edge in a hole.
+        // Rule 11: a boundary vertex names a half-edge in a hole (hole
+        // half-edges have no face yet: stage 7 gives them theirs).
+        let before = links.v_halfedge[o];
+        if he[before].face.is_none() {
+            several[o.index() / 64] |= 1 << (o.index() % 64);
+        }
         links.v_halfedge[o] = g;
-        let slot = &mut hole_out[o];
-        *slot = if slot.is_none() { g } else { MANY };
         links.out_degree[o] += 1;
     }
     let mut bowtie = false;
     for &(g, _) in boundary {
         let a = he[g.twin()].origin; // g enters a
-        match hole_out[a] {
-            MANY => bowtie = true,
-            k => he[g].next = k,
+        if several[a.index() / 64] >> (a.index() % 64) & 1 == 1 {
+            bowtie = true;
+        } else {
+            let k = links.v_halfedge[a];
+            if he[k].face.is_none() {
+                he[g].next = k;
+            }
         }
     }
-    drop(hole_out);
     if bowtie {
         link_bowties(he, boundary, vertices)?;
     }

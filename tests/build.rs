@@ -190,3 +190,68 @@ fn stale_keys_are_errors() {
     assert!(other.vertex(far).is_err());
     assert!(m.vertex(v).is_ok());
 }
+
+/// The same faces, built as given (triangles only: the builder's leaner
+/// triangle path) and with one separate quad after them (the general
+/// path): the same error, or meshes that differ only by the quad.
+fn same_on_both_paths(n: u32, tris: &[[u32; 3]]) {
+    let faces: Vec<Vec<u32>> = tris.iter().map(|t| t.to_vec()).collect();
+    let mut with_quad = faces.clone();
+    with_quad.push(vec![n, n + 1, n + 2, n + 3]);
+    let tri = Mesh::from_faces(n as usize, &faces);
+    let general = Mesh::from_faces(n as usize + 4, &with_quad);
+    match (tri, general) {
+        (Ok(a), Ok(b)) => {
+            a.validate().unwrap();
+            let (v, e, f, h) = counts(&b);
+            assert_eq!(counts(&a), (v - 4, e - 4, f - 1, h - 1), "{tris:?}");
+        }
+        (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{tris:?}"),
+        (a, b) => panic!("{tris:?}: triangles {a:?}, general {b:?}"),
+    }
+}
+
+#[test]
+fn triangle_path_reports_as_the_general_path() {
+    let cases: &[&[[u32; 3]]] = &[
+        &[[0, 1, 2], [1, 0, 3], [0, 1, 4]],
+        &[[0, 1, 2], [0, 1, 3]],
+        &[[0, 1, 2], [1, 2, 0]],
+        &[[0, 1, 2], [1, 0, 3], [1, 0, 4]],
+        &[[0, 1, 2], [2, 1, 3], [1, 0, 4], [3, 1, 4]],
+        &[[0, 1, 2], [0, 3, 4]],
+        &[[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]],
+        &[
+            [0, 2, 1],
+            [0, 1, 3],
+            [1, 2, 3],
+            [2, 0, 3],
+            [0, 5, 4],
+            [0, 4, 6],
+        ],
+    ];
+    for tris in cases {
+        same_on_both_paths(7, tris);
+    }
+    // Small random soups over few vertices: every defect the builder
+    // knows, in many arrangements.
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = |m: u32| {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        ((state >> 33) % u64::from(m)) as u32
+    };
+    for _ in 0..3000 {
+        let n = 3 + next(6);
+        let k = 1 + next(8) as usize;
+        let mut tris = Vec::with_capacity(k);
+        while tris.len() < k {
+            let t = [next(n), next(n), next(n)];
+            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                tris.push(t);
+            }
+        }
+        same_on_both_paths(n, &tris);
+    }
+}
