@@ -11,7 +11,7 @@
 //! | half-edges | some changed | count; per record, ascending: `(slot − previous) << 3 \| mask`, then each changed field (origin, next, face) as the zigzagged difference from the same field of the previous record |
 //! | vertex links | some changed | count; per vertex: slot delta, zigzagged difference from the previous half-edge |
 //! | face links | some changed | count; per face: slot delta, `zigzag(half-edge − previous) << 1 \| hole` |
-//! | slots | births, deaths or reuses | a mask of arenas with births and with deaths/reuses; per arena with births `count, start`; per arena with others `count`, then per event `zigzag(slot − previous) << 1 \| kind` and, for a death, the generation the element had |
+//! | slots | births, deaths or reuses | a mask of arenas with births, with deaths/reuses and with new slots vacant at the seal; per arena with births `count, start`, and where some are vacant the number of runs and every run length but the last (alternating live, vacant, ...); per arena with events `count`, then per event `zigzag(slot − previous) << 1 \| kind` and, for a death, the generation the element had (events only for slots older than the step) |
 //! | holes | the count changed | zigzagged difference (after − before) |
 //! | states | an arena's fast-path state changed | 5 bits per arena: changed, before, after |
 //! | side | column records, column structure or a whole mesh | how many side records (kept beside the bytes) belong to the step |
@@ -61,7 +61,13 @@ pub(crate) struct Step {
     pub(crate) fl: Vec<(Fid, FaceLink)>,
     /// Per arena (vertex, edge, face): new slots at the end, `(start, count)`.
     pub(crate) births: [(u32, u32); 3],
-    /// Per arena: deaths and reuses in order.
+    /// Per arena: which of the new slots were live when the step was
+    /// sealed, as run lengths over `births` alternating live, vacant,
+    /// live, ... (the first run may be empty). Empty: all live. A new slot
+    /// that died (or died and was reused) in the step has no event: this
+    /// and the slot's generation say all that undo and redo need.
+    pub(crate) born_live: [Vec<u32>; 3],
+    /// Per arena: deaths and reuses of slots older than the step, in order.
     pub(crate) events: [Vec<SlotEvent>; 3],
     /// Hole count after minus before.
     pub(crate) holes: i64,
@@ -79,6 +85,9 @@ impl Step {
         self.vh.clear();
         self.fl.clear();
         self.births = [(0, 0); 3];
+        for r in &mut self.born_live {
+            r.clear();
+        }
         for e in &mut self.events {
             e.clear();
         }
@@ -252,12 +261,22 @@ fn encode_body(step: &Step, body: &mut Vec<u8>) {
             if !step.events[a].is_empty() {
                 mask |= 8 << a;
             }
+            if step.births[a].1 > 0 && !step.born_live[a].is_empty() {
+                mask |= 64 << a;
+            }
         }
         put(body, mask);
-        for &(start, count) in &step.births {
+        for (&(start, count), runs) in step.births.iter().zip(&step.born_live) {
             if count > 0 {
                 put(body, u64::from(count));
                 put(body, u64::from(start));
+                if !runs.is_empty() {
+                    // The last run is what the others leave of `count`.
+                    put(body, runs.len() as u64);
+                    for &r in &runs[..runs.len() - 1] {
+                        put(body, u64::from(r));
+                    }
+                }
             }
         }
         for events in &step.events {
@@ -267,18 +286,13 @@ fn encode_body(step: &Step, body: &mut Vec<u8>) {
             put(body, events.len() as u64);
             let mut prev = 0u32;
             for e in events {
-                match *e {
-                    SlotEvent::Death { slot, generation } => {
-                        put(body, diff(slot, prev) << 1);
-                        put(body, u64::from(generation));
-                        prev = slot;
-                    }
-                    SlotEvent::Reuse { slot, generation } => {
-                        put(body, diff(slot, prev) << 1 | 1);
-                        put(body, u64::from(generation));
-                        prev = slot;
-                    }
-                }
+                let (slot, generation, kind) = match *e {
+                    SlotEvent::Death { slot, generation } => (slot, generation, 0),
+                    SlotEvent::Reuse { slot, generation } => (slot, generation, 1),
+                };
+                put(body, diff(slot, prev) << 1 | kind);
+                put(body, u64::from(generation));
+                prev = slot;
             }
         }
     }
@@ -427,6 +441,17 @@ pub(crate) fn decode(body: &[u8], step: &mut Step) {
                 let count = r.get32();
                 let start = r.get32();
                 step.births[a] = (start, count);
+                if mask & (64 << a) != 0 {
+                    let n = r.get() as usize;
+                    let runs = &mut step.born_live[a];
+                    let mut left = count;
+                    for _ in 1..n {
+                        let k = r.get32();
+                        runs.push(k);
+                        left -= k;
+                    }
+                    runs.push(left);
+                }
             }
         }
         for a in 0..3 {
@@ -501,7 +526,8 @@ mod tests {
         s.vh.push((Vid::new(7), Hid::NONE));
         s.vh.push((Vid::new(8), Hid::new(0)));
         s.fl.push((Fid::new(2), FaceLink::new(Hid::new(5), true)));
-        s.births = [(10, 2), (0, 0), (100_000, 1)];
+        s.births = [(10, 2), (0, 0), (100_000, 7)];
+        s.born_live[2] = vec![0, 3, 2, 2];
         s.events[1].push(SlotEvent::Death {
             slot: 5,
             generation: 3,
@@ -552,6 +578,7 @@ mod tests {
         assert_eq!(masked(&d), masked(&s));
         assert_eq!((d.vh.clone(), d.fl.clone()), (s.vh.clone(), s.fl.clone()));
         assert_eq!((d.births, d.events.clone()), (s.births, s.events.clone()));
+        assert_eq!(d.born_live, s.born_live);
         assert_eq!((d.more, d.holes, d.states, d.side), (true, -2, s.states, 3));
         // From the start.
         let (end, r0) = first_step(&log, 0);

@@ -139,6 +139,9 @@ pub(crate) struct Recorder {
     pub(crate) vh: PageLog<Hid>,
     pub(crate) fl: PageLog<FaceLink>,
     pub(crate) events: [Vec<SlotEvent>; 3],
+    /// Per arena: deaths of slots born in the open step (0: all of them
+    /// are live, the seal need not look).
+    pub(crate) born_deaths: [u32; 3],
     pub(crate) holes0: usize,
     pub(crate) states0: [State; 3],
     pub(crate) side: Vec<Side>,
@@ -194,16 +197,26 @@ impl Recorder {
         self.fl.save(f.raw(), self.start[2], live);
     }
 
-    /// A vacant slot of arena `a` was taken from the free list.
+    /// A vacant slot of arena `a` was taken from the free list. A slot
+    /// born in the open step records nothing: the seal reads whether it is
+    /// live from the arena (see [`Step::born_live`]).
     #[inline]
     pub(crate) fn reused(&mut self, a: usize, slot: u32, generation: u32) {
-        self.events[a].push(SlotEvent::Reuse { slot, generation });
+        if slot < self.start[a] {
+            self.events[a].push(SlotEvent::Reuse { slot, generation });
+        }
     }
 
     /// The element at `generation` in slot `slot` of arena `a` was removed.
+    /// For a slot born in the open step only a count goes up (the seal
+    /// then looks at which new slots are vacant).
     #[inline]
     pub(crate) fn died(&mut self, a: usize, slot: u32, generation: u32) {
-        self.events[a].push(SlotEvent::Death { slot, generation });
+        if slot < self.start[a] {
+            self.events[a].push(SlotEvent::Death { slot, generation });
+        } else {
+            self.born_deaths[a] += 1;
+        }
     }
 
     /// Whether steps are kept (history or an open transaction).
@@ -242,9 +255,49 @@ fn slots_of_mut(m: &mut Mesh, a: usize) -> &mut Slots {
     }
 }
 
+fn slots_of_arena<'a>(v: &'a Slots, e: &'a Slots, f: &'a Slots, a: usize) -> &'a Slots {
+    match a {
+        0 => v,
+        1 => e,
+        _ => f,
+    }
+}
+
+/// Which slots of `range` are live, as run lengths alternating live,
+/// vacant, live, ... (the first run may be empty), appended to `runs`.
+fn born_runs(slots: &Slots, range: std::ops::Range<u32>, runs: &mut Vec<u32>) {
+    let mut live = true;
+    let mut run = 0u32;
+    for i in range {
+        if slots.is_live(i as usize) != live {
+            runs.push(run);
+            run = 0;
+            live = !live;
+        }
+        run += 1;
+    }
+    runs.push(run);
+}
+
 /// The generation of slot `i` (0: never allocated).
 fn gen(m: &Mesh, a: usize, i: u32) -> u32 {
     slots_of(m, a).generation(i as usize).unwrap_or(0)
+}
+
+/// Call `f(slot, live at the seal)` for every new slot of a step, in
+/// slot order (`runs`: [`Step::born_live`]).
+#[inline]
+fn for_born(start: u32, count: u32, runs: &[u32], mut f: impl FnMut(u32, bool)) {
+    if runs.is_empty() {
+        (start..start + count).for_each(|i| f(i, true));
+        return;
+    }
+    let mut i = start;
+    for (k, &len) in runs.iter().enumerate() {
+        let live = k % 2 == 0;
+        (i..i + len).for_each(|j| f(j, live));
+        i += len;
+    }
 }
 
 /// Direction of an application.
@@ -389,7 +442,15 @@ impl Mesh {
             for a in 0..3 {
                 if counts[a] > r.start[a] {
                     step.births[a] = (r.start[a], counts[a] - r.start[a]);
+                    if r.born_deaths[a] > 0 {
+                        born_runs(
+                            slots_of_arena(&self.v_slots, &self.e_slots, &self.f_slots, a),
+                            r.start[a]..counts[a],
+                            &mut step.born_live[a],
+                        );
+                    }
                 }
+                r.born_deaths[a] = 0;
                 std::mem::swap(&mut step.events[a], &mut r.events[a]);
                 if states[a] != r.states0[a] {
                     step.states[a] = Some((r.states0[a], states[a]));
@@ -733,9 +794,16 @@ impl Mesh {
         }
         for a in 0..3 {
             let (start, count) = step.births[a];
+            let runs = &step.born_live[a];
             let slots = slots_of_mut(self, a);
             match dir {
                 Dir::Undo => {
+                    if !runs.is_empty() {
+                        // New slots that died in the step are vacant at a
+                        // generation above every key they had: they only
+                        // leave the free list (held for a redo).
+                        slots.hold_from(start);
+                    }
                     for e in step.events[a].iter().rev() {
                         match *e {
                             SlotEvent::Reuse { slot, .. } => slots.unbirth(slot, true),
@@ -744,9 +812,11 @@ impl Mesh {
                             }
                         }
                     }
-                    for i in (start..start + count).rev() {
-                        slots.unbirth(i, false);
-                    }
+                    for_born(start, count, runs, |i, live| {
+                        if live {
+                            slots.unbirth(i, false);
+                        }
+                    });
                     if let Some((before, _)) = step.states[a] {
                         slots.restore_state(before);
                     } else {
@@ -755,9 +825,11 @@ impl Mesh {
                     }
                 }
                 Dir::Redo => {
-                    for i in start..start + count {
-                        slots.rebirth(i, false);
-                    }
+                    for_born(start, count, runs, |i, live| {
+                        if live {
+                            slots.rebirth(i, false);
+                        }
+                    });
                     for e in &step.events[a] {
                         match *e {
                             SlotEvent::Reuse { slot, generation } => {
@@ -766,6 +838,14 @@ impl Mesh {
                             SlotEvent::Death { slot, .. } => slots.free(slot),
                         }
                     }
+                    // New slots vacant at the seal go back on the free
+                    // list, at the generation the step left them (undo
+                    // did not move it).
+                    for_born(start, count, runs, |i, live| {
+                        if !live {
+                            slots.release(i);
+                        }
+                    });
                     if let Some((_, after)) = step.states[a] {
                         slots.restore_state(after);
                     } else {
