@@ -255,6 +255,16 @@ fn slots_of_mut(m: &mut Mesh, a: usize) -> &mut Slots {
     }
 }
 
+/// The fields of a half-edge record that differ between `cur` and `old`
+/// (a mask of `ORIGIN`, `NEXT`, `FACE`), if any.
+#[inline]
+fn changed_fields(cur: HalfedgeRecord, old: HalfedgeRecord) -> Option<u8> {
+    let mask = (u8::from(cur.origin != old.origin) * ORIGIN)
+        | (u8::from(cur.next != old.next) * NEXT)
+        | (u8::from(cur.face != old.face) * FACE);
+    (mask != 0).then_some(mask)
+}
+
 fn slots_of_arena<'a>(v: &'a Slots, e: &'a Slots, f: &'a Slots, a: usize) -> &'a Slots {
     match a {
         0 => v,
@@ -395,22 +405,10 @@ impl Mesh {
         // fields that changed.
         {
             let r = self.rec.as_deref_mut().expect("no recorder");
-            let [v0, e0, f0] = r.start;
+            let [v0, _, f0] = r.start;
             // Room for every saved slot at once (no regrowth of a large step).
-            step.he.reserve(r.he.saved_slots());
             step.vh.reserve(r.vh.saved_slots());
             step.fl.reserve(r.fl.saved_slots());
-            let live = &self.he;
-            r.he.drain_ascending(e0 * 2, |h, old| {
-                let h = Hid::new(h);
-                let cur = live[h];
-                let mask = (u8::from(cur.origin != old.origin) * ORIGIN)
-                    | (u8::from(cur.next != old.next) * NEXT)
-                    | (u8::from(cur.face != old.face) * FACE);
-                if mask != 0 {
-                    step.he.push((h, mask, old));
-                }
-            });
             let live = &self.v_halfedge;
             r.vh.drain_ascending(v0, |v, old| {
                 let v = Vid::new(v);
@@ -459,12 +457,30 @@ impl Mesh {
             step.holes = holes as i64 - r.holes0 as i64;
             step.side = side.len() as u32;
         }
-        if !step.is_empty() {
+        // The half-edge records: straight from the saved pages into the
+        // undo log when nothing else reads them (no tracking) and the step
+        // is kept anyway; otherwise into `step.he` first.
+        let direct = {
+            let r = self.r();
+            !r.tracking && r.keeps_steps() && r.he.saved_slots() > 0 && !step.is_empty()
+        };
+        if !direct {
+            let r = self.rec.as_deref_mut().expect("no recorder");
+            step.he.reserve(r.he.saved_slots());
+            let live = &self.he;
+            r.he.drain_ascending(r.start[1] * 2, |h, old| {
+                let h = Hid::new(h);
+                if let Some(mask) = changed_fields(live[h], old) {
+                    step.he.push((h, mask, old));
+                }
+            });
+        }
+        if !step.is_empty() || direct {
             if self.r().tracking {
                 self.track_forward(&step, &side);
             }
             if self.r().keeps_steps() {
-                self.push_forward(&mut step, side);
+                self.push_forward(&mut step, side, direct);
             }
         }
         // Give the event lists back (their capacity) and open the next step.
@@ -503,13 +519,16 @@ impl Mesh {
             self.track_forward(&step, &side);
         }
         if self.r().keeps_steps() {
-            self.push_forward(&mut step, side);
+            self.push_forward(&mut step, side, false);
         }
     }
 
     /// A forward step onto the undo log: the redo branch goes, the step
     /// joins the open group's unit or starts one.
-    fn push_forward(&mut self, step: &mut Step, side: Vec<Side>) {
+    ///
+    /// `direct`: the half-edge records are still in the page log and go
+    /// straight from it into the undo log.
+    fn push_forward(&mut self, step: &mut Step, side: Vec<Side>, direct: bool) {
         if !self.r().redo.is_empty() {
             self.drop_redo();
         }
@@ -525,7 +544,26 @@ impl Mesh {
         if r.group_depth > 0 {
             r.group_started = true;
         }
-        codec::encode(step, &mut r.undo.bytes);
+        if direct {
+            let e0 = r.start[1] * 2;
+            let pages = &mut r.he;
+            let live = &self.he;
+            let max = pages.saved_slots();
+            codec::encode_with(
+                step,
+                &mut r.undo.bytes,
+                Some((max, &mut |body: &mut Vec<u8>, w: &mut codec::HeWriter| {
+                    pages.drain_ascending(e0, |h, old| {
+                        let h = Hid::new(h);
+                        if let Some(mask) = changed_fields(live[h], old) {
+                            w.push(body, h, mask, old);
+                        }
+                    });
+                })),
+            );
+        } else {
+            codec::encode(step, &mut r.undo.bytes);
+        }
         for s in side {
             r.undo.push_side(s);
         }
@@ -1000,7 +1038,7 @@ impl Mesh {
                 side: 1,
                 ..Step::default()
             };
-            self.push_forward(&mut step, vec![Side::Whole(prior)]);
+            self.push_forward(&mut step, vec![Side::Whole(prior)], false);
         }
         self.open_step();
     }
