@@ -521,6 +521,13 @@ impl Slots {
         }
     }
 
+    /// Take every slot from `start` on off the free list (an undo holds
+    /// the slots its step created, vacant, for a redo). O(free list).
+    #[inline]
+    pub(crate) fn hold_from(&mut self, start: u32) {
+        self.free.retain(|&i| i < start);
+    }
+
     /// Put a vacant slot that [`unbirth`](Slots::unbirth) held for a redo
     /// back on the free list (the redo was dropped).
     pub(crate) fn release(&mut self, i: u32) {

@@ -774,3 +774,73 @@ fn an_algorithm_run_is_one_named_unit() {
     assert!(q.undo());
     assert_eq!(canon(&q), before);
 }
+
+/// Slots born and removed inside one open step (and reused there) record
+/// no events: undo, redo, a rollback and a later edit must still restore
+/// the exact links and keys, and keep every key of theirs stale.
+#[test]
+fn slots_born_and_removed_in_one_step_undo_and_redo_exactly() {
+    let mut m = shapes::icosahedron();
+    m.enable_history(HistoryLimits::default());
+    m.track_changes(true);
+    let before = canon(&m);
+    let faces: Vec<FaceKey> = m.faces().take(6).collect();
+    let mut gone = Vec::new();
+    let mut kept = Vec::new();
+    m.begin_step("Churn");
+    for (i, &f) in faces.iter().enumerate() {
+        let c = m.poke_face(f).unwrap();
+        if i % 3 != 2 {
+            // Collapse the centre back: its vertex, three edges and two
+            // faces were born in this step and die in it; the next poke
+            // reuses their slots.
+            let h = m.vertex(c).unwrap().halfedge().key();
+            m.collapse_edge(h).unwrap();
+            gone.push(c);
+        } else {
+            kept.push(c);
+        }
+    }
+    m.end_step();
+    let after = canon(&m);
+    let changes = m.take_changes();
+    assert_eq!(changes.vertices.created, kept);
+    assert_eq!(m.vertex_count(), 12 + kept.len());
+    for round in 0..2 {
+        assert!(m.undo(), "round {round}");
+        assert_eq!(canon(&m), before);
+        assert!(gone.iter().chain(&kept).all(|&v| m.vertex(v).is_err()));
+        let undone = m.take_changes();
+        assert_eq!(undone.vertices.removed, kept);
+        assert!(undone.vertices.created.is_empty());
+        assert!(m.redo(), "round {round}");
+        assert_eq!(canon(&m), after);
+        assert!(kept.iter().all(|&v| m.vertex(v).is_ok()));
+        assert!(gone.iter().all(|&v| m.vertex(v).is_err()));
+        assert_eq!(m.take_changes().vertices.created, kept);
+    }
+    // A rolled-back transaction of the same kind changes nothing.
+    let r: Result<(), meshloom::Error> = m.transaction(|m| {
+        let f = m.faces().next().unwrap();
+        let c = m.poke_face(f)?;
+        let h = m.vertex(c)?.halfedge().key();
+        m.collapse_edge(h)?;
+        m.poke_face(f)?;
+        Err(meshloom::Error::Cancelled { algorithm: "test" })
+    });
+    assert!(r.is_err());
+    assert_eq!(canon(&m), after);
+    // Undo, then a new edit: the held slots go back to the free list, and
+    // no key handed out before comes back.
+    assert!(m.undo());
+    let mut fresh = Vec::new();
+    m.begin_step("Again");
+    for f in m.faces().take(4).collect::<Vec<_>>() {
+        fresh.push(m.poke_face(f).unwrap());
+    }
+    m.end_step();
+    assert!(fresh.iter().all(|v| !gone.contains(v) && !kept.contains(v)));
+    m.validate().unwrap();
+    assert!(m.undo());
+    assert_eq!(canon(&m), before);
+}

@@ -11,7 +11,7 @@
 //! | half-edges | some changed | count; per record, ascending: `(slot − previous) << 3 \| mask`, then each changed field (origin, next, face) as the zigzagged difference from the same field of the previous record |
 //! | vertex links | some changed | count; per vertex: slot delta, zigzagged difference from the previous half-edge |
 //! | face links | some changed | count; per face: slot delta, `zigzag(half-edge − previous) << 1 \| hole` |
-//! | slots | births, deaths or reuses | a mask of arenas with births and with deaths/reuses; per arena with births `count, start`; per arena with others `count`, then per event `zigzag(slot − previous) << 1 \| kind` and, for a death, the generation the element had |
+//! | slots | births, deaths or reuses | a mask of arenas with births, with deaths/reuses and with new slots vacant at the seal; per arena with births `count, start`, and where some are vacant the number of runs and every run length but the last (alternating live, vacant, ...); per arena with events `count`, then per event `zigzag(slot − previous) << 1 \| kind` and, for a death, the generation the element had (events only for slots older than the step) |
 //! | holes | the count changed | zigzagged difference (after − before) |
 //! | states | an arena's fast-path state changed | 5 bits per arena: changed, before, after |
 //! | side | column records, column structure or a whole mesh | how many side records (kept beside the bytes) belong to the step |
@@ -61,7 +61,13 @@ pub(crate) struct Step {
     pub(crate) fl: Vec<(Fid, FaceLink)>,
     /// Per arena (vertex, edge, face): new slots at the end, `(start, count)`.
     pub(crate) births: [(u32, u32); 3],
-    /// Per arena: deaths and reuses in order.
+    /// Per arena: which of the new slots were live when the step was
+    /// sealed, as run lengths over `births` alternating live, vacant,
+    /// live, ... (the first run may be empty). Empty: all live. A new slot
+    /// that died (or died and was reused) in the step has no event: this
+    /// and the slot's generation say all that undo and redo need.
+    pub(crate) born_live: [Vec<u32>; 3],
+    /// Per arena: deaths and reuses of slots older than the step, in order.
     pub(crate) events: [Vec<SlotEvent>; 3],
     /// Hole count after minus before.
     pub(crate) holes: i64,
@@ -79,6 +85,9 @@ impl Step {
         self.vh.clear();
         self.fl.clear();
         self.births = [(0, 0); 3];
+        for r in &mut self.born_live {
+            r.clear();
+        }
         for e in &mut self.events {
             e.clear();
         }
@@ -152,12 +161,33 @@ fn bits_state(b: u64) -> State {
 /// length needs another number of bytes than guessed does it move (no
 /// scratch copy of the body, and for a large step usually no move).
 pub(crate) fn encode(step: &Step, out: &mut Vec<u8>) {
+    encode_with(step, out, None);
+}
+
+/// Half-edge records written straight into a body, for the caller to
+/// produce in the middle of [`encode_with`]: at most `.0` records, by
+/// `.1`, each through [`HeWriter::push`].
+pub(crate) type DirectHe<'a> = (usize, &'a mut dyn FnMut(&mut Vec<u8>, &mut HeWriter));
+
+/// [`encode`], with the half-edge records (if `direct`) written by the
+/// caller into the log itself instead of coming from `step.he` (which is
+/// then empty): a large step's records never sit in a vector of their
+/// own. The record count goes before them as a varint padded to the width
+/// of the bound (the decoder reads it as any varint).
+pub(crate) fn encode_with(step: &Step, out: &mut Vec<u8>, direct: Option<DirectHe<'_>>) {
+    let extra = direct.as_ref().map_or(0, |d| d.0);
     let frame = out.len();
-    let hint = size_hint(step);
+    let hint = size_hint(step) + extra * 5;
     let guess = varint_len(hint as u64);
-    out.reserve(guess + hint + 5);
+    // Room for the largest body this step can take, at once: a large step
+    // then never regrows (copies and re-faults) the log by doubling. Slack
+    // a large step leaves is given back below (the log's capacity is what
+    // the history's memory counts).
+    let bound = max_size(step) + extra * 24 + 10;
+    let grew = out.capacity() - out.len() < bound;
+    out.reserve(bound);
     out.resize(frame + guess, 0);
-    encode_body(step, out);
+    encode_body(step, out, direct);
     let len = out.len() - frame - guess;
     let k = varint_len(len as u64);
     if k != guess {
@@ -174,6 +204,17 @@ pub(crate) fn encode(step: &Step, out: &mut Vec<u8>) {
     let mark = out.len();
     put(out, len as u64);
     out[mark..].reverse();
+    if grew && bound > 1 << 16 {
+        out.shrink_to(out.len() + out.len() / 8);
+    }
+}
+
+/// The most bytes `step`'s body can take (every varint at its longest).
+fn max_size(step: &Step) -> usize {
+    64 + step.he.len() * 24
+        + (step.vh.len() + step.fl.len()) * 16
+        + step.events.iter().map(|e| e.len() * 16).sum::<usize>()
+        + step.born_live.iter().map(|r| r.len() * 5).sum::<usize>()
 }
 
 /// About how many bytes `step`'s body takes (to reserve once).
@@ -183,13 +224,48 @@ fn size_hint(step: &Step) -> usize {
         + step.events.iter().map(|e| e.len() * 3).sum::<usize>()
 }
 
-/// `step`'s body, appended to `body`.
-fn encode_body(step: &Step, body: &mut Vec<u8>) {
+/// Writes half-edge records in the body's form (slot and field deltas
+/// from the previous record), one at a time, ascending by slot.
+#[derive(Default)]
+pub(crate) struct HeWriter {
+    slot: u32,
+    origin: u32,
+    next: u32,
+    face: u32,
+    count: usize,
+}
+
+impl HeWriter {
+    /// Append the record of half-edge `h`: the fields in `mask`, with the
+    /// values `r` holds for them.
+    #[inline]
+    pub(crate) fn push(&mut self, body: &mut Vec<u8>, h: Hid, mask: u8, r: HalfedgeRecord) {
+        put(body, u64::from(h.raw() - self.slot) << 3 | u64::from(mask));
+        self.slot = h.raw();
+        if mask & ORIGIN != 0 {
+            put(body, diff(r.origin.raw(), self.origin));
+            self.origin = r.origin.raw();
+        }
+        if mask & NEXT != 0 {
+            put(body, diff(r.next.raw(), self.next));
+            self.next = r.next.raw();
+        }
+        if mask & FACE != 0 {
+            put(body, diff(r.face.raw(), self.face));
+            self.face = r.face.raw();
+        }
+        self.count += 1;
+    }
+}
+
+/// `step`'s body, appended to `body` (half-edge records by `direct`, if
+/// given: see [`encode_with`]).
+fn encode_body(step: &Step, body: &mut Vec<u8>, direct: Option<DirectHe<'_>>) {
     let mut flags = u64::from(step.more);
     let has_slots =
         step.births.iter().any(|b| b.1 > 0) || step.events.iter().any(|e| !e.is_empty());
     for (on, bit) in [
-        (!step.he.is_empty(), HE),
+        (!step.he.is_empty() || direct.is_some(), HE),
         (!step.vh.is_empty(), VH),
         (!step.fl.is_empty(), FL),
         (has_slots, SLOTS),
@@ -202,24 +278,25 @@ fn encode_body(step: &Step, body: &mut Vec<u8>) {
         }
     }
     put(body, flags);
-    if !step.he.is_empty() {
+    if let Some((max, write)) = direct {
+        // The count, padded to the bound's width, goes before the records.
+        let width = varint_len(max as u64);
+        let at = body.len();
+        body.resize(at + width, 0);
+        let mut w = HeWriter::default();
+        write(body, &mut w);
+        debug_assert!(w.count <= max, "more half-edge records than the bound");
+        let mut c = w.count as u64;
+        for b in &mut body[at..at + width - 1] {
+            *b = (c & 0x7f) as u8 | 0x80;
+            c >>= 7;
+        }
+        body[at + width - 1] = c as u8;
+    } else if !step.he.is_empty() {
         put(body, step.he.len() as u64);
-        let (mut slot, mut o, mut n, mut f) = (0u32, 0u32, 0u32, 0u32);
+        let mut w = HeWriter::default();
         for &(h, mask, r) in &step.he {
-            put(body, u64::from(h.raw() - slot) << 3 | u64::from(mask));
-            slot = h.raw();
-            if mask & ORIGIN != 0 {
-                put(body, diff(r.origin.raw(), o));
-                o = r.origin.raw();
-            }
-            if mask & NEXT != 0 {
-                put(body, diff(r.next.raw(), n));
-                n = r.next.raw();
-            }
-            if mask & FACE != 0 {
-                put(body, diff(r.face.raw(), f));
-                f = r.face.raw();
-            }
+            w.push(body, h, mask, r);
         }
     }
     if !step.vh.is_empty() {
@@ -252,12 +329,22 @@ fn encode_body(step: &Step, body: &mut Vec<u8>) {
             if !step.events[a].is_empty() {
                 mask |= 8 << a;
             }
+            if step.births[a].1 > 0 && !step.born_live[a].is_empty() {
+                mask |= 64 << a;
+            }
         }
         put(body, mask);
-        for &(start, count) in &step.births {
+        for (&(start, count), runs) in step.births.iter().zip(&step.born_live) {
             if count > 0 {
                 put(body, u64::from(count));
                 put(body, u64::from(start));
+                if !runs.is_empty() {
+                    // The last run is what the others leave of `count`.
+                    put(body, runs.len() as u64);
+                    for &r in &runs[..runs.len() - 1] {
+                        put(body, u64::from(r));
+                    }
+                }
             }
         }
         for events in &step.events {
@@ -267,18 +354,13 @@ fn encode_body(step: &Step, body: &mut Vec<u8>) {
             put(body, events.len() as u64);
             let mut prev = 0u32;
             for e in events {
-                match *e {
-                    SlotEvent::Death { slot, generation } => {
-                        put(body, diff(slot, prev) << 1);
-                        put(body, u64::from(generation));
-                        prev = slot;
-                    }
-                    SlotEvent::Reuse { slot, generation } => {
-                        put(body, diff(slot, prev) << 1 | 1);
-                        put(body, u64::from(generation));
-                        prev = slot;
-                    }
-                }
+                let (slot, generation, kind) = match *e {
+                    SlotEvent::Death { slot, generation } => (slot, generation, 0),
+                    SlotEvent::Reuse { slot, generation } => (slot, generation, 1),
+                };
+                put(body, diff(slot, prev) << 1 | kind);
+                put(body, u64::from(generation));
+                prev = slot;
             }
         }
     }
@@ -427,6 +509,17 @@ pub(crate) fn decode(body: &[u8], step: &mut Step) {
                 let count = r.get32();
                 let start = r.get32();
                 step.births[a] = (start, count);
+                if mask & (64 << a) != 0 {
+                    let n = r.get() as usize;
+                    let runs = &mut step.born_live[a];
+                    let mut left = count;
+                    for _ in 1..n {
+                        let k = r.get32();
+                        runs.push(k);
+                        left -= k;
+                    }
+                    runs.push(left);
+                }
             }
         }
         for a in 0..3 {
@@ -501,7 +594,8 @@ mod tests {
         s.vh.push((Vid::new(7), Hid::NONE));
         s.vh.push((Vid::new(8), Hid::new(0)));
         s.fl.push((Fid::new(2), FaceLink::new(Hid::new(5), true)));
-        s.births = [(10, 2), (0, 0), (100_000, 1)];
+        s.births = [(10, 2), (0, 0), (100_000, 7)];
+        s.born_live[2] = vec![0, 3, 2, 2];
         s.events[1].push(SlotEvent::Death {
             slot: 5,
             generation: 3,
@@ -552,6 +646,7 @@ mod tests {
         assert_eq!(masked(&d), masked(&s));
         assert_eq!((d.vh.clone(), d.fl.clone()), (s.vh.clone(), s.fl.clone()));
         assert_eq!((d.births, d.events.clone()), (s.births, s.events.clone()));
+        assert_eq!(d.born_live, s.born_live);
         assert_eq!((d.more, d.holes, d.states, d.side), (true, -2, s.states, 3));
         // From the start.
         let (end, r0) = first_step(&log, 0);
@@ -604,6 +699,38 @@ mod tests {
         assert_eq!(d.vh, short.vh);
         let (end, _) = first_step(&log, 1);
         assert_eq!(end, mid);
+    }
+
+    /// Records written straight into the log (padded count) decode as the
+    /// same step as records from `step.he`, for bounds of any width.
+    #[test]
+    fn direct_half_edge_records_decode_as_the_same_step() {
+        for max in [2usize, 200, 100_000] {
+            let s = sample();
+            let mut log = vec![0x11];
+            let mut bare = sample();
+            let records = std::mem::take(&mut bare.he);
+            encode_with(
+                &bare,
+                &mut log,
+                Some((max, &mut |body: &mut Vec<u8>, w: &mut HeWriter| {
+                    for &(h, mask, r) in &records {
+                        w.push(body, h, mask, r);
+                    }
+                })),
+            );
+            let (start, range) = last_step(&log, log.len());
+            assert_eq!(start, 1);
+            let mut d = Step::default();
+            decode(&log[range], &mut d);
+            assert_eq!(masked(&d), masked(&s));
+            assert_eq!(
+                (d.vh.clone(), d.births, d.side),
+                (s.vh.clone(), s.births, 3)
+            );
+            let (end, _) = first_step(&log, 1);
+            assert_eq!(end, log.len());
+        }
     }
 
     #[test]

@@ -59,15 +59,16 @@
 //! Measured with `examples/ml_bench.rs` on the 250 000-vertex grid (the
 //! `journal` row: every face poked 1-to-3, then every new vertex collapsed
 //! back, 996 004 operators, as one [`Mesh::step`]; 2026-11-25, medians of 5
-//! rounds that alternate off and on in one process): with history on, the
-//! run takes 2.0 times as long as with the journal off (off 0.119 s, on
-//! 0.238 s), sealing included; the undo log holds 33.3 bytes per operator;
-//! undoing the whole run takes 0.34 of the time the run took. In
-//! instructions (callgrind, the same row on the 40 000-vertex grid) the
-//! recording adds 25 % to the operators' own count and the seal 21 % (4.5 %
-//! of it walking the copied link pages, most of the rest encoding); the
-//! rest of the gap is memory the step fills for the first time (page
-//! copies, slot events, the log's bytes: page faults). With the journal
+//! rounds that alternate off and on in one process, on a loaded 2-core
+//! machine): with history on, the run takes 1.49 times as long as with the
+//! journal off (off 0.106 s, on 0.158 s), sealing included; the undo log
+//! holds 23.0 bytes per operator (its capacity); undoing the whole run
+//! takes 0.28 of the time the run took. In instructions (callgrind, the
+//! same row on the 40 000-vertex grid, per round) the recording adds 20 %
+//! to the operators' own count (233.6 M off, 281.2 M on) and the seal 15 %
+//! (36.1 M: walking the copied pages, encoding, and 8 M reading which new
+//! slots died); the rest of the gap is memory the step fills for the first
+//! time (page copies, the log's bytes: page faults). With the journal
 //! off, `flip_back` and `split_collapse_checked` execute as many
 //! instructions as before the journal existed (callgrind, within 2 %).
 //!
@@ -76,7 +77,19 @@
 //! page cost one table lookup. The seal walks the copied pages in slot
 //! order and keeps the fields that differ from the live arrays, so a dense
 //! edit costs about a copy of the pages it touched, and a sparse one at
-//! most a page per slot written.
+//! most a page per slot written. While the step is kept and no change
+//! tracking reads the records, the half-edge records go straight from the
+//! copied pages into the undo log, with no vector of their own; the page
+//! copies and the log reserve a step's room at once (no regrowth by
+//! doubling, which would copy and fault a large buffer again).
+//!
+//! Slots created in the open step are never saved, and their removals and
+//! reuses in that step record nothing: a poke collapsed back in the same
+//! step leaves no trace but a run-length map, made at the seal from the
+//! arena, of which new slots are still live. Undo makes every new slot
+//! vacant (a dead one keeps its generation, already above every key it
+//! had) and holds them off the free list; redo revives the live ones at
+//! their generations and puts the others back on the free list.
 //!
 //! # Bulk writes (the rule for algorithm writers)
 //!

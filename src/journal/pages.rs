@@ -61,6 +61,13 @@ impl<T: Copy> PageLog<T> {
         if p >= self.map.len() {
             self.map.resize((p + 1).next_power_of_two(), 0);
         }
+        if self.order.is_empty() {
+            // Room for every page below `limit` at once: a dense step then
+            // never regrows (and re-faults) a large buffer by doubling;
+            // pages never written are never touched (capacity stays for
+            // the next step).
+            self.copies.reserve((limit as usize).div_ceil(PAGE) * PAGE);
+        }
         self.order.push(p as u32);
         self.map[p] = self.order.len() as u32;
         let start = p << PAGE_SHIFT;

@@ -139,6 +139,9 @@ pub(crate) struct Recorder {
     pub(crate) vh: PageLog<Hid>,
     pub(crate) fl: PageLog<FaceLink>,
     pub(crate) events: [Vec<SlotEvent>; 3],
+    /// Per arena: deaths of slots born in the open step (0: all of them
+    /// are live, the seal need not look).
+    pub(crate) born_deaths: [u32; 3],
     pub(crate) holes0: usize,
     pub(crate) states0: [State; 3],
     pub(crate) side: Vec<Side>,
@@ -194,16 +197,26 @@ impl Recorder {
         self.fl.save(f.raw(), self.start[2], live);
     }
 
-    /// A vacant slot of arena `a` was taken from the free list.
+    /// A vacant slot of arena `a` was taken from the free list. A slot
+    /// born in the open step records nothing: the seal reads whether it is
+    /// live from the arena (see [`Step::born_live`]).
     #[inline]
     pub(crate) fn reused(&mut self, a: usize, slot: u32, generation: u32) {
-        self.events[a].push(SlotEvent::Reuse { slot, generation });
+        if slot < self.start[a] {
+            self.events[a].push(SlotEvent::Reuse { slot, generation });
+        }
     }
 
     /// The element at `generation` in slot `slot` of arena `a` was removed.
+    /// For a slot born in the open step only a count goes up (the seal
+    /// then looks at which new slots are vacant).
     #[inline]
     pub(crate) fn died(&mut self, a: usize, slot: u32, generation: u32) {
-        self.events[a].push(SlotEvent::Death { slot, generation });
+        if slot < self.start[a] {
+            self.events[a].push(SlotEvent::Death { slot, generation });
+        } else {
+            self.born_deaths[a] += 1;
+        }
     }
 
     /// Whether steps are kept (history or an open transaction).
@@ -242,9 +255,59 @@ fn slots_of_mut(m: &mut Mesh, a: usize) -> &mut Slots {
     }
 }
 
+/// The fields of a half-edge record that differ between `cur` and `old`
+/// (a mask of `ORIGIN`, `NEXT`, `FACE`), if any.
+#[inline]
+fn changed_fields(cur: HalfedgeRecord, old: HalfedgeRecord) -> Option<u8> {
+    let mask = (u8::from(cur.origin != old.origin) * ORIGIN)
+        | (u8::from(cur.next != old.next) * NEXT)
+        | (u8::from(cur.face != old.face) * FACE);
+    (mask != 0).then_some(mask)
+}
+
+fn slots_of_arena<'a>(v: &'a Slots, e: &'a Slots, f: &'a Slots, a: usize) -> &'a Slots {
+    match a {
+        0 => v,
+        1 => e,
+        _ => f,
+    }
+}
+
+/// Which slots of `range` are live, as run lengths alternating live,
+/// vacant, live, ... (the first run may be empty), appended to `runs`.
+fn born_runs(slots: &Slots, range: std::ops::Range<u32>, runs: &mut Vec<u32>) {
+    let mut live = true;
+    let mut run = 0u32;
+    for i in range {
+        if slots.is_live(i as usize) != live {
+            runs.push(run);
+            run = 0;
+            live = !live;
+        }
+        run += 1;
+    }
+    runs.push(run);
+}
+
 /// The generation of slot `i` (0: never allocated).
 fn gen(m: &Mesh, a: usize, i: u32) -> u32 {
     slots_of(m, a).generation(i as usize).unwrap_or(0)
+}
+
+/// Call `f(slot, live at the seal)` for every new slot of a step, in
+/// slot order (`runs`: [`Step::born_live`]).
+#[inline]
+fn for_born(start: u32, count: u32, runs: &[u32], mut f: impl FnMut(u32, bool)) {
+    if runs.is_empty() {
+        (start..start + count).for_each(|i| f(i, true));
+        return;
+    }
+    let mut i = start;
+    for (k, &len) in runs.iter().enumerate() {
+        let live = k % 2 == 0;
+        (i..i + len).for_each(|j| f(j, live));
+        i += len;
+    }
 }
 
 /// Direction of an application.
@@ -342,22 +405,10 @@ impl Mesh {
         // fields that changed.
         {
             let r = self.rec.as_deref_mut().expect("no recorder");
-            let [v0, e0, f0] = r.start;
+            let [v0, _, f0] = r.start;
             // Room for every saved slot at once (no regrowth of a large step).
-            step.he.reserve(r.he.saved_slots());
             step.vh.reserve(r.vh.saved_slots());
             step.fl.reserve(r.fl.saved_slots());
-            let live = &self.he;
-            r.he.drain_ascending(e0 * 2, |h, old| {
-                let h = Hid::new(h);
-                let cur = live[h];
-                let mask = (u8::from(cur.origin != old.origin) * ORIGIN)
-                    | (u8::from(cur.next != old.next) * NEXT)
-                    | (u8::from(cur.face != old.face) * FACE);
-                if mask != 0 {
-                    step.he.push((h, mask, old));
-                }
-            });
             let live = &self.v_halfedge;
             r.vh.drain_ascending(v0, |v, old| {
                 let v = Vid::new(v);
@@ -389,7 +440,15 @@ impl Mesh {
             for a in 0..3 {
                 if counts[a] > r.start[a] {
                     step.births[a] = (r.start[a], counts[a] - r.start[a]);
+                    if r.born_deaths[a] > 0 {
+                        born_runs(
+                            slots_of_arena(&self.v_slots, &self.e_slots, &self.f_slots, a),
+                            r.start[a]..counts[a],
+                            &mut step.born_live[a],
+                        );
+                    }
                 }
+                r.born_deaths[a] = 0;
                 std::mem::swap(&mut step.events[a], &mut r.events[a]);
                 if states[a] != r.states0[a] {
                     step.states[a] = Some((r.states0[a], states[a]));
@@ -398,12 +457,30 @@ impl Mesh {
             step.holes = holes as i64 - r.holes0 as i64;
             step.side = side.len() as u32;
         }
-        if !step.is_empty() {
+        // The half-edge records: straight from the saved pages into the
+        // undo log when nothing else reads them (no tracking) and the step
+        // is kept anyway; otherwise into `step.he` first.
+        let direct = {
+            let r = self.r();
+            !r.tracking && r.keeps_steps() && r.he.saved_slots() > 0 && !step.is_empty()
+        };
+        if !direct {
+            let r = self.rec.as_deref_mut().expect("no recorder");
+            step.he.reserve(r.he.saved_slots());
+            let live = &self.he;
+            r.he.drain_ascending(r.start[1] * 2, |h, old| {
+                let h = Hid::new(h);
+                if let Some(mask) = changed_fields(live[h], old) {
+                    step.he.push((h, mask, old));
+                }
+            });
+        }
+        if !step.is_empty() || direct {
             if self.r().tracking {
                 self.track_forward(&step, &side);
             }
             if self.r().keeps_steps() {
-                self.push_forward(&mut step, side);
+                self.push_forward(&mut step, side, direct);
             }
         }
         // Give the event lists back (their capacity) and open the next step.
@@ -442,13 +519,16 @@ impl Mesh {
             self.track_forward(&step, &side);
         }
         if self.r().keeps_steps() {
-            self.push_forward(&mut step, side);
+            self.push_forward(&mut step, side, false);
         }
     }
 
     /// A forward step onto the undo log: the redo branch goes, the step
     /// joins the open group's unit or starts one.
-    fn push_forward(&mut self, step: &mut Step, side: Vec<Side>) {
+    ///
+    /// `direct`: the half-edge records are still in the page log and go
+    /// straight from it into the undo log.
+    fn push_forward(&mut self, step: &mut Step, side: Vec<Side>, direct: bool) {
         if !self.r().redo.is_empty() {
             self.drop_redo();
         }
@@ -464,7 +544,26 @@ impl Mesh {
         if r.group_depth > 0 {
             r.group_started = true;
         }
-        codec::encode(step, &mut r.undo.bytes);
+        if direct {
+            let e0 = r.start[1] * 2;
+            let pages = &mut r.he;
+            let live = &self.he;
+            let max = pages.saved_slots();
+            codec::encode_with(
+                step,
+                &mut r.undo.bytes,
+                Some((max, &mut |body: &mut Vec<u8>, w: &mut codec::HeWriter| {
+                    pages.drain_ascending(e0, |h, old| {
+                        let h = Hid::new(h);
+                        if let Some(mask) = changed_fields(live[h], old) {
+                            w.push(body, h, mask, old);
+                        }
+                    });
+                })),
+            );
+        } else {
+            codec::encode(step, &mut r.undo.bytes);
+        }
         for s in side {
             r.undo.push_side(s);
         }
@@ -733,9 +832,16 @@ impl Mesh {
         }
         for a in 0..3 {
             let (start, count) = step.births[a];
+            let runs = &step.born_live[a];
             let slots = slots_of_mut(self, a);
             match dir {
                 Dir::Undo => {
+                    if !runs.is_empty() {
+                        // New slots that died in the step are vacant at a
+                        // generation above every key they had: they only
+                        // leave the free list (held for a redo).
+                        slots.hold_from(start);
+                    }
                     for e in step.events[a].iter().rev() {
                         match *e {
                             SlotEvent::Reuse { slot, .. } => slots.unbirth(slot, true),
@@ -744,9 +850,11 @@ impl Mesh {
                             }
                         }
                     }
-                    for i in (start..start + count).rev() {
-                        slots.unbirth(i, false);
-                    }
+                    for_born(start, count, runs, |i, live| {
+                        if live {
+                            slots.unbirth(i, false);
+                        }
+                    });
                     if let Some((before, _)) = step.states[a] {
                         slots.restore_state(before);
                     } else {
@@ -755,9 +863,11 @@ impl Mesh {
                     }
                 }
                 Dir::Redo => {
-                    for i in start..start + count {
-                        slots.rebirth(i, false);
-                    }
+                    for_born(start, count, runs, |i, live| {
+                        if live {
+                            slots.rebirth(i, false);
+                        }
+                    });
                     for e in &step.events[a] {
                         match *e {
                             SlotEvent::Reuse { slot, generation } => {
@@ -766,6 +876,14 @@ impl Mesh {
                             SlotEvent::Death { slot, .. } => slots.free(slot),
                         }
                     }
+                    // New slots vacant at the seal go back on the free
+                    // list, at the generation the step left them (undo
+                    // did not move it).
+                    for_born(start, count, runs, |i, live| {
+                        if !live {
+                            slots.release(i);
+                        }
+                    });
                     if let Some((_, after)) = step.states[a] {
                         slots.restore_state(after);
                     } else {
@@ -920,7 +1038,7 @@ impl Mesh {
                 side: 1,
                 ..Step::default()
             };
-            self.push_forward(&mut step, vec![Side::Whole(prior)]);
+            self.push_forward(&mut step, vec![Side::Whole(prior)], false);
         }
         self.open_step();
     }
