@@ -256,9 +256,9 @@ const WORKLOADS: &[(&str, Workload)] = &[
 /// Remove the faces of the kit's 8 holes (untimed), then fill them with
 /// `algo::fill_hole::fill_holes_at` (one call, one undo step, each hole from
 /// its border half-edge: optimal triangulation, refinement to the rim's
-/// edge length where an edge is longer than 1.5 times it, bi-Laplacian
+/// edge length when a triangle fails Liepa's density test, bi-Laplacian
 /// fairing of the new vertices), as CGAL's `triangulate_refine_and_fair_hole`
-/// per hole (Liepa: triangulate, refine by its density test, fair) and
+/// per hole (Liepa: triangulate, refine by the same density test, fair) and
 /// pmp's `fill_hole`. Neither peer has undo; CGAL's refinement adds no
 /// vertex on the grid's strips (their triangles fit), and neither does ours.
 fn fill_holes(input: &Input) -> (Elapsed, String) {

@@ -546,3 +546,40 @@ fn fill_holes_at_fills_in_one_undo_step_or_changes_nothing() {
     assert_eq!(fingerprint(&mesh), before);
     mesh.validate().unwrap();
 }
+
+/// Liepa's density test (CGAL's) decides whether a patch is refined: a
+/// thin slot (2 × 0.2) in a coarse frame is cut by one diagonal 2.0 long,
+/// longer than 1.5 times the rim's mean edge (1.1), but each triangle's
+/// centroid is within the local edge length of a corner (×√2), so no
+/// vertex is added; a wide hole in a fine mesh (a sphere's cap, above)
+/// is refined.
+#[test]
+fn a_thin_slot_whose_triangles_fit_the_density_is_not_refined() {
+    let p = [
+        [0.0, 0.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [2.0, 0.2, 0.0],
+        [0.0, 0.2, 0.0],
+        [-1.0, -1.0, 0.0],
+        [3.0, -1.0, 0.0],
+        [3.0, 1.2, 0.0],
+        [-1.0, 1.2, 0.0],
+    ];
+    let quads: [[u32; 4]; 4] = [[4, 5, 1, 0], [5, 6, 2, 1], [6, 7, 3, 2], [7, 4, 0, 3]];
+    let mut mesh = Mesh::from_polygons(&p, &quads).unwrap();
+    mesh.triangulate_all();
+    let slot = mesh
+        .holes()
+        .find(|&h| {
+            mesh.face(h)
+                .unwrap()
+                .vertices()
+                .all(|v| mesh.position(v).unwrap()[0] >= 0.0)
+        })
+        .unwrap();
+    let report = fill_hole(&mut mesh, slot, &FillHoleOptions::default()).unwrap();
+    assert_eq!(report.holes_filled, 1);
+    assert_eq!(report.faces_added, 2);
+    assert_eq!(report.vertices_added, 0);
+    mesh.validate().unwrap();
+}

@@ -10,6 +10,16 @@ use meshloom::algo::{Flow, Progress};
 use meshloom::shapes::{self, GridFaces};
 use meshloom::{Error, Mesh};
 
+mod common;
+use common::hausdorff::{diagonal, relative_hausdorff, triangles, Sampling};
+
+/// Hausdorff distance between the remeshed `mesh` and its `input`
+/// (sampled both ways, at most 600 points a side) over the input's
+/// bounding-box diagonal.
+fn hausdorff(mesh: &Mesh, input: &Mesh) -> f64 {
+    relative_hausdorff(input, mesh, Sampling::Capped(600))
+}
+
 const MESHES: &str = "../shared/data/meshes";
 
 type V3 = [f64; 3];
@@ -51,20 +61,6 @@ fn uniform(l: f64) -> RemeshOptions {
     }
 }
 
-fn triangles(mesh: &Mesh) -> Vec<[V3; 3]> {
-    mesh.faces()
-        .map(|f| {
-            let vs: Vec<V3> = mesh
-                .face(f)
-                .unwrap()
-                .vertices()
-                .map(|v| mesh.position(v).unwrap())
-                .collect();
-            [vs[0], vs[1], vs[2]]
-        })
-        .collect()
-}
-
 /// Distance from `p` to segment `ab`.
 fn point_segment(p: V3, a: V3, b: V3) -> f64 {
     let ab = sub(b, a);
@@ -78,68 +74,6 @@ fn point_segment(p: V3, a: V3, b: V3) -> f64 {
         p,
         [a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]],
     ))
-}
-
-/// Distance from `p` to triangle `t` (inside: to its plane; else to its
-/// nearest side).
-fn point_triangle(p: V3, t: &[V3; 3]) -> f64 {
-    let [a, b, c] = *t;
-    let n = cross(sub(b, a), sub(c, a));
-    let nn = dot(n, n);
-    if nn > 0.0 {
-        let inside = [(a, b), (b, c), (c, a)]
-            .iter()
-            .all(|&(x, y)| dot(cross(sub(y, x), sub(p, x)), n) >= 0.0);
-        if inside {
-            return dot(sub(p, a), n).abs() / nn.sqrt();
-        }
-    }
-    point_segment(p, a, b)
-        .min(point_segment(p, b, c))
-        .min(point_segment(p, c, a))
-}
-
-/// Sample points of a mesh: its vertices and its face centroids.
-fn samples(mesh: &Mesh, max: usize) -> Vec<V3> {
-    let tris = triangles(mesh);
-    let mut out: Vec<V3> = mesh.vertices().map(|v| mesh.position(v).unwrap()).collect();
-    out.extend(
-        tris.iter()
-            .map(|t| [0, 1, 2].map(|k| (t[0][k] + t[1][k] + t[2][k]) / 3.0)),
-    );
-    let step = out.len().div_ceil(max).max(1);
-    out.into_iter().step_by(step).collect()
-}
-
-/// The largest distance from samples of `a` to the surface of `b`.
-fn one_sided(a: &Mesh, b: &Mesh) -> f64 {
-    let tris = triangles(b);
-    samples(a, 600)
-        .iter()
-        .map(|&p| {
-            tris.iter()
-                .map(|t| point_triangle(p, t))
-                .fold(f64::INFINITY, f64::min)
-        })
-        .fold(0.0, f64::max)
-}
-
-fn diagonal(mesh: &Mesh) -> f64 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for v in mesh.vertices() {
-        let p = mesh.position(v).unwrap();
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    len(sub(hi, lo))
-}
-
-/// Hausdorff distance (sampled both ways) over the bounding-box diagonal.
-fn hausdorff(a: &Mesh, b: &Mesh) -> f64 {
-    one_sided(a, b).max(one_sided(b, a)) / diagonal(b)
 }
 
 /// Edge lengths of the mesh.
@@ -372,9 +306,17 @@ fn a_real_mesh_with_a_boundary_keeps_it() {
 
 #[test]
 fn adaptive_sizing_follows_the_curvature() {
-    // A torus: the inner rim bends more than the outer.
-    let mut input = shapes::torus(32, 16, 1.0, 0.3).unwrap();
-    input.triangulate_all();
+    // An ellipsoid with semi-axes 2, 1, 1: the largest principal curvature
+    // is 2 at the tips (x = ±2) and 1 round the waist (x = 0), so the
+    // target lengths there are about 0.077 and 0.11. (A torus bends by
+    // 1/r round its tube everywhere, more than round its axis unless
+    // R < 2r: no contrast for the largest curvature.)
+    let mut input = shapes::icosphere(4);
+    let vs: Vec<_> = input.vertices().collect();
+    for v in vs {
+        let p = input.position(v).unwrap();
+        input.set_position(v, [2.0 * p[0], p[1], p[2]]).unwrap();
+    }
     let mut mesh = input.clone();
     let options = RemeshOptions {
         sizing: Sizing::Adaptive {
@@ -387,23 +329,23 @@ fn adaptive_sizing_follows_the_curvature() {
     let r = run(&mut mesh, &options);
     assert!(r.edge_lengths.within >= 0.85, "{r:?}");
     assert!(r.edge_lengths.min >= 0.05 * 0.8 * 0.9);
-    // Mean edge length near the inner rim (distance to the axis < 1) is
-    // shorter than near the outer (> 1).
-    let (mut inner, mut outer) = ((0.0, 0), (0.0, 0));
+    // Mean edge length near the tips (|x| > 1.7) is shorter than round
+    // the waist (|x| < 0.5).
+    let (mut tips, mut waist) = ((0.0, 0), (0.0, 0));
     for e in mesh.edges() {
         let [a, b] = mesh.edge(e).unwrap().vertices();
         let (pa, pb) = (mesh.position(a).unwrap(), mesh.position(b).unwrap());
-        let rho = ((pa[0] + pb[0]).powi(2) + (pa[1] + pb[1]).powi(2)).sqrt() / 2.0;
+        let x = ((pa[0] + pb[0]) / 2.0).abs();
         let l = len(sub(pa, pb));
-        if rho < 0.8 {
-            inner = (inner.0 + l, inner.1 + 1);
-        } else if rho > 1.2 {
-            outer = (outer.0 + l, outer.1 + 1);
+        if x > 1.7 {
+            tips = (tips.0 + l, tips.1 + 1);
+        } else if x < 0.5 {
+            waist = (waist.0 + l, waist.1 + 1);
         }
     }
-    let (li, lo) = (inner.0 / inner.1 as f64, outer.0 / outer.1 as f64);
-    assert!(li < 0.9 * lo, "inner {li}, outer {lo}");
-    assert_eq!(mesh.euler_characteristic(), 0);
+    let (lt, lw) = (tips.0 / tips.1 as f64, waist.0 / waist.1 as f64);
+    assert!(lt < 0.85 * lw, "tips {lt}, waist {lw}");
+    assert_eq!(mesh.euler_characteristic(), 2);
     assert!(hausdorff(&mesh, &input) < 0.01);
 }
 
@@ -648,36 +590,39 @@ fn an_undo_takes_the_whole_remeshing_back() {
 }
 
 /// Real meshes at their mean edge length (default options, 10 rounds):
-/// the share of edges within [4/5, 4/3] L measured on each
-/// (`measure_real_meshes`, 2026-11-25, re-measured after the builder
-/// began numbering edges in face order, which moved the cow's Hausdorff
-/// distance from 0.045 to 0.051), asserted one point below; every
-/// miss is an edge shorter than 4/5 L (none longer than 4/3 L): collapsing
-/// it would make an edge longer than 4/3 L (a final collapse pass after
-/// the last relaxation changed no share by more than 0.1 point). The 95 %
-/// of issue 14 is met on none of these; it is on smooth shapes
-/// (`a_sphere_gets_even_edges_and_valence_six_and_stays_on_its_surface`).
-/// Mean interior valence within 0.03 of 6, valid, genus and boundary
-/// loops kept, Hausdorff distance within the measured one plus a margin.
+/// issue 14's band, at least 95 % of the edges within [4/5, 4/3] L, on
+/// every mesh where it is met (`measure_real_meshes`, 2026-11-25, after
+/// short edges between two free vertices began collapsing to their
+/// midpoint: 98.9-100 %, was 84.8-90.8 % with every collapse to an end).
+/// Not here: `closed/pyvista_ant.ply` (90.5 %: 15 closed components of a
+/// few vertices each, whose short edges cannot collapse without
+/// collapsing the component), `boundary/compas_mesh.obj` (88.6 %, 11.1 %
+/// short) and the large dragon (96.8 %, too slow for a debug test).
+/// Interior valences 6 give or take 0.3 on average (measured 0.17-0.23),
+/// valid, genus and boundary loops kept, Hausdorff distance within the measured one plus a margin.
 #[test]
-fn real_meshes_reach_their_measured_band_valence_and_distance() {
-    // (path, measured share within, Hausdorff bound over the diagonal)
-    let cases: &[(&str, f64, f64)] = &[
-        ("closed/cgal_cow.off", 0.907, 0.06),         // Hausdorff 0.051
-        ("closed/npm-bunny_bunny.off", 0.908, 0.025), // 0.015
-        ("closed/openmesh_sphere840.ply", 0.860, 0.007), // 0.0051
-        ("closed/cgal_sphere966.off", 0.848, 0.003),  // 0.0020
-        ("boundary/cgal_holes.off", 0.903, 0.002),    // 0.0008
+fn real_meshes_reach_the_band_valence_and_distance() {
+    // (path, Hausdorff bound over the diagonal)
+    let cases: &[(&str, f64)] = &[
+        ("closed/cgal_cow.off", 0.055),           // Hausdorff 0.0446, 99.5 %
+        ("closed/npm-bunny_bunny.off", 0.02),     // 0.0133, 100 %
+        ("closed/cgal_elephant.off", 0.013),      // 0.0098, 99.9 %
+        ("closed/openmesh_sphere840.ply", 0.007), // 0.0052, 100 %
+        ("closed/cgal_sphere966.off", 0.003),     // 0.0022, 100 %
+        ("boundary/cgal_holes.off", 0.002),       // 0.0013, 98.9 %
+        ("boundary/cgal_mesh_with_border.off", 0.002), // 0.0010, 99.7 %
     ];
-    for &(path, measured, max_h) in cases {
+    for &(path, max_h) in cases {
         let mut input = read(path);
         input.triangulate_all();
         let mut mesh = input.clone();
         let r = run(&mut mesh, &RemeshOptions::default());
         let within = share_within(&mesh, r.target_length);
-        assert!(within >= measured - 0.01, "{path}: {within}");
-        let (mean, _) = valences(&mesh);
-        assert!((mean - 6.0).abs() < 0.03, "{path}: valence {mean}");
+        assert!(within >= 0.95, "{path}: {within}");
+        // The mean valence of a closed mesh is fixed by its Euler
+        // characteristic (6 − 6χ/V); what remeshing improves is the spread.
+        let (_, spread) = valences(&mesh);
+        assert!(spread < 0.3, "{path}: mean |valence − 6| {spread}");
         assert_eq!(
             mesh.euler_characteristic(),
             input.euler_characteristic(),

@@ -24,9 +24,12 @@
 //!    ear clipping instead ([`Mesh::triangulate`]; counted in
 //!    [`FillHoleReport::ear_clipped`]).
 //! 2. *Refine* ([`FillHoleOptions::refine`]), inside the patch only, when
-//!    some edge of the triangulation is longer than 1.5 l (a patch whose
-//!    triangles fit is left as it is, as CGAL's density test leaves it),
-//!    up to ten rounds as pmp-library: split edges longer than 1.5 l at their
+//!    some triangle fails Liepa's density test (as CGAL's: α = √2 times
+//!    the distance from its centroid to each corner exceeds the local edge
+//!    length σ there and the triangle's mean σ, σ of a rim corner being the
+//!    mean length of the mesh's edges at it) and some edge is longer than
+//!    1.5 l (a patch whose triangles fit is left as it is, as CGAL leaves
+//!    it), up to ten rounds as pmp-library: split edges longer than 1.5 l at their
 //!    midpoint (then the two quads beside the new vertex into triangles),
 //!    collapse new vertices along edges shorter than 0.7 l (unless an edge
 //!    would grow past 1.5 l or a triangle turn over), flip edges that bring
@@ -112,6 +115,10 @@ const ALGORITHM_ALL: &str = "fill_holes";
 const ROUNDS: usize = 10;
 /// Split edges longer than this times the rim's mean edge length.
 const LONG: f64 = 1.5;
+/// Liepa's density factor α (√2, as CGAL's default): a triangle is too
+/// large when α times its centroid's distance to each corner exceeds the
+/// local edge length there.
+const DENSITY: f64 = std::f64::consts::SQRT_2;
 /// Collapse edges shorter than this times the rim's mean edge length.
 const SHORT: f64 = 0.7;
 /// Sweeps of uniform Laplacian relaxation per round.
@@ -455,6 +462,14 @@ fn fill_one(
     } else {
         None
     };
+    // Liepa's density test on the planned triangles (CGAL's too): the
+    // patch is refined only when some triangle is too large for the
+    // density of the mesh around the rim.
+    let wants_refinement = options.refine
+        && match &plan {
+            Some(plan) => plan_fails_density(mesh, &corners, plan, p),
+            None => true,
+        };
     let neighbour = most_common_outer_face(mesh, &rim);
 
     // Commit: the hole becomes a face with its neighbours' values.
@@ -487,9 +502,10 @@ fn fill_one(
             }
         }
     }
-    // Refine only a patch with an edge to split (CGAL's test too): a
-    // triangulation whose edges already fit gains nothing from the rounds.
-    if options.refine
+    // Refine only a patch that fails the density test and has an edge to
+    // split: a triangulation whose triangles already fit gains nothing
+    // from the rounds.
+    if wants_refinement
         && work
             .edges
             .iter()
@@ -514,6 +530,47 @@ fn fill_one(
         vertices: work.new.iter().map(|&v| mesh.vkey(v)).collect(),
         ear_clipped,
     })
+}
+
+/// Liepa's density test over the planned triangles (`plan` as
+/// [`optimal_triangulation`] returns it; empty for a triangle): whether
+/// some triangle `(a, b, c)` with centroid `m` has, at every corner `x`,
+/// `DENSITY * |m - x|` above both the corner's scale `σ(x)` (the mean
+/// length of the mesh's edges at `x`, before the fill) and the mean scale
+/// `σ(m)` of the three corners: the test by which Liepa (and CGAL's
+/// `triangulate_refine_and_fair_hole`) decide to split a triangle at its
+/// centroid. A triangle that passes it nowhere fits the mesh's density.
+fn plan_fails_density(mesh: &Mesh, corners: &[Vid], plan: &[(u32, u32, u32)], p: &[V3]) -> bool {
+    let scale: Vec<f64> = corners
+        .iter()
+        .map(|&v| {
+            let (sum, count) = mesh.outgoing(v).fold((0.0, 0.0), |(s, c), g| {
+                (
+                    s + norm(sub(p[mesh.dest(g).index()], p[v.index()])),
+                    c + 1.0,
+                )
+            });
+            if count > 0.0 {
+                sum / count
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let too_large = |t: [u32; 3]| {
+        let q = t.map(|i| p[corners[i as usize].index()]);
+        let s = t.map(|i| scale[i as usize]);
+        let centroid = [0, 1, 2].map(|c| (q[0][c] + q[1][c] + q[2][c]) / 3.0);
+        let mean_scale = (s[0] + s[1] + s[2]) / 3.0;
+        (0..3).all(|x| {
+            let d = DENSITY * norm(sub(centroid, q[x]));
+            d > mean_scale && d > s[x]
+        })
+    };
+    if plan.is_empty() {
+        return corners.len() == 3 && too_large([0, 1, 2]);
+    }
+    plan.iter().any(|&(i, m, k)| too_large([i, m, k]))
 }
 
 /// The face across the most rim edges (the first such in rim order).
@@ -685,6 +742,15 @@ fn optimal_triangulation(
                 }
                 let c = cross(sub(pos[m], pos[i]), d);
                 let area2 = dot(c, c);
+                // The area is known before the angles (a square root and
+                // a division): the bound with it may lose already.
+                let bound = Weight {
+                    area: bound.area + area2,
+                    ..bound
+                };
+                if bound.cannot_beat(best) {
+                    continue;
+                }
                 let tri = unit(c);
                 let n_left = if m == i + 1 {
                     outer[i]
@@ -703,11 +769,7 @@ fn optimal_triangulation(
                 if closing {
                     angle = angle.max(1.0 - dot(tri, outer[n - 1]));
                 }
-                let w = Weight {
-                    angle,
-                    area: bound.area + area2,
-                    len: bound.len,
-                };
+                let w = Weight { angle, ..bound };
                 if w.better_than(best) {
                     best = w;
                     best_m = m as u32;

@@ -2,6 +2,7 @@
 //! the shared meshes, conserved totals.
 #![allow(dead_code)]
 
+pub mod hausdorff;
 pub mod ops;
 
 use meshloom::attr::{Conserved, FaceAttr, VertexAttr};
