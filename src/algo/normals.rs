@@ -249,12 +249,12 @@ fn corner_angle(y: f64, x: f64) -> f64 {
     } else {
         (num, den)
     };
-    let (base, u) = if num > TAN_15 * den {
-        // (√3 t − 1) / (√3 + t) with t = num / den.
-        (FRAC_PI_6, (SQRT_3 * num - den) / (SQRT_3 * den + num))
-    } else {
-        (0.0, num / den)
-    };
+    // (√3 t − 1) / (√3 + t) with t = num / den, chosen without a branch
+    // (both forms are cheap; the choice is unpredictable on real meshes).
+    let fold = num > TAN_15 * den;
+    let (folded_num, folded_den) = (SQRT_3 * num - den, SQRT_3 * den + num);
+    let base = if fold { FRAC_PI_6 } else { 0.0 };
+    let u = if fold { folded_num } else { num } / if fold { folded_den } else { den };
     let z = u * u;
     let z2 = z * z;
     let s = (C[0] + C[1] * z) + ((C[2] + C[3] * z) + (C[4] + C[5] * z) * z2) * z2;
@@ -393,6 +393,10 @@ fn accumulate(
 ) {
     let mut c: Vec<usize> = Vec::with_capacity(8);
     let start = range.start;
+    // One length for both (a slot per vertex, equal already): one bounds
+    // check per corner instead of two.
+    let n = acc.len().min(p.len());
+    let (p, acc) = (&p[..n], &mut acc[..n]);
     // Typed slots straight from the arenas (the hot loop of the
     // `vertex_normals` benchmark row): a face's half-edge from its link, the
     // corners from `Mesh::he`, no key checks.
