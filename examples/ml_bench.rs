@@ -659,7 +659,14 @@ fn normals_lib(input: &Input) -> (Elapsed, String) {
         meshloom::algo::vertex_normals(m, &opts).expect("positions")
     });
     std::hint::black_box(&n);
-    (e, "angle-weighted".into())
+    // Our own call, as each peer's: vertex normals only, angle-weighted in
+    // f64 (pmp: angle-weighted in float; OpenMesh 9's update_normals: face
+    // and vertex normals, unweighted average of unit face normals in
+    // float; CGAL: its own weighting in double).
+    (
+        e,
+        "vertex_normals: angle-weighted, f64, no face normals kept".into(),
+    )
 }
 
 /// A user's own loops through the public API, as the peers' classic row:

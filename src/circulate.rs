@@ -100,6 +100,39 @@ impl Iterator for FaceHalfedges<'_> {
     }
 }
 
+/// The corners of one face loop: the origin of each half-edge, read from
+/// the record that also gives the next half-edge (one bounds check a
+/// corner, no second look-up of the half-edge for its origin). Small enough
+/// that a user's loop over `face.vertices()` keeps it inlined.
+pub(crate) struct FaceCorners<'m> {
+    loop_: FaceHalfedges<'m>,
+}
+
+impl<'m> FaceCorners<'m> {
+    #[inline]
+    pub(crate) fn new(mesh: &'m Mesh, f: Fid) -> Self {
+        FaceCorners {
+            loop_: FaceHalfedges::new(mesh, f),
+        }
+    }
+}
+
+impl Iterator for FaceCorners<'_> {
+    type Item = Vid;
+
+    #[inline]
+    fn next(&mut self) -> Option<Vid> {
+        let l = &mut self.loop_;
+        if l.cur.is_none() || l.budget == 0 {
+            return None;
+        }
+        l.budget -= 1;
+        let r = l.mesh.he.get(l.cur)?;
+        l.cur = if r.next == l.start { Hid::NONE } else { r.next };
+        Some(r.origin)
+    }
+}
+
 impl Mesh {
     /// The outgoing ring of vertex `v` (crate-internal).
     #[inline]

@@ -19,7 +19,7 @@
 //! side its normal points to (the order given when building); a hole runs
 //! the other way round, as the twins of its boundary's half-edges.
 
-use crate::circulate::{FaceHalfedges, VertexNeighbors, VertexOutgoing};
+use crate::circulate::{FaceCorners, FaceHalfedges, VertexNeighbors, VertexOutgoing};
 use crate::error::Result;
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 use crate::layout::{Eid, Fid, Hid, Vid};
@@ -378,7 +378,7 @@ impl<'m> FaceView<'m> {
     #[inline]
     pub fn vertices(self) -> impl Iterator<Item = VertexKey> + 'm {
         let m = self.mesh;
-        FaceHalfedges::new(m, self.f).map(move |h| m.vkey(m.origin(h)))
+        FaceCorners::new(m, self.f).map(move |v| m.vkey(v))
     }
 
     /// The sides, same order.

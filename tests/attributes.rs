@@ -746,3 +746,72 @@ fn reads_by_key_agree_on_fresh_and_edited_meshes() {
     let wview = mesh.attr_view(&weight).unwrap();
     assert!(keys.iter().all(|&v| wview.get(v).is_none()));
 }
+
+#[test]
+fn reads_by_key_on_columns_with_gaps_before_and_after_compact() {
+    // An intact arena stores no generations; a column with gaps on it (and
+    // a half-edge column, two values per edge slot) reads through the
+    // checked path, which must take the base for the generation, refuse a
+    // key of a larger mesh, and refuse every key from before `compact()`;
+    // the same path reads the written-out generations of an edited arena.
+    let mut mesh = grid();
+    {
+        // A first pass on the intact arenas, before any edit.
+        let w = mesh.add_vertex_attr::<f64>("w").unwrap();
+        let vs: Vec<VertexKey> = mesh.vertices().collect();
+        mesh.set_attr(&w, vs[5], 2.0).unwrap();
+        let view = mesh.attr_view(&w).unwrap();
+        for &v in &vs {
+            assert_eq!(view.get(v).copied(), (v == vs[5]).then_some(2.0));
+        }
+        let big = meshloom::shapes::icosphere(3);
+        assert_eq!(view.get(big.vertices().last().unwrap()), None);
+    }
+    // A collapse frees a slot in every arena (generations written out),
+    // so that `compact()` moves elements and raises every base.
+    let inner = mesh.vertices().nth(5).unwrap();
+    let h = mesh.vertex(inner).unwrap().halfedge().key();
+    mesh.collapse_edge(h).unwrap();
+    let tag = mesh.add_halfedge_attr::<u32>("tag").unwrap();
+    let weight = mesh.add_vertex_attr::<f64>("weight").unwrap();
+    let hs: Vec<HalfedgeKey> = mesh.halfedges().collect();
+    let vs: Vec<VertexKey> = mesh.vertices().collect();
+    for (i, &h) in hs.iter().enumerate().filter(|(i, _)| i % 3 == 0) {
+        mesh.set_attr(&tag, h, i as u32).unwrap();
+    }
+    for (i, &v) in vs.iter().enumerate().filter(|(i, _)| i % 2 == 1) {
+        mesh.set_attr(&weight, v, i as f64).unwrap();
+    }
+    let check = |mesh: &Mesh, hs: &[HalfedgeKey], vs: &[VertexKey]| {
+        let tview = mesh.attr_view(&tag).unwrap();
+        for (i, &h) in hs.iter().enumerate() {
+            let want = (i % 3 == 0).then_some(i as u32);
+            assert_eq!(tview.get(h).copied(), want, "half-edge {i}");
+        }
+        let wview = mesh.attr_view(&weight).unwrap();
+        for (i, &v) in vs.iter().enumerate() {
+            let want = (i % 2 == 1).then_some(i as f64);
+            assert_eq!(wview.get(v).copied(), want, "vertex {i}");
+        }
+        let big = meshloom::shapes::icosphere(3);
+        assert_eq!(wview.get(big.vertices().last().unwrap()), None);
+        assert_eq!(tview.get(big.halfedges().last().unwrap()), None);
+    };
+    check(&mesh, &hs, &vs);
+    let maps = mesh.compact();
+    let new_hs: Vec<HalfedgeKey> = hs.iter().map(|&h| maps.halfedge(h).unwrap()).collect();
+    let new_vs: Vec<VertexKey> = vs.iter().map(|&v| maps.vertex(v).unwrap()).collect();
+    check(&mesh, &new_hs, &new_vs);
+    let (tview, wview) = (
+        mesh.attr_view(&tag).unwrap(),
+        mesh.attr_view(&weight).unwrap(),
+    );
+    assert!(
+        hs.iter().all(|&h| tview.get(h).is_none()),
+        "stale half-edge keys"
+    );
+    assert!(
+        vs.iter().all(|&v| wview.get(v).is_none()),
+        "stale vertex keys"
+    );
+}

@@ -400,15 +400,18 @@ impl Mesh {
     ) -> Result<AttrView<'_, K, T>> {
         let col = self.typed_column(h)?;
         let (slots, _) = self.arena_slots(K::KIND);
+        // A column has one value per slot; the cut makes `AttrView::get`'s
+        // slot bound a consequence of its value bound, whatever happens.
+        let values = col.raw();
+        let values = &values[..values.len().min(slots.slot_count() << K::SHIFT)];
         Ok(AttrView {
             mesh: self,
-            values: col.raw(),
+            values,
             present: col.present_bits(),
             generations: slots.stored_generations(),
             slot_count: slots.slot_count(),
             base: slots.base(),
             dense_intact: slots.intact() && col.present_bits().is_none(),
-            intact: slots.intact(),
             marker: PhantomData,
         })
     }

@@ -80,6 +80,8 @@ fn bit(bits: Option<&[u64]>, i: usize) -> bool {
 pub struct AttrView<'m, K, T> {
     /// The mesh the column belongs to, for [`AttrView::at`].
     pub(crate) mesh: &'m Mesh,
+    /// One value per slot of the arena (two per edge slot on half-edges),
+    /// never more: [`AttrView::get`] relies on it.
     pub(crate) values: &'m [T],
     pub(crate) present: Option<&'m [u64]>,
     /// The arena's stored generations (odd = live); empty while they are
@@ -91,46 +93,61 @@ pub struct AttrView<'m, K, T> {
     pub(crate) base: u32,
     /// No slot of the arena was freed since it was built or compacted
     /// (every slot is live at the base generation) and every slot has a
-    /// value: a read by key is then a bounds check and a compare of the
-    /// key's generation with the base.
+    /// value: the column is one slice in slot order
+    /// ([`AttrView::dense_slice`]).
     pub(crate) dense_intact: bool,
-    /// No slot of the arena was freed since it was built or compacted:
-    /// every slot is live at the base generation, and a key check needs no
-    /// load.
-    pub(crate) intact: bool,
     pub(crate) marker: PhantomData<K>,
 }
 
-/// Whether a key's generation is the live one stored for its slot. Both
-/// tests are evaluated without a branch between them.
+/// The generation stored for arena slot `slot`, or `base` where none is
+/// stored (an intact arena stores none: every slot is at the base). Only
+/// for a slot below the slot count (a written-out arena stores one
+/// generation per slot).
 #[inline(always)]
-fn current(generations: &[u32], index: usize, generation: u32) -> bool {
-    match generations.get(index) {
-        Some(&g) => (g == generation) & (generation & 1 == 1),
-        None => false,
-    }
+fn stored_or_base(generations: &[u32], slot: usize, base: u32) -> u32 {
+    generations.get(slot).copied().unwrap_or(base)
 }
 
 impl<'m, K: Element, T> AttrView<'m, K, T> {
     /// The value of `key`'s element; `None` if it has none or the key is
     /// stale.
+    ///
+    /// Inline only for the common case, a dense column on an intact arena
+    /// (a mesh built or compacted and not edited since, e.g. its
+    /// positions): a bounds test and a compare of the key's generation with
+    /// the base. Every other state is one call to a shared out-of-line
+    /// check. With all the states inline this function, and with it a
+    /// user's per-element closure around it, grew too large for LLVM to
+    /// inline the closure into the user's loop: the `normals_classic` row
+    /// of examples/ml_bench.rs went from 9 to 14 ms on ico7 when the
+    /// generations became implied (one more state to tell apart).
     #[inline]
     pub fn get(&self, key: K) -> Option<&'m T> {
         let i = key.slot() as usize;
+        let generation = key.generation_of_key();
         if self.dense_intact {
             // One value per slot, every slot live at the base generation,
             // every value present.
             let value = self.values.get(i)?;
-            return (key.generation_of_key() == self.base).then_some(value);
+            return (generation == self.base).then_some(value);
         }
+        self.get_checked(i, generation)
+    }
+
+    /// [`get`](Self::get) on a column with gaps or an arena that was
+    /// edited: the key's generation is odd and equals the stored one (the
+    /// base while the arena stores none), and the column has a value
+    /// there. `values` holds no more than the arena's slots (cut so in
+    /// `Mesh::attr_view`): a key with a value has a slot below the slot
+    /// count, no compare needed.
+    #[cold]
+    #[inline(never)]
+    fn get_checked(&self, i: usize, generation: u32) -> Option<&'m T> {
         // Both loads are issued before either is tested, so a random access
         // waits for one cache miss, not two in a row.
         let value = self.values.get(i);
-        let live = if self.intact {
-            (key.generation_of_key() == self.base) & ((i >> K::SHIFT) < self.slot_count)
-        } else {
-            current(self.generations, i >> K::SHIFT, key.generation_of_key())
-        };
+        let live = (stored_or_base(self.generations, i >> K::SHIFT, self.base) == generation)
+            & (generation & 1 == 1);
         if live && bit(self.present, i) {
             value
         } else {
@@ -187,13 +204,10 @@ impl<'m, K: Element, T> AttrView<'m, K, T> {
     /// holes included).
     pub fn iter(&self) -> impl Iterator<Item = (K, &'m T)> + '_ {
         let (generations, present) = (self.generations, self.present);
-        let (intact, base, slot_count) = (self.intact, self.base, self.slot_count);
+        let (base, slot_count) = (self.base, self.slot_count);
         self.values.iter().enumerate().filter_map(move |(i, v)| {
-            let g = if intact {
-                ((i >> K::SHIFT) < slot_count).then_some(base)?
-            } else {
-                *generations.get(i >> K::SHIFT)?
-            };
+            let slot = i >> K::SHIFT;
+            let g = (slot < slot_count).then(|| stored_or_base(generations, slot, base))?;
             (g & 1 == 1 && bit(present, i)).then(|| (K::from_parts(i as u32, g), v))
         })
     }
