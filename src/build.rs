@@ -16,7 +16,9 @@ use crate::store::rules::Interpolate;
 use crate::store::{Column, POSITION};
 use std::borrow::Cow;
 
-use crate::layout::{Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};
+use crate::layout::{
+    headroom, to_vec_with_headroom, Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid,
+};
 use crate::mesh::Mesh;
 
 /// An index of [`IndexMaps`] for a slot that was not exported.
@@ -1147,8 +1149,10 @@ fn link_faces(faces: Flat<'_>, nv: usize, mates: Mates) -> (Links, Twins) {
     let unpaired = corners - 2 * mates.pairs;
     let nf = faces.face_count();
     let mut links = Links {
-        he: IdVec::from_vec(Vec::with_capacity(Eid::halfedge_slots(edges))),
-        v_halfedge: IdVec::filled(Hid::NONE, nv),
+        he: IdVec::from_vec(Vec::with_capacity(Eid::halfedge_slots(
+            edges + headroom(edges),
+        ))),
+        v_halfedge: IdVec::filled_with_headroom(Hid::NONE, nv),
         out_degree: IdVec::from_vec(mates.out_degree),
     };
     let mut numbering = Numbering {
@@ -1156,7 +1160,7 @@ fn link_faces(faces: Flat<'_>, nv: usize, mates: Mates) -> (Links, Twins) {
         edges: 0,
         boundary: Vec::with_capacity(unpaired),
     };
-    let mut f_halfedge = Vec::with_capacity(nf + unpaired);
+    let mut f_halfedge = Vec::with_capacity(nf + unpaired + headroom(nf + unpaired));
     let idx = faces.indices;
     let mut ring: Vec<Hid> = Vec::new();
     for f in 0..nf {
@@ -1385,8 +1389,12 @@ fn assemble<P: Point>(
     };
     if let Some(p) = positions {
         let values: Vec<[f64; 3]> = match &vertices.input_of_slot {
-            None => P::slice_xyz(&p[..vertices.count]).into_owned(),
-            Some(map) => map.iter().map(|&i| p[i as usize].xyz()).collect(),
+            None => to_vec_with_headroom(&P::slice_xyz(&p[..vertices.count])),
+            Some(map) => {
+                let mut v = Vec::with_capacity(map.len() + headroom(map.len()));
+                v.extend(map.iter().map(|&i| p[i as usize].xyz()));
+                v
+            }
         };
         mesh.attrs.position = Some(mesh.attrs.vertex.push(
             POSITION,

@@ -76,7 +76,7 @@
 pub(crate) const MAX_LIVE_GENERATION: u32 = u32::MAX - 2;
 
 /// Generations and the free list of one arena.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub(crate) struct Slots {
     /// One generation per slot, or empty while every generation is
     /// implied (the base; only while `Intact`, see the module docs).
@@ -94,6 +94,27 @@ pub(crate) struct Slots {
     /// Odd, at least `base`: no generation below it is issued any more
     /// (see the module docs). Equal to `base` until an undo raises it.
     fresh: u32,
+}
+
+impl Clone for Slots {
+    /// A copy whose written-out generations keep
+    /// [`headroom`](crate::layout::headroom) to spare, as the arena
+    /// arrays do.
+    fn clone(&self) -> Self {
+        Slots {
+            generations: if self.generations.is_empty() {
+                Vec::new()
+            } else {
+                crate::layout::to_vec_with_headroom(&self.generations)
+            },
+            slots: self.slots,
+            free: self.free.clone(),
+            live: self.live,
+            base: self.base,
+            state: self.state,
+            fresh: self.fresh,
+        }
+    }
 }
 
 impl PartialEq for Slots {
@@ -192,7 +213,9 @@ impl Slots {
     fn generations_mut(&mut self) -> &mut Vec<u32> {
         if self.implied() {
             debug_assert!(self.generations.is_empty() && self.state == State::Intact);
-            self.generations = vec![self.base; self.slots];
+            let mut g = Vec::with_capacity(self.slots + crate::layout::headroom(self.slots));
+            g.resize(self.slots, self.base);
+            self.generations = g;
         }
         &mut self.generations
     }
@@ -601,6 +624,7 @@ impl Slots {
     }
 
     /// The generations, one per slot (serialization), written out.
+    #[cfg(any(feature = "serde", test))]
     pub(crate) fn generations(&self) -> std::borrow::Cow<'_, [u32]> {
         if self.implied() {
             std::borrow::Cow::Owned(vec![self.base; self.slots])

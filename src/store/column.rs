@@ -58,7 +58,7 @@ impl<T: Clone, R> Clone for Column<T, R> {
     /// A copy of the values; whatever a journal saved stays behind.
     fn clone(&self) -> Self {
         Column {
-            values: self.values.clone(),
+            values: crate::layout::to_vec_with_headroom(&self.values),
             present: self.present.clone(),
             absent: self.absent,
             saved: Vec::new(),
