@@ -60,20 +60,20 @@
 //! `journal` row: every face poked 1-to-3, then every new vertex collapsed
 //! back, 996 004 operators, as one [`Mesh::step`]; 2026-11-27, medians of 7
 //! rounds that alternate off and on in one process, on a noisy 2-core
-//! machine shared with other builds, load 3 to 4, where single runs
-//! spread widely): with history on, the run takes 1.29 times
-//! as long as with the journal off, sealing included (median of 7 runs;
-//! single runs gave 1.02 to 1.54; before that day's two changes below,
+//! machine shared with other builds, load 3 to 4, where single runs spread
+//! widely): with history on, the run takes 1.30 times as long as with the
+//! journal off, sealing included (median of 10 runs; single runs gave 1.02
+//! to 1.58, the least loaded one 1.27; before that day's two changes below,
 //! 1.25 to 1.56 on the same machine, median 1.46); the undo log holds 6.2
-//! bytes per operator (its capacity); undoing the whole run takes 0.23 to
-//! 0.28 of the time the run took. In instructions (callgrind, the same
-//! work on a 40 000-vertex grid, one round) the recording adds 12 % to the
-//! operators' own count (229.1 M off, 257.5 M on) and the seal 14 %
-//! (33.2 M: walking the copied pages, encoding, and 7 M reading which new
-//! slots died); the rest of the gap is memory the step fills for the
-//! first time (page copies, the log's bytes: page faults). With the journal off, `flip_back` and
-//! `split_collapse_checked` execute as many instructions as before the
-//! journal existed (callgrind, within 2 %).
+//! bytes per operator (its capacity); undoing the whole run takes 0.19 to
+//! 0.28 of the time the run took. In instructions (callgrind, the same work
+//! on a 40 000-vertex grid, one round) the recording adds 12 % to the
+//! operators' own count (229.1 M off, 257.5 M on) and the seal 14 % (33.2
+//! M: walking the copied pages, encoding, and 7 M reading which new slots
+//! died); the rest of the gap is memory the step fills for the first time
+//! (page copies, the log's bytes: page faults). With the journal off,
+//! `flip_back` and `split_collapse_checked` execute as many instructions as
+//! before the journal existed (callgrind, within 2 %).
 //!
 //! What the two changes of 2026-11-27 did: a column merge (a collapse
 //! merging its survivor) saves the slot's old value only when the merged
