@@ -97,6 +97,48 @@ impl Mesh {
         self.he.unlogged_mut(h)
     }
 
+    /// Half-edge `h`'s links, mutably, for a slot the running operator
+    /// allocated: nothing to record in either mode. A slot born in the
+    /// open step is never saved, and an older one taken from the free list
+    /// had its page saved when `alloc_edge` cleared it (through
+    /// [`set_he`](Mesh::set_he)); the step cannot close in between.
+    #[inline(always)]
+    pub(crate) fn fresh_he_mut(&mut self, h: Hid) -> &mut HalfedgeRecord {
+        // The same read as `log_he`'s (the code with no journal is alike).
+        let _current = self.he[h];
+        self.he.unlogged_mut(h)
+    }
+
+    /// [`v_halfedge_mut`](Mesh::v_halfedge_mut) for a vertex the running
+    /// operator allocated (see [`fresh_he_mut`](Mesh::fresh_he_mut)).
+    #[inline(always)]
+    pub(crate) fn fresh_v_halfedge_mut(&mut self, v: Vid) -> &mut Hid {
+        let _current = self.v_halfedge[v];
+        self.v_halfedge.unlogged_mut(v)
+    }
+
+    /// Record face `f`'s link before writes to it, without writing (the
+    /// writes then go through [`fresh_face_link`](Mesh::fresh_face_link)).
+    #[inline(always)]
+    pub(crate) fn log_face<J: Journaling>(&mut self, f: Fid) {
+        if J::ON {
+            if let Some(r) = self.rec.as_deref_mut() {
+                r.save_fl(f, self.f_halfedge.as_slice());
+            }
+        }
+    }
+
+    /// Point face `f` at half-edge `h`, keeping its hole flag, with nothing
+    /// to record: `f` was allocated by the running operator (see
+    /// [`fresh_he_mut`](Mesh::fresh_he_mut)) or logged by
+    /// [`log_face`](Mesh::log_face) in it.
+    #[inline(always)]
+    pub(crate) fn fresh_face_link(&mut self, f: Fid, h: Hid) {
+        let link = self.f_halfedge[f].with_halfedge(h);
+        let _current = self.f_halfedge[f];
+        *self.f_halfedge.unlogged_mut(f) = link;
+    }
+
     /// Set `next(h)`.
     #[inline(always)]
     pub(crate) fn set_next<J: Journaling>(&mut self, h: Hid, n: Hid) {

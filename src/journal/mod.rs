@@ -58,19 +58,40 @@
 //!
 //! Measured with `examples/ml_bench.rs` on the 250 000-vertex grid (the
 //! `journal` row: every face poked 1-to-3, then every new vertex collapsed
-//! back, 996 004 operators, as one [`Mesh::step`]; 2026-11-25, medians of 5
-//! rounds that alternate off and on in one process, on a loaded 2-core
-//! machine): with history on, the run takes 1.49 times as long as with the
-//! journal off (off 0.106 s, on 0.158 s), sealing included; the undo log
-//! holds 23.0 bytes per operator (its capacity); undoing the whole run
-//! takes 0.28 of the time the run took. In instructions (callgrind, the
-//! same row on the 40 000-vertex grid, per round) the recording adds 20 %
-//! to the operators' own count (233.6 M off, 281.2 M on) and the seal 15 %
-//! (36.1 M: walking the copied pages, encoding, and 8 M reading which new
-//! slots died); the rest of the gap is memory the step fills for the first
-//! time (page copies, the log's bytes: page faults). With the journal
-//! off, `flip_back` and `split_collapse_checked` execute as many
-//! instructions as before the journal existed (callgrind, within 2 %).
+//! back, 996 004 operators, as one [`Mesh::step`]; 2026-11-27, medians of 7
+//! rounds that alternate off and on in one process, on a noisy 2-core
+//! machine shared with other builds, load 3 to 4, where single runs spread
+//! widely): with history on, the run takes 1.30 times as long as with the
+//! journal off, sealing included (median of 10 runs; single runs gave 1.02
+//! to 1.58, the least loaded one 1.27; before that day's two changes below,
+//! 1.25 to 1.56 on the same machine, median 1.46); the undo log holds 6.2
+//! bytes per operator (its capacity); undoing the whole run takes 0.19 to
+//! 0.28 of the time the run took. In instructions (callgrind, the same work
+//! on a 40 000-vertex grid, one round) the recording adds 12 % to the
+//! operators' own count (229.1 M off, 257.5 M on) and the seal 14 % (33.2
+//! M: walking the copied pages, encoding, and 7 M reading which new slots
+//! died); the rest of the gap is memory the step fills for the first time
+//! (page copies, the log's bytes: page faults). With the journal off,
+//! `flip_back` and `split_collapse_checked` execute as many instructions as
+//! before the journal existed (callgrind, within 2 %).
+//!
+//! What the two changes of 2026-11-27 did: a column merge (a collapse
+//! merging its survivor) saves the slot's old value only when the merged
+//! value differs from it, by
+//! [`Attribute::same_value`](crate::attr::Attribute::same_value), the
+//! seal's own test. A collapse at weight 1 leaves the survivor's
+//! position as it was: it saved every one before, into a vector that grew
+//! by doubling through the run (page faults), for the seal to drop them
+//! again, and the kept record held that vector's capacity (of the 23.0
+//! bytes per operator, 6.2 were the log, the rest that capacity). And
+//! writes to slots the running operator allocated itself record nothing
+//! (`fresh_he_mut` and its siblings in `hooks.rs`, used by `poke_face`): a
+//! slot born in the open step is never saved, and a reused one had its
+//! page saved when `alloc_*` cleared it. Tried the same day, no gain (so
+//! not kept): encoding the half-edge records a page at a time through a
+//! stack buffer (seal 33.2 M -> 35.2 M instructions), and reading the new
+//! slots' liveness straight from the generations (7.0 M -> 7.5 M: the
+//! pushes of the run lengths dominate, one per poked face here).
 //!
 //! A link write saves its slot's whole page of the link array (32 slots)
 //! on the first write to that page in the open step; later writes to the

@@ -541,6 +541,10 @@ impl Mesh {
             .vertex
             .merge(b.index(), &[(b.index(), t), (a.index(), 1.0 - t)]);
         if let Some(p) = position {
+            // The merge saved b's position only if it changed it.
+            if let Some(p_col) = self.attrs.position {
+                self.attrs.vertex.save_one(p_col, b.index());
+            }
             if let Some(col) = self.attrs.positions_mut() {
                 col.set(b.index(), Some(p));
             }

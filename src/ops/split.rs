@@ -399,26 +399,31 @@ impl Mesh {
         for s in buf[1..].iter_mut() {
             s.face = self.alloc_face::<J>(false);
         }
+        // Only the ring and `f` existed before this call: the spokes, `c`
+        // and the other faces were allocated above (a reused slot was
+        // recorded as it was taken), so their writes record nothing.
+        self.log_face::<J>(f);
         for i in 0..n {
             let j = (i + 1) % n;
             let Spoke { ring: h, face, .. } = buf[i];
             let out_i = buf[i].spoke.halfedge(0);
             let in_j = buf[j].spoke.halfedge(1);
-            self.he_mut::<J>(h).next = in_j;
-            self.he_mut::<J>(h).face = face;
-            *self.he_mut::<J>(in_j) = HalfedgeRecord {
+            let ring = self.he_mut::<J>(h);
+            ring.next = in_j;
+            ring.face = face;
+            *self.fresh_he_mut(in_j) = HalfedgeRecord {
                 origin: self.origin(buf[j].ring),
                 next: out_i,
                 face,
             };
-            *self.he_mut::<J>(out_i) = HalfedgeRecord {
+            *self.fresh_he_mut(out_i) = HalfedgeRecord {
                 origin: c,
                 next: h,
                 face,
             };
-            self.set_face_link::<J>(face, h);
+            self.fresh_face_link(face, h);
         }
-        *self.v_halfedge_mut::<J>(c) = buf[0].spoke.halfedge(0);
+        *self.fresh_v_halfedge_mut(c) = buf[0].spoke.halfedge(0);
         // Attributes.
         let w = 1.0 / n as f64;
         if !self.attrs.vertex.cols.is_empty() {

@@ -222,7 +222,7 @@ impl<T: Default + Clone, R> Column<T, R> {
     /// Run `rule` on the values of `inputs` (slot, weight), in order. Up to
     /// eight contributors (every operator but the merges of whole rings)
     /// need no allocation.
-    #[inline]
+    #[inline(always)]
     fn with_inputs(&self, inputs: &[(usize, f64)], rule: RuleFn<T>) -> Option<T> {
         const SMALL: usize = 8;
         if inputs.len() <= SMALL {
@@ -289,6 +289,11 @@ impl<T: Attribute, R> Column<T, R> {
         let mut entries = std::mem::take(&mut self.saved);
         first_per_slot(&mut entries);
         entries.retain(|e| !self.unchanged(e));
+        // A record is kept until its step leaves the history, and its
+        // capacity counts in the history's memory: no slack from growth.
+        if entries.capacity() > entries.len() + entries.len() / 8 {
+            entries.shrink_to_fit();
+        }
         // The scratch keeps its capacity for the next step.
         self.saved = Vec::with_capacity(entries.capacity().min(64));
         (!entries.is_empty()).then_some(ColumnRecord { entries })
@@ -362,6 +367,10 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     fn clear(&mut self, i: usize);
     /// Run the rule's merge: `dst` gets the merge of `inputs` (slot, weight).
     fn merge(&mut self, dst: usize, inputs: &[(usize, f64)]);
+    /// [`merge`](ErasedColumn::merge) while a journal records: `dst`'s
+    /// value is saved first unless the merge leaves the same value (by
+    /// [`Attribute::same_value`], as the seal compares). Whether it saved.
+    fn merge_saving(&mut self, dst: usize, inputs: &[(usize, f64)]) -> bool;
     /// Run the rule's interpolate: `dst` is made from `inputs`.
     fn interpolate(&mut self, dst: usize, inputs: &[(usize, f64)]);
     /// Run the rule's split: each `(slot, share)` piece from `src`. `src`
@@ -468,6 +477,22 @@ where
     fn merge(&mut self, dst: usize, inputs: &[(usize, f64)]) {
         let result = self.with_inputs(inputs, R::merge);
         self.set(dst, result);
+    }
+
+    fn merge_saving(&mut self, dst: usize, inputs: &[(usize, f64)]) -> bool {
+        let result = self.with_inputs(inputs, R::merge);
+        // The seal drops a saved value that the slot holds again (see
+        // `unchanged`): a write of the same value needs no saving at all.
+        let same = match (&result, self.get(dst)) {
+            (None, None) => true,
+            (Some(new), Some(old)) => new.same_value(old),
+            _ => false,
+        };
+        if !same {
+            Column::save(self, dst);
+        }
+        self.set(dst, result);
+        !same
     }
 
     fn interpolate(&mut self, dst: usize, inputs: &[(usize, f64)]) {

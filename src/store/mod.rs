@@ -206,9 +206,16 @@ impl Columns {
     }
 
     fn merge_columns(&mut self, dst: usize, inputs: &[(usize, f64)]) {
-        self.save(dst);
-        for (_, c) in &mut self.cols {
-            c.merge(dst, inputs);
+        if dst < self.log_below {
+            // A journal records: save only what the merge changes (a
+            // collapse merging the survivor with weight 1 keeps its value).
+            for (_, c) in &mut self.cols {
+                self.dirty |= c.merge_saving(dst, inputs);
+            }
+        } else {
+            for (_, c) in &mut self.cols {
+                c.merge(dst, inputs);
+            }
         }
     }
 
