@@ -66,7 +66,11 @@
 //! to 1.58, the least loaded one 1.27; before that day's two changes below,
 //! 1.25 to 1.56 on the same machine, median 1.46); the undo log holds 6.2
 //! bytes per operator (its capacity); undoing the whole run takes 0.19 to
-//! 0.28 of the time the run took. In instructions (callgrind, the same work
+//! 0.28 of the time the run took. The same day's `compare.sh` run (9 cold
+//! processes of 5 rounds each, the machine otherwise idle but the host
+//! slow and uneven) put the grid's ratio higher: median 1.70 (1.51 to
+//! 1.93); on the icosphere(7) 1.21 (1.06 to 1.34). So 1.3 is not yet
+//! met reliably. In instructions (callgrind, the same work
 //! on a 40 000-vertex grid, one round) the recording adds 12 % to the
 //! operators' own count (229.1 M off, 257.5 M on) and the seal 14 % (33.2
 //! M: walking the copied pages, encoding, and 7 M reading which new slots
