@@ -17,7 +17,8 @@ use crate::store::{Column, POSITION};
 use std::borrow::Cow;
 
 use crate::layout::{
-    headroom, to_vec_with_headroom, Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid,
+    headroom, to_vec_with_headroom, with_headroom, Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec,
+    Vid,
 };
 use crate::mesh::Mesh;
 
@@ -1160,7 +1161,7 @@ fn link_faces(faces: Flat<'_>, nv: usize, mates: Mates) -> (Links, Twins) {
         edges: 0,
         boundary: Vec::with_capacity(unpaired),
     };
-    let mut f_halfedge = Vec::with_capacity(nf + unpaired + headroom(nf + unpaired));
+    let mut f_halfedge = with_headroom(nf + unpaired);
     let idx = faces.indices;
     let mut ring: Vec<Hid> = Vec::new();
     for f in 0..nf {
@@ -1391,7 +1392,7 @@ fn assemble<P: Point>(
         let values: Vec<[f64; 3]> = match &vertices.input_of_slot {
             None => to_vec_with_headroom(&P::slice_xyz(&p[..vertices.count])),
             Some(map) => {
-                let mut v = Vec::with_capacity(map.len() + headroom(map.len()));
+                let mut v = with_headroom(map.len());
                 v.extend(map.iter().map(|&i| p[i as usize].xyz()));
                 v
             }

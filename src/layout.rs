@@ -306,10 +306,22 @@ pub(crate) const fn headroom(len: usize) -> usize {
     len / 32 + 16
 }
 
+/// An empty `Vec` with room for `len` entries and [`headroom`] to spare.
+pub(crate) fn with_headroom<T>(len: usize) -> Vec<T> {
+    Vec::with_capacity(len + headroom(len))
+}
+
 /// A copy of `items` with [`headroom`] to spare.
 pub(crate) fn to_vec_with_headroom<T: Clone>(items: &[T]) -> Vec<T> {
-    let mut v = Vec::with_capacity(items.len() + headroom(items.len()));
+    let mut v = with_headroom(items.len());
     v.extend_from_slice(items);
+    v
+}
+
+/// `n` copies of `value` with [`headroom`] to spare.
+pub(crate) fn filled_with_headroom<T: Clone>(value: T, n: usize) -> Vec<T> {
+    let mut v = with_headroom(n);
+    v.resize(n, value);
     v
 }
 
@@ -365,9 +377,7 @@ impl<I, T> IdVec<I, T> {
     where
         T: Clone,
     {
-        let mut raw = Vec::with_capacity(n + headroom(n));
-        raw.resize(n, value);
-        IdVec::from_vec(raw)
+        IdVec::from_vec(filled_with_headroom(value, n))
     }
 
     /// Entries held.

@@ -635,10 +635,9 @@ impl Mesh {
                 position: p,
             });
         }
-        let p_col = self.attrs.position.ok_or(Error::NoPositions)?;
-        self.attrs.vertex.save_one(p_col, i.index());
-        let col = self.attrs.positions_mut().ok_or(Error::NoPositions)?;
-        col.set(i.index(), Some(p));
+        self.attrs
+            .set_position_saved(i.index(), p)
+            .ok_or(Error::NoPositions)?;
         self.end_edit();
         Ok(())
     }

@@ -214,9 +214,7 @@ impl Slots {
     fn generations_mut(&mut self) -> &mut Vec<u32> {
         if self.implied() {
             debug_assert!(self.generations.is_empty() && self.state == State::Intact);
-            let mut g = Vec::with_capacity(self.slots + crate::layout::headroom(self.slots));
-            g.resize(self.slots, self.base);
-            self.generations = g;
+            self.generations = crate::layout::filled_with_headroom(self.base, self.slots);
         }
         &mut self.generations
     }

@@ -135,7 +135,6 @@ impl Mesh {
     #[inline(always)]
     pub(crate) fn fresh_face_link(&mut self, f: Fid, h: Hid) {
         let link = self.f_halfedge[f].with_halfedge(h);
-        let _current = self.f_halfedge[f];
         *self.f_halfedge.unlogged_mut(f) = link;
     }
 

@@ -542,12 +542,7 @@ impl Mesh {
             .merge(b.index(), &[(b.index(), t), (a.index(), 1.0 - t)]);
         if let Some(p) = position {
             // The merge saved b's position only if it changed it.
-            if let Some(p_col) = self.attrs.position {
-                self.attrs.vertex.save_one(p_col, b.index());
-            }
-            if let Some(col) = self.attrs.positions_mut() {
-                col.set(b.index(), Some(p));
-            }
+            self.attrs.set_position_saved(b.index(), p);
         }
         // Every half-edge leaving a now leaves b (the ring of a is walked by
         // next/twin, which the origins do not affect).

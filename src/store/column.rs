@@ -276,8 +276,16 @@ impl<T: Attribute, R> Column<T, R> {
     /// Whether slot `i` holds what `e` saved.
     #[inline]
     fn unchanged(&self, e: &Saved<T>) -> bool {
-        let i = e.slot as usize;
-        self.has(i) == e.present && (!e.present || self.values[i].same_value(&e.value))
+        self.holds(e.slot as usize, e.present.then_some(&e.value))
+    }
+
+    /// Whether slot `i` holds `value` (`None`: no value), by
+    /// [`Attribute::same_value`]: the test the seal drops saved values by.
+    fn holds(&self, i: usize, value: Option<&T>) -> bool {
+        match value {
+            None => !self.has(i),
+            Some(v) => self.has(i) && self.values[i].same_value(v),
+        }
     }
 
     /// Seal the open step's saved values: the oldest per slot, left out
@@ -483,11 +491,7 @@ where
         let result = self.with_inputs(inputs, R::merge);
         // The seal drops a saved value that the slot holds again (see
         // `unchanged`): a write of the same value needs no saving at all.
-        let same = match (&result, self.get(dst)) {
-            (None, None) => true,
-            (Some(new), Some(old)) => new.same_value(old),
-            _ => false,
-        };
+        let same = self.holds(dst, result.as_ref());
         if !same {
             Column::save(self, dst);
         }

@@ -336,6 +336,16 @@ impl AttrStore {
         self.vertex.typed_mut(i)
     }
 
+    /// Set vertex slot `i`'s position, its old one saved first for a
+    /// journal. `None` when the mesh has no positions.
+    #[inline]
+    pub(crate) fn set_position_saved(&mut self, i: usize, p: [f64; 3]) -> Option<()> {
+        let col = self.position?;
+        self.vertex.save_one(col, i);
+        self.positions_mut()?.set(i, Some(p));
+        Some(())
+    }
+
     /// Take column `col` out of set `set` (a journal keeps it), keeping
     /// the position index right. Returns `(name, column, meta)`.
     pub(crate) fn take_column(
