@@ -366,7 +366,7 @@ impl Slots {
             s.live += n;
             return s;
         }
-        let mut generations = Vec::with_capacity(self.generations.len() + n);
+        let mut generations = crate::layout::with_headroom(self.generations.len() + n);
         generations.extend_from_slice(&self.generations);
         // New slots get the fresh floor, as `alloc` gives them: after an
         // undo it lies above the base, so no undone key comes back.

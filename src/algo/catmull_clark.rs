@@ -198,7 +198,7 @@ fn cc_positions(
     progress: &mut Progress<'_>,
 ) -> Result<(Vec<[f64; 3]>, RuleCounts)> {
     let nv = r.nv as usize;
-    let mut out = vec![[0.0f64; 3]; r.vertex_slots()];
+    let mut out = crate::layout::filled_with_headroom([0.0f64; 3], r.vertex_slots());
     let (old, rest) = out.split_at_mut(nv);
     let (edge_points, face_points) = rest.split_at_mut(r.edges as usize);
 

@@ -58,7 +58,7 @@ use crate::algo::subdivision::{
     SubdivisionOptions, SubdivisionReport,
 };
 use crate::error::{Error, Result};
-use crate::layout::{Eid, Hid, Vid};
+use crate::layout::{with_headroom, Eid, Hid, Vid};
 use crate::mesh::Mesh;
 
 const ALGORITHM: &str = "loop_subdivide";
@@ -219,7 +219,7 @@ fn loop_positions(
     let nv = r.nv as usize;
     // Filled by pushing, in slot order: no zeroing pass over the largest
     // array of the level (24 bytes per new vertex).
-    let mut out: Vec<[f64; 3]> = Vec::with_capacity(r.vertex_slots());
+    let mut out: Vec<[f64; 3]> = with_headroom(r.vertex_slots());
     let betas: Vec<f64> = (0..64).map(loop_beta).collect();
     let mut counts = RuleCounts::default();
     let mut sink = PointSink::new(p);

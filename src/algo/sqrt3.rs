@@ -86,7 +86,7 @@ use crate::algo::subdivision::{
     SubdivisionOptions, SubdivisionReport,
 };
 use crate::error::{Error, Result};
-use crate::layout::{Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};
+use crate::layout::{with_headroom, Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};
 use crate::mesh::Mesh;
 use crate::store::plan::ColumnPlan;
 
@@ -533,9 +533,9 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
         ));
     }
     let mut he: IdVec<Hid, HalfedgeRecord> =
-        IdVec::from_vec(Vec::with_capacity(Eid::halfedge_slots(new_edges)));
+        IdVec::from_vec(with_headroom(Eid::halfedge_slots(new_edges)));
     let mut f_halfedge: IdVec<Fid, FaceLink> =
-        IdVec::from_vec(Vec::with_capacity(c + 2 * b + mesh.hole_count()));
+        IdVec::from_vec(with_headroom(c + 2 * b + mesh.hole_count()));
     let ne_slots = mesh.e_slots.slot_count();
     let mut stage = Stage::new(progress, ALGORITHM, level, "spokes", ne_slots)?;
     // Spokes, in corner order.
@@ -700,7 +700,7 @@ fn build(mesh: &Mesh, l: &Layout, level: u32, progress: &mut Progress<'_>) -> Re
     }
     f_halfedge.extend_from(&holes);
     let nv = l.nv as usize;
-    let mut v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(Vec::with_capacity(nv + faces + 2 * b));
+    let mut v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(with_headroom(nv + faces + 2 * b));
     for vi in 0..nv {
         let v = Vid::new(vi as u32);
         v_halfedge.push(if !mesh.v_slots.is_live(vi) {
@@ -759,7 +759,7 @@ fn positions(
     progress: &mut Progress<'_>,
 ) -> Result<(Vec<[f64; 3]>, MoveCounts)> {
     let nv = l.nv as usize;
-    let mut out = Vec::with_capacity(nv + mesh.face_count() + 2 * l.boundary as usize);
+    let mut out = with_headroom(nv + mesh.face_count() + 2 * l.boundary as usize);
     let alphas: Vec<f64> = (0..64).map(alpha).collect();
     let budget = mesh.he.len();
     let mut counts = MoveCounts::default();

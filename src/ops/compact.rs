@@ -2,7 +2,7 @@
 
 use crate::journal::Unrecorded;
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
-use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, IdVec, Vid};
+use crate::layout::{with_headroom, Eid, Fid, HalfedgeRecord, Hid, IdVec, Vid};
 use crate::mesh::Mesh;
 use crate::slots::Slots;
 
@@ -190,7 +190,9 @@ impl Mesh {
             }
         };
         let nh = Eid::halfedge_slots(e.order.len());
-        let mut he = IdVec::from_vec(Vec::with_capacity(nh));
+        // The new arrays keep the arena's headroom (`layout::headroom`): the
+        // first edit after compacting would otherwise regrow every one.
+        let mut he = IdVec::from_vec(with_headroom(nh));
         let mut h_order = Vec::with_capacity(nh);
         for &old in &e.order {
             for h in Eid::new(old).halfedges() {
@@ -203,29 +205,25 @@ impl Mesh {
                 h_order.push(h.raw());
             }
         }
-        let v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(
+        let mut v_halfedge = with_headroom(v.order.len());
+        v_halfedge.extend(
             v.order
                 .iter()
-                .map(|&old| hnew(self.v_halfedge[Vid::new(old)]))
-                .collect(),
+                .map(|&old| hnew(self.v_halfedge[Vid::new(old)])),
         );
-        let f_halfedge = IdVec::from_vec(
-            f.order
-                .iter()
-                .map(|&old| {
-                    let link = self.f_halfedge[Fid::new(old)];
-                    let h = link.halfedge();
-                    if self.he.contains(h) {
-                        link.with_halfedge(hnew(h))
-                    } else {
-                        link
-                    }
-                })
-                .collect(),
-        );
+        let mut f_halfedge = with_headroom(f.order.len());
+        f_halfedge.extend(f.order.iter().map(|&old| {
+            let link = self.f_halfedge[Fid::new(old)];
+            let h = link.halfedge();
+            if self.he.contains(h) {
+                link.with_halfedge(hnew(h))
+            } else {
+                link
+            }
+        }));
         self.he = he.into();
-        self.v_halfedge = v_halfedge.into();
-        self.f_halfedge = f_halfedge.into();
+        self.v_halfedge = IdVec::<Vid, Hid>::from_vec(v_halfedge).into();
+        self.f_halfedge = IdVec::from_vec(f_halfedge).into();
         if let Some(s) = v.slots {
             self.v_slots = s;
             self.attrs.vertex.permute(&v.order);

@@ -527,10 +527,9 @@ where
     }
 
     fn permute(&mut self, order: &[u32]) {
-        let values: Vec<T> = order
-            .iter()
-            .map(|&i| self.values[i as usize].clone())
-            .collect();
+        // With the arena's headroom, as the arrays `compact` rebuilds.
+        let mut values = crate::layout::with_headroom(order.len());
+        values.extend(order.iter().map(|&i| self.values[i as usize].clone()));
         let present = self.present.as_ref().map(|_| {
             let mut bits = vec![0u64; order.len().div_ceil(64)];
             for (new, &old) in order.iter().enumerate() {
@@ -551,7 +550,8 @@ where
 
     fn rebuilt(&self, plan: &ColumnPlan) -> Box<dyn ErasedColumn> {
         let n = plan.sources.len();
-        let mut values = Vec::with_capacity(n);
+        // With the arena's headroom, as the arrays the rebuild makes.
+        let mut values = crate::layout::with_headroom(n);
         let mut bits = vec![0u64; n.div_ceil(64)];
         let mut absent = 0usize;
         let entries = &plan.entries;

@@ -32,7 +32,7 @@
 //! slot order, into arenas reserved at their final size.
 
 use crate::error::Result;
-use crate::layout::{Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};
+use crate::layout::{with_headroom, Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};
 use crate::mesh::Mesh;
 use crate::slots::Slots;
 
@@ -318,9 +318,9 @@ pub(crate) fn refine(
     // ----- faces: the records of the new inside edges, in corner order ----
     let new_edges = corners + 2 * edges;
     let mut he: IdVec<Hid, HalfedgeRecord> =
-        IdVec::from_vec(Vec::with_capacity(Eid::halfedge_slots(new_edges)));
+        IdVec::from_vec(with_headroom(Eid::halfedge_slots(new_edges)));
     let max_faces = corners + mesh.face_count() + mesh.hole_count();
-    let mut f_halfedge: IdVec<Fid, FaceLink> = IdVec::from_vec(Vec::with_capacity(max_faces));
+    let mut f_halfedge: IdVec<Fid, FaceLink> = IdVec::from_vec(with_headroom(max_faces));
     let mut centers: Vec<FaceLink> = Vec::new();
     let mut hole_links: Vec<FaceLink> = Vec::with_capacity(mesh.hole_count());
     let mut face_point_links: Vec<Hid> = Vec::new();
@@ -426,7 +426,7 @@ pub(crate) fn refine(
     f_halfedge.extend_from(&hole_links);
 
     // ----- vertices: the parent's keep their slots ---------------------------
-    let mut v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(Vec::with_capacity(r.vertex_slots()));
+    let mut v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(with_headroom(r.vertex_slots()));
     for vi in 0..nv {
         let v = Vid::new(vi as u32);
         v_halfedge.push(if mesh.v_slots.is_live(vi) {
