@@ -269,6 +269,47 @@ impl Slots {
         self.state <= State::Pristine
     }
 
+    /// Which slots of `range` are live, as run lengths alternating live,
+    /// vacant, live, ... (the first run may be empty), appended to `runs`.
+    /// Reads the generations' parity a run at a time (a tight scan, no
+    /// per-slot state test).
+    pub(crate) fn live_runs(&self, range: std::ops::Range<u32>, runs: &mut Vec<u32>) {
+        let (start, end) = (range.start as usize, range.end as usize);
+        if self.state == State::Intact || self.implied() {
+            // Every slot below the count is live.
+            runs.push((end.min(self.slots).saturating_sub(start)) as u32);
+            if end > self.slots {
+                runs.push((end - self.slots.max(start)) as u32);
+            }
+            return;
+        }
+        let gens = self.generations.get(start..end).unwrap_or(&[]);
+        let mut live = true;
+        let mut at = 0;
+        loop {
+            let rest = &gens[at..];
+            let run = rest
+                .iter()
+                .position(|&g| (g & 1 == 1) != live)
+                .unwrap_or(rest.len());
+            runs.push(run as u32);
+            at += run;
+            if at == gens.len() {
+                break;
+            }
+            live = !live;
+        }
+        // Slots past the generations (none in practice) are vacant.
+        let missing = (end - start) - gens.len();
+        if missing > 0 {
+            if live {
+                runs.push(missing as u32);
+            } else if let Some(last) = runs.last_mut() {
+                *last += missing as u32;
+            }
+        }
+    }
+
     /// Whether slot `i` is occupied.
     #[inline]
     pub(crate) fn is_live(&self, i: usize) -> bool {
@@ -737,6 +778,40 @@ mod tests {
         // A new slot starts at the base, above every key issued before.
         let mut c = c;
         assert_eq!(c.alloc(), (2, 5, true));
+    }
+
+    /// `live_runs` as a slot-by-slot scan would give it.
+    fn runs_by_scan(s: &Slots, range: std::ops::Range<u32>) -> Vec<u32> {
+        let (mut runs, mut live, mut run) = (Vec::new(), true, 0u32);
+        for i in range {
+            if s.is_live(i as usize) != live {
+                runs.push(run);
+                run = 0;
+                live = !live;
+            }
+            run += 1;
+        }
+        runs.push(run);
+        runs
+    }
+
+    #[test]
+    fn live_runs_alternate_from_live() {
+        let mut s = Slots::full(10);
+        let mut runs = Vec::new();
+        s.live_runs(2..10, &mut runs);
+        assert_eq!(runs, [8]);
+        for i in [0, 3, 4, 9] {
+            s.free(i);
+        }
+        for range in [0..10, 2..10, 3..5, 5..9, 9..10, 4..4] {
+            let mut runs = Vec::new();
+            s.live_runs(range.clone(), &mut runs);
+            assert_eq!(runs, runs_by_scan(&s, range.clone()), "{range:?}");
+        }
+        let mut runs = Vec::new();
+        s.live_runs(0..10, &mut runs);
+        assert_eq!(runs, [0, 1, 2, 2, 4, 1]);
     }
 
     #[test]

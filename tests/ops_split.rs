@@ -215,3 +215,31 @@ fn poke_faces_everywhere() {
     let hole = m.holes().next().unwrap();
     assert!(checked(&mut m, |m| m.poke_face(hole)).is_err());
 }
+
+#[test]
+fn collapsing_the_poked_vertex_gives_the_triangle_back() {
+    // Every triangle of an icosahedron and of a fan with a boundary: the
+    // face, its half-edges and its corners keep their keys, so an edit
+    // made of pokes and collapses back leaves the mesh as it was.
+    for mut m in [meshloom::shapes::icosahedron(), one_ring()] {
+        let faces: Vec<_> = m.faces().collect();
+        for f in faces {
+            let sides: Vec<_> = m.face(f).unwrap().halfedges().collect();
+            let corners: Vec<_> = m.face(f).unwrap().vertices().collect();
+            let positions: Vec<_> = corners.iter().map(|&v| m.position(v).unwrap()).collect();
+            let (v0, e0, f0, h0) = counts(&m);
+            let c = checked(&mut m, |m| m.poke_face(f)).unwrap();
+            let h = m.vertex(c).unwrap().halfedge().key();
+            checked(&mut m, |m| m.collapse_edge(h)).unwrap();
+            assert!(m.vertex(c).is_err());
+            let back: Vec<_> = m.face(f).unwrap().halfedges().collect();
+            assert_eq!(back, sides, "face {f:?} came back with other half-edges");
+            let again: Vec<_> = m.face(f).unwrap().vertices().collect();
+            assert_eq!(again, corners);
+            for (v, p) in corners.iter().zip(&positions) {
+                assert_eq!(m.position(*v).unwrap(), *p);
+            }
+            assert_eq!(counts(&m), (v0, e0, f0, h0));
+        }
+    }
+}

@@ -273,22 +273,6 @@ fn slots_of_arena<'a>(v: &'a Slots, e: &'a Slots, f: &'a Slots, a: usize) -> &'a
     }
 }
 
-/// Which slots of `range` are live, as run lengths alternating live,
-/// vacant, live, ... (the first run may be empty), appended to `runs`.
-fn born_runs(slots: &Slots, range: std::ops::Range<u32>, runs: &mut Vec<u32>) {
-    let mut live = true;
-    let mut run = 0u32;
-    for i in range {
-        if slots.is_live(i as usize) != live {
-            runs.push(run);
-            run = 0;
-            live = !live;
-        }
-        run += 1;
-    }
-    runs.push(run);
-}
-
 /// The generation of slot `i` (0: never allocated).
 fn gen(m: &Mesh, a: usize, i: u32) -> u32 {
     slots_of(m, a).generation(i as usize).unwrap_or(0)
@@ -441,11 +425,8 @@ impl Mesh {
                 if counts[a] > r.start[a] {
                     step.births[a] = (r.start[a], counts[a] - r.start[a]);
                     if r.born_deaths[a] > 0 {
-                        born_runs(
-                            slots_of_arena(&self.v_slots, &self.e_slots, &self.f_slots, a),
-                            r.start[a]..counts[a],
-                            &mut step.born_live[a],
-                        );
+                        slots_of_arena(&self.v_slots, &self.e_slots, &self.f_slots, a)
+                            .live_runs(r.start[a]..counts[a], &mut step.born_live[a]);
                     }
                 }
                 r.born_deaths[a] = 0;

@@ -348,7 +348,11 @@ impl Mesh {
     ///   v0 ------ v1        v0 ------ v1
     /// ```
     ///
-    /// Returns `c`; `f` becomes the triangle on `f`'s first half-edge.
+    /// Returns `c`; `f` becomes the triangle on `f`'s first half-edge. `c`
+    /// names its half-edge to the last corner, so that collapsing that
+    /// half-edge ([`collapse_edge`](Mesh::collapse_edge) of `c`'s
+    /// half-edge) dissolves the two triangles beside it and gives a poked
+    /// triangle back exactly: `f` and its half-edges keep their keys.
     /// Attributes: `c = interpolate(corners, equal weights)` (positions: the
     /// centroid); the face splits over the triangles by area; corners at `c`
     /// interpolate the old corners, the others copy theirs. χ is unchanged.
@@ -423,7 +427,10 @@ impl Mesh {
             };
             self.fresh_face_link(face, h);
         }
-        *self.fresh_v_halfedge_mut(c) = buf[0].spoke.halfedge(0);
+        // c names its spoke to the last corner: collapsing that half-edge
+        // dissolves the last two triangles and leaves `f` (on the first),
+        // so `collapse_edge` of it gives back a poked triangle exactly.
+        *self.fresh_v_halfedge_mut(c) = buf[n - 1].spoke.halfedge(0);
         // Attributes.
         let w = 1.0 / n as f64;
         if !self.attrs.vertex.cols.is_empty() {
