@@ -4,9 +4,10 @@
 //! open step to any slot of a page copies the whole page (its values as
 //! the step found them) into the log; every later write to that page costs
 //! one load and a compare against a small per-page table. Sealing walks the
-//! copied pages in slot order and hands out every slot's old value, for the
-//! caller to diff against the live array: no per-write push, no sort of
-//! per-slot entries, and the output comes out ascending by slot.
+//! copied pages in slot order against the live array and hands out the old
+//! value of every slot that changed (a page equal to its copy is passed
+//! over in one slice compare): no per-write push, no sort of per-slot
+//! entries, and the output comes out ascending by slot.
 //!
 //! Dense edits (an algorithm that touches most of the mesh) then cost about
 //! one `memcpy` of the touched pages; sparse edits cost one page per slot
@@ -87,16 +88,22 @@ impl<T: Copy> PageLog<T> {
     }
 
     /// How many slots the copied pages hold (an upper bound on what
-    /// [`drain_ascending`](Self::drain_ascending) hands out).
+    /// [`drain_changed`](Self::drain_changed) hands out).
     #[inline]
     pub(crate) fn saved_slots(&self) -> usize {
         self.copies.len()
     }
 
     /// Hand `f` every saved slot (those below `limit` on the copied pages)
-    /// with its value as the open step found it, ascending by slot, and
-    /// forget them (capacity stays for the next step).
-    pub(crate) fn drain_ascending(&mut self, limit: u32, mut f: impl FnMut(u32, T)) {
+    /// whose value in `live` differs from the value the open step found,
+    /// with that old value, ascending by slot, and forget the copies
+    /// (capacity stays for the next step). A page equal to its copy is
+    /// passed over in one slice compare: a step that puts most values
+    /// back (an edit undone by hand) costs a scan, not a call per slot.
+    pub(crate) fn drain_changed(&mut self, limit: u32, live: &[T], mut f: impl FnMut(u32, T))
+    where
+        T: PartialEq,
+    {
         if self.order.is_empty() {
             return;
         }
@@ -108,8 +115,14 @@ impl<T: Copy> PageLog<T> {
             let start = (p as usize) << PAGE_SHIFT;
             let n = PAGE.min(limit as usize - start);
             let copy = &self.copies[k * PAGE..k * PAGE + n];
-            for (j, &old) in copy.iter().enumerate() {
-                f((start + j) as u32, old);
+            let now = &live[start..start + n];
+            if copy == now {
+                continue;
+            }
+            for (j, (&old, cur)) in copy.iter().zip(now).enumerate() {
+                if old != *cur {
+                    f((start + j) as u32, old);
+                }
             }
         }
         self.order.clear();
@@ -122,7 +135,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn oldest_value_per_slot_ascending_below_the_limit() {
+    fn oldest_value_of_each_changed_slot_ascending_below_the_limit() {
         let mut live: Vec<u32> = (0..200).collect();
         let limit = 150;
         let mut log = PageLog::default();
@@ -131,19 +144,19 @@ mod tests {
             log.save(i, limit, &live);
             live[i as usize] += 1000;
         }
+        // A slot written back to its old value is not handed out.
+        log.save(72, limit, &live);
         let mut out = Vec::new();
-        log.drain_ascending(limit, |i, old| out.push((i, old)));
-        // Whole pages come back (pages 0, 2 and 4, the last cut at 150),
-        // each slot with its value before the first write.
-        let pages: Vec<u32> = (0..32).chain(64..96).chain(128..150).collect();
-        assert_eq!(out.iter().map(|e| e.0).collect::<Vec<_>>(), pages);
-        assert!(out.iter().all(|&(i, old)| old == i));
+        log.drain_changed(limit, &live, |i, old| out.push((i, old)));
+        // Each changed slot below the limit, with its value before the
+        // first write.
+        assert_eq!(out, [(3, 3), (70, 70), (71, 71), (140, 140), (149, 149)]);
         // The log is empty again, and a new step starts afresh.
         assert!(log.is_empty());
         log.save(3, limit, &live);
+        live[3] = 7;
         let mut again = Vec::new();
-        log.drain_ascending(limit, |i, old| again.push((i, old)));
-        assert_eq!(again.len(), PAGE);
-        assert_eq!(again[3], (3, 2003));
+        log.drain_changed(limit, &live, |i, old| again.push((i, old)));
+        assert_eq!(again, [(3, 2003)]);
     }
 }

@@ -385,27 +385,19 @@ impl Mesh {
                 }
             }
         }
-        // Links: the saved pages' old values, ascending by slot; keep the
-        // fields that changed.
+        // Links: the saved pages' old values that changed, ascending by
+        // slot.
         {
             let r = self.rec.as_deref_mut().expect("no recorder");
             let [v0, _, f0] = r.start;
             // Room for every saved slot at once (no regrowth of a large step).
             step.vh.reserve(r.vh.saved_slots());
             step.fl.reserve(r.fl.saved_slots());
-            let live = &self.v_halfedge;
-            r.vh.drain_ascending(v0, |v, old| {
-                let v = Vid::new(v);
-                if live[v] != old {
-                    step.vh.push((v, old));
-                }
+            r.vh.drain_changed(v0, self.v_halfedge.as_slice(), |v, old| {
+                step.vh.push((Vid::new(v), old));
             });
-            let live = &self.f_halfedge;
-            r.fl.drain_ascending(f0, |f, old| {
-                let f = Fid::new(f);
-                if live[f] != old {
-                    step.fl.push((f, old));
-                }
+            r.fl.drain_changed(f0, self.f_halfedge.as_slice(), |f, old| {
+                step.fl.push((Fid::new(f), old));
             });
         }
         let counts = [
@@ -449,7 +441,7 @@ impl Mesh {
             let r = self.rec.as_deref_mut().expect("no recorder");
             step.he.reserve(r.he.saved_slots());
             let live = &self.he;
-            r.he.drain_ascending(r.start[1] * 2, |h, old| {
+            r.he.drain_changed(r.start[1] * 2, live.as_slice(), |h, old| {
                 let h = Hid::new(h);
                 if let Some(mask) = changed_fields(live[h], old) {
                     step.he.push((h, mask, old));
@@ -534,7 +526,7 @@ impl Mesh {
                 step,
                 &mut r.undo.bytes,
                 Some((max, &mut |body: &mut Vec<u8>, w: &mut codec::HeWriter| {
-                    pages.drain_ascending(e0, |h, old| {
+                    pages.drain_changed(e0, live.as_slice(), |h, old| {
                         let h = Hid::new(h);
                         if let Some(mask) = changed_fields(live[h], old) {
                             w.push(body, h, mask, old);
