@@ -22,21 +22,34 @@ pub(crate) const PAGE: usize = 1 << PAGE_SHIFT;
 /// The old values of the pages the open step wrote.
 #[derive(Debug)]
 pub(crate) struct PageLog<T> {
-    /// Per page: 1 + the ordinal of its copy in `copies` (0: not copied in
+    /// Per page: 1 + the ordinal of its copy in `blocks` (0: not copied in
     /// the open step). Grows on demand; cleared entry by entry.
     map: Vec<u32>,
     /// Copied page numbers, in the order they were first written.
     order: Vec<u32>,
-    /// [`PAGE`] values per copied page, in `order`'s order.
-    copies: Vec<T>,
+    /// [`PAGE`] values per copied page, in `order`'s order, in blocks of
+    /// [`BLOCK`] pages (copy `k` is page `k % BLOCK` of block `k / BLOCK`).
+    blocks: Vec<Vec<T>>,
+    /// Values held in `blocks`.
+    len: usize,
 }
+
+/// Pages per block of copies (48 KiB of half-edge records). The copies
+/// of a dense step come in blocks, not one buffer of the whole array's
+/// size: measured on the 250k grid's `journal` row (2026-11-27, one
+/// process running every ml_bench workload first), one 18 MB buffer took
+/// fresh, page-faulting memory and pushed the mesh's own growth there too
+/// (journal on / off 1.31 to 1.62); blocks fit the heap's free space
+/// (1.17 to 1.21).
+const BLOCK: usize = 128;
 
 impl<T> Default for PageLog<T> {
     fn default() -> Self {
         PageLog {
             map: Vec::new(),
             order: Vec::new(),
-            copies: Vec::new(),
+            blocks: Vec::new(),
+            len: 0,
         }
     }
 }
@@ -62,23 +75,21 @@ impl<T: Copy> PageLog<T> {
         if p >= self.map.len() {
             self.map.resize((p + 1).next_power_of_two(), 0);
         }
-        if self.order.is_empty() {
-            // Room for every page below `limit` at once: a dense step then
-            // never regrows (and re-faults) a large buffer by doubling;
-            // pages never written are never touched (capacity stays for
-            // the next step).
-            self.copies.reserve((limit as usize).div_ceil(PAGE) * PAGE);
+        let k = self.order.len();
+        if k / BLOCK == self.blocks.len() {
+            self.blocks.push(Vec::with_capacity(BLOCK * PAGE));
         }
         self.order.push(p as u32);
         self.map[p] = self.order.len() as u32;
         let start = p << PAGE_SHIFT;
         let end = (start + PAGE).min(limit as usize);
-        self.copies.extend_from_slice(&live[start..end]);
+        let block = &mut self.blocks[k / BLOCK];
+        block.extend_from_slice(&live[start..end]);
         if end - start < PAGE {
             let pad = live[start];
-            self.copies
-                .resize(self.copies.len() + PAGE - (end - start), pad);
+            block.resize(block.len() + PAGE - (end - start), pad);
         }
+        self.len += PAGE;
     }
 
     /// Whether no page was copied in the open step.
@@ -91,7 +102,7 @@ impl<T: Copy> PageLog<T> {
     /// [`drain_changed`](Self::drain_changed) hands out).
     #[inline]
     pub(crate) fn saved_slots(&self) -> usize {
-        self.copies.len()
+        self.len
     }
 
     /// Hand `f` every saved slot (those below `limit` on the copied pages)
@@ -114,7 +125,8 @@ impl<T: Copy> PageLog<T> {
             self.map[p as usize] = 0;
             let start = (p as usize) << PAGE_SHIFT;
             let n = PAGE.min(limit as usize - start);
-            let copy = &self.copies[k * PAGE..k * PAGE + n];
+            let at = (k % BLOCK) * PAGE;
+            let copy = &self.blocks[k / BLOCK][at..at + n];
             let now = &live[start..start + n];
             if copy == now {
                 continue;
@@ -126,7 +138,8 @@ impl<T: Copy> PageLog<T> {
             }
         }
         self.order.clear();
-        self.copies.clear();
+        self.blocks.iter_mut().for_each(Vec::clear);
+        self.len = 0;
     }
 }
 
@@ -158,5 +171,26 @@ mod tests {
         let mut again = Vec::new();
         log.drain_changed(limit, &live, |i, old| again.push((i, old)));
         assert_eq!(again, [(3, 2003)]);
+    }
+
+    #[test]
+    fn copies_span_several_blocks() {
+        let n = (2 * BLOCK + 3) * PAGE + 5;
+        let mut live: Vec<u32> = (0..n as u32).collect();
+        let limit = n as u32;
+        let mut log = PageLog::default();
+        // Every page written, last page first, so copies sit out of order
+        // across three blocks; one slot per page changes.
+        let written: Vec<u32> = (0..n as u32).step_by(PAGE).rev().collect();
+        for &i in &written {
+            log.save(i, limit, &live);
+            live[i as usize] += 1;
+        }
+        assert_eq!(log.saved_slots(), n.div_ceil(PAGE) * PAGE);
+        let mut out = Vec::new();
+        log.drain_changed(limit, &live, |i, old| out.push((i, old)));
+        let expected: Vec<(u32, u32)> = written.iter().rev().map(|&i| (i, i)).collect();
+        assert_eq!(out, expected);
+        assert_eq!(log.saved_slots(), 0);
     }
 }
