@@ -56,57 +56,54 @@
 //!
 //! # Cost
 //!
-//! Measured with `examples/ml_bench.rs` on the 250 000-vertex grid (the
-//! `journal` row: every face poked 1-to-3, then every new vertex collapsed
-//! back, 996 004 operators, as one [`Mesh::step`]; 2026-11-27, medians of 7
-//! rounds that alternate off and on in one process, on a noisy 2-core
-//! machine shared with other builds, load 3 to 4, where single runs spread
-//! widely): with history on, the run takes 1.30 times as long as with the
-//! journal off, sealing included (median of 10 runs; single runs gave 1.02
-//! to 1.58, the least loaded one 1.27; before that day's two changes below,
-//! 1.25 to 1.56 on the same machine, median 1.46); the undo log holds 6.2
-//! bytes per operator (its capacity); undoing the whole run takes 0.19 to
-//! 0.28 of the time the run took. The same day's `compare.sh` run (9 cold
-//! processes of 5 rounds each, the machine otherwise idle but the host
-//! slow and uneven) put the grid's ratio higher: median 1.70 (1.51 to
-//! 1.93); on the icosphere(7) 1.21 (1.06 to 1.34). So 1.3 is not yet
-//! met reliably. In instructions (callgrind, the same work
-//! on a 40 000-vertex grid, one round) the recording adds 12 % to the
-//! operators' own count (229.1 M off, 257.5 M on) and the seal 14 % (33.2
-//! M: walking the copied pages, encoding, and 7 M reading which new slots
-//! died); the rest of the gap is memory the step fills for the first time
-//! (page copies, the log's bytes: page faults). With the journal off,
-//! `flip_back` and `split_collapse_checked` execute as many instructions as
-//! before the journal existed (callgrind, within 2 %).
+//! Measured with `examples/ml_bench.rs`'s `journal` row: every face of the
+//! 250 000-vertex grid poked 1-to-3, then every new vertex collapsed back
+//! through its half-edge (996 004 operators) as one [`Mesh::step`], with
+//! the journal off and on alternating in one process, 5 rounds, the
+//! step's seal included. In the `compare.sh` run of 2026-11-27 12:16 UTC (9
+//! cold processes, each running every workload first) the on/off ratio's
+//! median was 1.19 on the grid (1.12 to 1.31) and 1.14 on the
+//! icosphere(7) (1.10 to 1.16). In instructions (callgrind, the same work
+//! on a 40 000-vertex grid, one round) it is 1.14: the recording in the
+//! operators adds 11 % (233.2 M off, 258.5 M on), the seal 3 % (6.9 M).
+//! The run is net-zero (a poked triangle comes back with its own keys
+//! when its vertex is collapsed, see [`Mesh::poke_face`]), so the undo log
+//! holds only the corners' re-pointed half-edges: 0.8 bytes per operator,
+//! and undoing the whole run takes 0.02 of the time the run took. A run
+//! that leaves a real delta (each vertex collapsed through another spoke,
+//! so a new face replaces every poked one: 7.0 bytes per operator) gave
+//! 1.15 to 1.27 the same hour; undoing it 0.22 to 0.31 of the run. With
+//! the journal off, `flip_back` and `split_collapse_checked` execute as
+//! many instructions as before the journal existed (callgrind, within
+//! 2 %).
 //!
-//! What the two changes of 2026-11-27 did: a column merge (a collapse
-//! merging its survivor) saves the slot's old value only when the merged
-//! value differs from it, by
-//! [`Attribute::same_value`](crate::attr::Attribute::same_value), the
-//! seal's own test. A collapse at weight 1 leaves the survivor's
-//! position as it was: it saved every one before, into a vector that grew
-//! by doubling through the run (page faults), for the seal to drop them
-//! again, and the kept record held that vector's capacity (of the 23.0
-//! bytes per operator, 6.2 were the log, the rest that capacity). And
+//! The same day began at 1.70 in that run (1.26 to 1.31 in processes
+//! running fewer workloads; 1.264 in instructions). What closed the gap:
+//! the seal hands out only the slots that changed, passing an unchanged
+//! page in one slice compare (`PageLog::drain_changed`), and reads which
+//! new slots are live sixteen generations at a time (`Slots::live_runs`):
+//! the seal went from 33.7 M to 6.9 M instructions. The page copies come
+//! in blocks of 128 pages, not one buffer of the array's size, which took
+//! fresh, page-faulting memory and pushed the mesh's own growth there too
+//! (1.31 to 1.62 -> 1.17 to 1.21 in a process running every workload).
+//! Earlier that day: a column merge (a collapse merging its survivor)
+//! saves the slot's old value only when the merged value differs from it
+//! ([`Attribute::same_value`](crate::attr::Attribute::same_value)), and
 //! writes to slots the running operator allocated itself record nothing
-//! (`fresh_he_mut` and its siblings in `hooks.rs`, used by `poke_face`): a
-//! slot born in the open step is never saved, and a reused one had its
-//! page saved when `alloc_*` cleared it. Tried the same day, no gain (so
-//! not kept): encoding the half-edge records a page at a time through a
-//! stack buffer (seal 33.2 M -> 35.2 M instructions), and reading the new
-//! slots' liveness straight from the generations (7.0 M -> 7.5 M: the
-//! pushes of the run lengths dominate, one per poked face here).
+//! (`fresh_he_mut` and its siblings in `hooks.rs`). Tried and not kept:
+//! encoding the half-edge records a page at a time through a stack buffer
+//! (more instructions).
 //!
 //! A link write saves its slot's whole page of the link array (32 slots)
 //! on the first write to that page in the open step; later writes to the
 //! page cost one table lookup. The seal walks the copied pages in slot
-//! order and keeps the fields that differ from the live arrays, so a dense
-//! edit costs about a copy of the pages it touched, and a sparse one at
-//! most a page per slot written. While the step is kept and no change
-//! tracking reads the records, the half-edge records go straight from the
-//! copied pages into the undo log, with no vector of their own; the page
-//! copies and the log reserve a step's room at once (no regrowth by
-//! doubling, which would copy and fault a large buffer again).
+//! order and keeps the slots, and of a half-edge the fields, that differ
+//! from the live arrays, so a dense edit costs about a copy of the pages
+//! it touched, and a sparse one at most a page per slot written. While the
+//! step is kept and no change tracking reads the records, the half-edge
+//! records go straight from the copied pages into the undo log, with no
+//! vector of their own; the log reserves a step's room at once (no
+//! regrowth by doubling, which would copy and fault a large buffer again).
 //!
 //! Slots created in the open step are never saved, and their removals and
 //! reuses in that step record nothing: a poke collapsed back in the same
