@@ -40,7 +40,7 @@
 //! region and its `k − 1` rings, the fixed vertices within `k` rings as
 //! constraints), so fairing a small patch of a large mesh costs what the
 //! patch costs (a mask is still read once over all vertices).
-//! [`fill_hole`](super::fill_hole) fairs each patch through the same system.
+//! [`fill_hole`](mod@super::fill_hole) fairs each patch through the same system.
 //!
 //! ```
 //! use meshloom::algo::fair::{fair, FairOptions, FairRegion};

@@ -3,19 +3,19 @@
 //!
 //! | module | what | results |
 //! |---|---|---|
-//! | [`decimate`] | quadric error edge collapse to a count, ratio or error, with guards and kept lines (boundaries, UV seams, materials, features) | [`DecimateReport`] |
+//! | [`decimate`](mod@decimate) | quadric error edge collapse to a count, ratio or error, with guards and kept lines (boundaries, UV seams, materials, features) | [`DecimateReport`] |
 //! | [`progress`] | the progress-and-cancel callback every long algorithm takes | [`Progress`], [`Error::Cancelled`](crate::Error::Cancelled) |
 //! | [`laplacian`] | the cotangent (or uniform) Laplacian and the mixed-Voronoi mass matrix, the building blocks below | [`laplacian::Laplacian`] (sparse, by vertex slot), `Vec` of areas |
 //! | [`curvature`] | mean, Gaussian and principal curvatures (cotangent Laplacian, angle defect) | `Vec`s by slot, or vertex columns |
 //! | [`smooth`] | explicit (uniform, cotangent), Taubin and implicit smoothing, with a boundary and a vertex mask kept fixed | the mesh's positions, [`smooth::SmoothReport`] |
-//! | [`fill_hole`] | Liepa's hole filling: the least-weight triangulation of each hole, refined to the rim's edge length and faired (k-harmonic) over the patch | the mesh, [`FillHoleReport`] |
+//! | [`fill_hole`](mod@fill_hole) | Liepa's hole filling: the least-weight triangulation of each hole, refined to the rim's edge length and faired (k-harmonic) over the patch | the mesh, [`FillHoleReport`] |
 //! | [`fair`] | the smoothest (k-harmonic, k = 1..3) surface over a region with its surroundings fixed | the mesh's positions, [`fair::FairReport`] |
 //! | [`subdivision`] | what the schemes share: options (levels, boundary, creases, per-column vertex/varying data), the report | [`SubdivisionOptions`], [`SubdivisionReport`] |
 //! | [`loop_subdivision`] | Loop subdivision of triangle meshes, semi-sharp creases | the mesh, rebuilt wholesale |
-//! | [`catmull_clark`] | Catmull-Clark subdivision of any polygons, semi-sharp creases | the mesh, rebuilt wholesale |
+//! | [`catmull_clark`](mod@catmull_clark) | Catmull-Clark subdivision of any polygons, semi-sharp creases | the mesh, rebuilt wholesale |
 //! | [`sqrt3`] | Kobbelt's sqrt(3) subdivision | the mesh, rebuilt wholesale |
 //! | [`midpoint`] | linear subdivision: triangles 1-to-4, other polygons to quads | the mesh, rebuilt wholesale |
-//! | [`remesh`] | isotropic remeshing (Botsch-Kobbelt): split, collapse, flip, tangential relaxation, projection onto the input through a BVH; uniform or curvature-adaptive length; boundaries and features kept; UVs resampled per seam side | the mesh, handed over wholesale; [`RemeshReport`] |
+//! | [`remesh`](mod@remesh) | isotropic remeshing (Botsch-Kobbelt): split, collapse, flip, tangential relaxation, projection onto the input through a BVH; uniform or curvature-adaptive length; boundaries and features kept; UVs resampled per seam side | the mesh, handed over wholesale; [`RemeshReport`] |
 //! | [`normals`] | face normals; vertex normals weighted by angle, area or uniformly; corner (half-edge) normals split at creases and hard edges | plain `Vec`s indexed by slot, or attribute columns named [`normals::NORMAL`] |
 //!
 //! The hot loops (the Laplacian, curvature, smoothing, fairing and vertex

@@ -1,23 +1,25 @@
 //! Engine buffers: a mesh as flat triangle arrays for a renderer or a game
 //! engine, and back.
 //!
-//! [`Mesh::to_triangle_buffers`] gives `f32` positions, optional normals,
-//! any chosen vertex or corner columns (UVs, colours) as flat arrays, and
-//! triangle indices (`u16` when they fit, else `u32`). A mesh vertex is
-//! split into several buffer vertices exactly where the chosen corner
-//! columns or the normals differ between its corners (a UV seam, a crease,
-//! a hard edge), compared at the output precision; everywhere else its
-//! corners share one buffer vertex. Polygons are cut into triangles for the
-//! output by the crate's own ear clipping
-//! ([`Mesh::triangulate`](crate::Mesh::triangulate), run on a copy: the mesh
-//! is not changed). [`Mesh::to_triangle_buffers_f64`] gives the same in
-//! `f64`.
+//! [`Mesh::to_triangle_buffers`](crate::Mesh::to_triangle_buffers) gives
+//! `f32` positions, optional normals, any chosen vertex or corner columns
+//! (UVs, colours) as flat arrays, and triangle indices (`u16` when they
+//! fit, else `u32`). A mesh vertex is split into several buffer vertices
+//! exactly where the chosen corner columns or the normals differ between
+//! its corners (a UV seam, a crease, a hard edge), compared at the output
+//! precision; everywhere else its corners share one buffer vertex.
+//! Polygons are cut into triangles for the output by the crate's own ear
+//! clipping ([`Mesh::triangulate`](crate::Mesh::triangulate), run on a
+//! copy: the mesh is not changed).
+//! [`Mesh::to_triangle_buffers_f64`](crate::Mesh::to_triangle_buffers_f64)
+//! gives the same in `f64`.
 //!
-//! [`Mesh::from_triangle_buffers`] goes back: buffer vertices are welded by
-//! position (exactly, or within a tolerance, [`Weld`]), and columns come
-//! back as columns: a corner column (and the normals) as half-edge values,
-//! so a UV seam becomes corner values that differ across an edge; a vertex
-//! column as a vertex column where all copies of a welded vertex agree.
+//! [`Mesh::from_triangle_buffers`](crate::Mesh::from_triangle_buffers) goes
+//! back: buffer vertices are welded by position (exactly, or within a
+//! tolerance, [`Weld`]), and columns come back as columns: a corner column
+//! (and the normals) as half-edge values, so a UV seam becomes corner
+//! values that differ across an edge; a vertex column as a vertex column
+//! where all copies of a welded vertex agree.
 //!
 //! Every array is a `Vec` of `f32`/`f64`, `[f32; 3]`, `u16` or `u32`: plain
 //! data that `bytemuck::cast_slice` turns into bytes, so a GPU buffer or an
@@ -174,7 +176,8 @@ pub enum IndexWidth {
     U32,
 }
 
-/// What [`Mesh::to_triangle_buffers`] puts in the buffers.
+/// What [`Mesh::to_triangle_buffers`](crate::Mesh::to_triangle_buffers)
+/// puts in the buffers.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TriangleBufferOptions {
     /// Corner normals and where they split (`None`: no normals). Default:

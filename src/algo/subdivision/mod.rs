@@ -4,7 +4,7 @@
 //!
 //! The schemes themselves live one per file beside this folder:
 //! [`loop_subdivision`](crate::algo::loop_subdivision),
-//! [`catmull_clark`](crate::algo::catmull_clark),
+//! [`catmull_clark`](mod@crate::algo::catmull_clark),
 //! [`sqrt3`](crate::algo::sqrt3) and [`midpoint`](crate::algo::midpoint).
 //!
 //! # How a level is built
