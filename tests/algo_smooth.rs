@@ -404,11 +404,30 @@ fn implicit_smoothing_of_real_meshes_validates() {
     }
 }
 
+/// A closed double cone: two apexes of degree `n` over a ring of `n`
+/// vertices (degree 4), the ring wavy so that nothing is symmetric.
+fn bipyramid(n: u32) -> Mesh {
+    let mut p = vec![[0.0, 0.0, 1.3], [0.1, -0.2, -0.9]];
+    for k in 0..n {
+        let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
+        p.push([a.cos(), a.sin(), 0.1 * (3.0 * a).sin()]);
+    }
+    let mut faces = Vec::new();
+    for k in 0..n {
+        let (a, b) = (2 + k, 2 + (k + 1) % n);
+        faces.push([0, a, b]);
+        faces.push([1, b, a]);
+    }
+    Mesh::from_polygons(&p, &faces).unwrap()
+}
+
 #[test]
 fn one_uniform_step_with_lambda_one_is_the_neighbours_mean() {
-    // On a noisy grid (boundary fixed) and a noisy sphere: each moving
-    // vertex lands on the mean of its neighbours' old positions, to the
-    // rounding of the sum; boundary vertices do not move at all.
+    // On a noisy grid (boundary fixed), a noisy sphere and double cones
+    // whose apexes have 254, 255 and 300 neighbours (the smoother keeps a
+    // degree of 255 or more apart): each moving vertex lands on the mean of
+    // its neighbours' old positions, to the rounding of the sum; boundary
+    // vertices do not move at all.
     let mut grid = shapes::grid(7, 6, GridFaces::Triangles);
     let mut seed = 7u64;
     let vs: Vec<_> = grid.vertices().collect();
@@ -417,7 +436,8 @@ fn one_uniform_step_with_lambda_one_is_the_neighbours_mean() {
         p[2] = noise(&mut seed);
         grid.set_position(v, p).unwrap();
     }
-    for mut m in [grid, noisy_sphere(2, 0.05)] {
+    let cones = [254, 255, 300].map(bipyramid);
+    for mut m in [grid, noisy_sphere(2, 0.05)].into_iter().chain(cones) {
         let before: Vec<_> = m.vertices().map(|v| m.position(v).unwrap()).collect();
         let expected: Vec<_> = m
             .vertices()
