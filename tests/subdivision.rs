@@ -335,6 +335,120 @@ fn catmull_clark_stencils_on_a_cube() {
     }
 }
 
+/// A noisy icosphere with poked faces (valences 3 to 8), three faces
+/// removed (holes) and two edges collapsed (dead vertex, edge and face
+/// slots, not compacted).
+fn irregular_mesh_with_holes() -> Mesh {
+    let mut m = meshloom::shapes::icosphere(2);
+    let vs: Vec<VertexKey> = m.vertices().collect();
+    for (i, &v) in vs.iter().enumerate() {
+        let p = m.position(v).unwrap();
+        let k = 1.0 + 0.05 * ((i * 7919 % 101) as f64 / 101.0 - 0.5);
+        m.set_position(v, scale(p, k)).unwrap();
+    }
+    let fs: Vec<FaceKey> = m.faces().collect();
+    for &f in fs.iter().step_by(17) {
+        m.poke_face(f).unwrap();
+    }
+    for &f in [fs[3], fs[40], fs[101]].iter() {
+        m.remove_face(f).unwrap();
+    }
+    assert_eq!(m.hole_count(), 3);
+    for &f in [fs[60], fs[150]].iter() {
+        let h = m.face(f).unwrap().halfedge().key();
+        m.collapse_edge(h).unwrap();
+    }
+    assert!(m.slot_counts()[0] > m.vertex_count());
+    let valences: std::collections::BTreeSet<usize> = m
+        .vertices()
+        .map(|v| m.vertex(v).unwrap().degree())
+        .collect();
+    assert!(
+        valences.contains(&3) && valences.contains(&8),
+        "{valences:?}"
+    );
+    m
+}
+
+/// Where `scheme` must put each vertex of `m` (`interior(p, n, neighbours,
+/// face centroids)`; boundary vertices ¾ v + ⅛ (a + b) over their two
+/// boundary neighbours), then run it and compare.
+fn check_vertex_rules(
+    mut m: Mesh,
+    scheme: Scheme,
+    interior: impl Fn([f64; 3], f64, &[[f64; 3]], &[[f64; 3]]) -> [f64; 3],
+) {
+    let old: Vec<VertexKey> = m.vertices().collect();
+    let centroid = |m: &Mesh, f: FaceKey| {
+        let ps: Vec<_> = m
+            .face(f)
+            .unwrap()
+            .vertices()
+            .map(|u| m.position(u).unwrap())
+            .collect();
+        mean(&ps)
+    };
+    let expected: Vec<[f64; 3]> = old
+        .iter()
+        .map(|&v| {
+            let view = m.vertex(v).unwrap();
+            let p = m.position(v).unwrap();
+            if view.is_boundary() {
+                let ends: Vec<[f64; 3]> = view
+                    .outgoing()
+                    .filter(|h| m.halfedge(*h).unwrap().edge().is_boundary())
+                    .map(|h| m.position(m.halfedge(h).unwrap().dest().key()).unwrap())
+                    .collect();
+                assert_eq!(ends.len(), 2);
+                return add(scale(p, 0.75), scale(add(ends[0], ends[1]), 0.125));
+            }
+            let us: Vec<_> = view.neighbors().map(|u| m.position(u).unwrap()).collect();
+            let fs: Vec<_> = view.faces().map(|f| centroid(&m, f)).collect();
+            interior(p, view.degree() as f64, &us, &fs)
+        })
+        .collect();
+    scheme(&mut m, &SubdivisionOptions::default(), Progress::none()).unwrap();
+    m.validate().unwrap();
+    for (i, &v) in old.iter().enumerate() {
+        let got = m.position(v).unwrap();
+        assert!(
+            close(got, expected[i]),
+            "vertex {i}: {got:?} {:?}",
+            expected[i]
+        );
+    }
+}
+
+/// The vertex rules of both schemes on an irregular mesh with holes and
+/// dead slots. Catmull-Clark's interior rule in the (F + 2R + (n − 3) P)/n
+/// form, Loop's as (1 − nβ) v + β Σ u.
+#[test]
+fn vertex_rules_on_an_irregular_mesh_with_holes() {
+    check_vertex_rules(
+        irregular_mesh_with_holes(),
+        catmull_clark,
+        |p, n, us, fs| {
+            let rs: Vec<_> = us.iter().map(|&u| scale(add(p, u), 0.5)).collect();
+            scale(
+                add(add(mean(fs), scale(mean(&rs), 2.0)), scale(p, n - 3.0)),
+                1.0 / n,
+            )
+        },
+    );
+    check_vertex_rules(
+        irregular_mesh_with_holes(),
+        loop_subdivide,
+        |p, n, us, _| {
+            let c = 0.375 + 0.25 * (std::f64::consts::TAU / n).cos();
+            let beta = (0.625 - c * c) / n;
+            add(
+                scale(p, 1.0 - n * beta),
+                scale(us.iter().fold([0.0; 3], |s, &u| add(s, u)), beta),
+            )
+        },
+    );
+}
+
 /// A row of three unit quads: every vertex is on the boundary.
 fn quad_strip() -> Mesh {
     let mut p = Vec::new();

@@ -51,7 +51,7 @@ use crate::algo::subdivision::creases::{
 use crate::algo::subdivision::refine::{face_ring, refine, CutRule, Refinement};
 use crate::algo::subdivision::{
     check_columns, crease_children, finish_columns, run_levels, LevelReport, RefinePlans, Stage,
-    SubdivisionOptions, SubdivisionReport,
+    SubdivisionOptions, SubdivisionReport, ON_HOLE,
 };
 use crate::error::{Error, Result};
 use crate::layout::{Eid, Fid, Hid, Vid};
@@ -187,6 +187,46 @@ fn cc_level(
     Ok((topology.into_mesh(attrs), report))
 }
 
+/// The face point of the face whose half-edges are `ring`; for each corner
+/// `v`, adds the face point and the next corner (the far end of `v`'s
+/// outgoing edge in this face) to `sums[v]` and counts the face in
+/// `valence[v]` (saturating, so [`ON_HOLE`] stays).
+///
+/// Around an interior vertex every outgoing edge lies in exactly one face,
+/// so after the pass `sums[v]` is `Σ uᵢ + Σ Fᵢ` and `valence[v]` is `n`:
+/// the smooth vertex rule then reads its slot in order instead of turning
+/// around `v`. Measured on icosphere(7) (three runs each, the positions
+/// stage): the turn took 48-60 ms, with a miss for nearly every spoke, where
+/// the scatter reads the half-edges in face order and writes a vertex-sized
+/// array.
+fn scatter_face(
+    mesh: &Mesh,
+    p: &[[f64; 3]],
+    ring: &[Hid],
+    sums: &mut [[f64; 3]],
+    valence: &mut [u32],
+) -> [f64; 3] {
+    let mut c = [0.0f64; 3];
+    for &h in ring {
+        let q = p[mesh.origin(h).index()];
+        c[0] += q[0];
+        c[1] += q[1];
+        c[2] += q[2];
+    }
+    let w = 1.0 / ring.len() as f64;
+    let fp = [c[0] * w, c[1] * w, c[2] * w];
+    for (i, &h) in ring.iter().enumerate() {
+        let v = mesh.origin(h).index();
+        let u = p[mesh.origin(ring[(i + 1) % ring.len()]).index()];
+        let sum = &mut sums[v];
+        sum[0] += fp[0] + u[0];
+        sum[1] += fp[1] + u[1];
+        sum[2] += fp[2] + u[2];
+        valence[v] = valence[v].saturating_add(1);
+    }
+    fp
+}
+
 /// The positions of the new level: face points, then old vertices by the
 /// vertex rules, then edge points.
 fn cc_positions(
@@ -202,7 +242,9 @@ fn cc_positions(
     let (old, rest) = out.split_at_mut(nv);
     let (edge_points, face_points) = rest.split_at_mut(r.edges as usize);
 
-    // Face points, in face-slot order (their rank order).
+    // Face points, in face-slot order (their rank order); the same pass
+    // gathers the smooth vertex rule's sums (see `scatter_face`).
+    let mut valence = vec![0u32; nv];
     let nf = mesh.f_slots.slot_count();
     let mut stage = Stage::new(progress, ALGORITHM, level, "face points", nf)?;
     let mut ring = Vec::new();
@@ -213,19 +255,14 @@ fn cc_positions(
             continue;
         }
         let link = mesh.f_halfedge[Fid::new(fi as u32)];
+        face_ring(mesh, link.halfedge(), &mut ring);
         if link.is_hole() {
+            for &h in &ring {
+                valence[mesh.origin(h).index()] = ON_HOLE;
+            }
             continue;
         }
-        face_ring(mesh, link.halfedge(), &mut ring);
-        let mut c = [0.0f64; 3];
-        for &h in &ring {
-            let q = p[mesh.origin(h).index()];
-            c[0] += q[0];
-            c[1] += q[1];
-            c[2] += q[2];
-        }
-        let w = 1.0 / ring.len() as f64;
-        face_points[k] = [c[0] * w, c[1] * w, c[2] * w];
+        face_points[k] = scatter_face(mesh, p, &ring, old, &mut valence);
         k += 1;
     }
     stage.finish()?;
@@ -241,7 +278,6 @@ fn cc_positions(
         acc: [0.0; 3],
     };
     let mut spokes = Vec::new();
-    let budget = mesh.he.len();
     let mut stage = Stage::new(progress, ALGORITHM, level, "vertices", nv)?;
     for (vi, out) in old.iter_mut().enumerate() {
         stage.tick(vi)?;
@@ -256,28 +292,13 @@ fn cc_positions(
                 position: pv,
             });
         }
-        let h0 = mesh.v_halfedge[v];
-        if !mesh.in_hole(h0) && !features.is_special(v) {
-            // Interior and smooth: one turn around v, summing neighbours
-            // and the face points of the faces left of each outgoing edge.
-            let mut sum = [0.0f64; 3];
-            let mut n = 0usize;
-            let mut h = h0;
-            loop {
-                let twin = mesh.he[h.twin()];
-                let q = p[twin.origin.index()];
-                let fp = face_point(mesh.he[h].face);
-                sum[0] += q[0] + fp[0];
-                sum[1] += q[1] + fp[1];
-                sum[2] += q[2] + fp[2];
-                n += 1;
-                h = twin.next;
-                if h == h0 || n >= budget {
-                    break;
-                }
-            }
-            let nf = n as f64;
+        let n = valence[vi];
+        if n != ON_HOLE && n > 0 && !features.is_special(v) {
+            // Interior and smooth: `out` holds the sum of the neighbours
+            // and of the face points around v.
+            let nf = f64::from(n);
             let (a, b) = ((nf - 2.0) / nf, 1.0 / (nf * nf));
+            let sum = *out;
             *out = [
                 a * pv[0] + b * sum[0],
                 a * pv[1] + b * sum[1],

@@ -55,7 +55,7 @@ use crate::algo::subdivision::refine::{
 };
 use crate::algo::subdivision::{
     check_columns, crease_children, finish_columns, run_levels, LevelReport, RefinePlans, Stage,
-    SubdivisionOptions, SubdivisionReport,
+    SubdivisionOptions, SubdivisionReport, ON_HOLE,
 };
 use crate::error::{Error, Result};
 use crate::layout::{with_headroom, Eid, Hid, Vid};
@@ -206,6 +206,44 @@ fn loop_level(
     Ok((topology.into_mesh(attrs), report))
 }
 
+/// In edge order, adds each end of an edge between two faces to the other
+/// end's `sums` and counts it in the other's `valence`; the ends of an
+/// edge on a hole get [`ON_HOLE`] (which the saturating count keeps).
+///
+/// Around an interior vertex every edge lies between two faces, so after
+/// the pass `sums[v]` is `Σ uᵢ` and `valence[v]` is `n`, and the smooth
+/// vertex rule reads `v`'s slot instead of turning around it: the turn
+/// misses the cache for nearly every spoke on a mesh whose vertex order is
+/// not its edge order (icosphere(7)), the pass reads the half-edges in
+/// order.
+fn scatter_edges(
+    mesh: &Mesh,
+    r: &Refinement,
+    p: &[[f64; 3]],
+    sums: &mut [[f64; 3]],
+    valence: &mut [u32],
+) {
+    for ei in 0..mesh.e_slots.slot_count() {
+        if !mesh.e_slots.is_live(ei) {
+            continue;
+        }
+        let [h, t] = Eid::new(ei as u32).halfedges();
+        let (a, b) = (mesh.he[h].origin.index(), mesh.he[t].origin.index());
+        if r.corner_of(h).is_none() || r.corner_of(t).is_none() {
+            valence[a] = ON_HOLE;
+            valence[b] = ON_HOLE;
+            continue;
+        }
+        let (pa, pb) = (p[a], p[b]);
+        for k in 0..3 {
+            sums[a][k] += pb[k];
+            sums[b][k] += pa[k];
+        }
+        valence[a] = valence[a].saturating_add(1);
+        valence[b] = valence[b].saturating_add(1);
+    }
+}
+
 /// The positions of the new level: old vertices by the vertex rules, then
 /// edge points.
 fn loop_positions(
@@ -217,20 +255,21 @@ fn loop_positions(
     progress: &mut Progress<'_>,
 ) -> Result<(Vec<[f64; 3]>, RuleCounts)> {
     let nv = r.nv as usize;
-    // Filled by pushing, in slot order: no zeroing pass over the largest
-    // array of the level (24 bytes per new vertex).
+    // The old vertices' slots first hold the neighbour sums (see
+    // `scatter_edges`); the edge points are pushed after them.
     let mut out: Vec<[f64; 3]> = with_headroom(r.vertex_slots());
+    out.resize(nv, [0.0; 3]);
+    let mut valence = vec![0u32; nv];
+    scatter_edges(mesh, r, p, &mut out, &mut valence);
     let betas: Vec<f64> = (0..64).map(loop_beta).collect();
     let mut counts = RuleCounts::default();
     let mut sink = PointSink::new(p);
     let mut ring = Vec::new();
-    let budget = mesh.he.len();
 
     let mut stage = Stage::new(progress, ALGORITHM, level, "vertices", nv)?;
-    for vi in 0..nv {
+    for (vi, out) in out.iter_mut().enumerate() {
         stage.tick(vi)?;
         if !mesh.v_slots.is_live(vi) {
-            out.push([0.0; 3]);
             continue;
         }
         let v = Vid::new(vi as u32);
@@ -241,36 +280,23 @@ fn loop_positions(
                 position: pv,
             });
         }
-        let h0 = mesh.v_halfedge[v];
-        if !mesh.in_hole(h0) && !features.is_special(v) {
-            // Interior and smooth: one turn around v.
-            let mut sum = [0.0f64; 3];
-            let mut n = 0usize;
-            let mut h = h0;
-            loop {
-                let twin = mesh.he[h.twin()];
-                let q = p[twin.origin.index()];
-                sum[0] += q[0];
-                sum[1] += q[1];
-                sum[2] += q[2];
-                n += 1;
-                h = twin.next;
-                if h == h0 || n >= budget {
-                    break;
-                }
-            }
+        let n = valence[vi];
+        if n != ON_HOLE && n > 0 && !features.is_special(v) {
+            // Interior and smooth: `out` holds the sum of the neighbours.
             if n == 2 {
                 if let Some(e) = valence_two_error(mesh, v, CutRule::Triangles, ALGORITHM) {
                     return Err(e);
                 }
             }
+            let n = n as usize;
             let b = betas.get(n).copied().unwrap_or_else(|| loop_beta(n));
             let a = 1.0 - n as f64 * b;
-            out.push([
+            let sum = *out;
+            *out = [
                 a * pv[0] + b * sum[0],
                 a * pv[1] + b * sum[1],
                 a * pv[2] + b * sum[2],
-            ]);
+            ];
         } else {
             let boundary = features.gather(mesh, v, &mut ring);
             if !boundary && ring.len() == 2 {
@@ -281,7 +307,7 @@ fn loop_positions(
             let rule = features.rule(v, &ring, boundary);
             counts.count(&rule);
             emit_vertex(&LoopMask, mesh, v, &ring, rule, &mut sink);
-            out.push(sink.take());
+            *out = sink.take();
         }
     }
     stage.finish()?;

@@ -285,6 +285,10 @@ pub(crate) fn run_levels(
     Ok(report)
 }
 
+/// A vertex on a hole, in the position passes' valence counts (which
+/// saturate, so it stays).
+pub(crate) const ON_HOLE: u32 = u32::MAX;
+
 /// Reports progress every `STRIDE` units of a pass.
 pub(crate) struct Stage<'p, 'a> {
     progress: &'p mut Progress<'a>,
