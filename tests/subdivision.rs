@@ -371,12 +371,13 @@ fn irregular_mesh_with_holes() -> Mesh {
 }
 
 /// Where `scheme` must put each vertex of `m` (`interior(p, n, neighbours,
-/// face centroids)`; boundary vertices ¾ v + ⅛ (a + b) over their two
-/// boundary neighbours), then run it and compare.
+/// face centroids)`, `boundary(p, a, b)` with `a`, `b` its two boundary
+/// neighbours), then run it and compare.
 fn check_vertex_rules(
     mut m: Mesh,
     scheme: Scheme,
     interior: impl Fn([f64; 3], f64, &[[f64; 3]], &[[f64; 3]]) -> [f64; 3],
+    boundary: impl Fn([f64; 3], [f64; 3], [f64; 3]) -> [f64; 3],
 ) {
     let old: Vec<VertexKey> = m.vertices().collect();
     let centroid = |m: &Mesh, f: FaceKey| {
@@ -400,7 +401,7 @@ fn check_vertex_rules(
                     .map(|h| m.position(m.halfedge(h).unwrap().dest().key()).unwrap())
                     .collect();
                 assert_eq!(ends.len(), 2);
-                return add(scale(p, 0.75), scale(add(ends[0], ends[1]), 0.125));
+                return boundary(p, ends[0], ends[1]);
             }
             let us: Vec<_> = view.neighbors().map(|u| m.position(u).unwrap()).collect();
             let fs: Vec<_> = view.faces().map(|f| centroid(&m, f)).collect();
@@ -419,33 +420,46 @@ fn check_vertex_rules(
     }
 }
 
-/// The vertex rules of both schemes on an irregular mesh with holes and
-/// dead slots. Catmull-Clark's interior rule in the (F + 2R + (n − 3) P)/n
-/// form, Loop's as (1 − nβ) v + β Σ u.
+/// The vertex rules of the three schemes on an irregular mesh with holes
+/// and dead slots: Catmull-Clark's interior rule in the (F + 2R + (n − 3)
+/// P)/n form, Loop's as (1 − nβ) v + β Σ u, √3's (Kobbelt) as (1 − α) v +
+/// α/n Σ u with α = (4 − 2 cos(2π/n))/9. On the boundary the crease curve
+/// ¾ v + ⅛ (a + b), except at √3's first level, which keeps boundary
+/// vertices where they are.
 #[test]
 fn vertex_rules_on_an_irregular_mesh_with_holes() {
-    check_vertex_rules(
-        irregular_mesh_with_holes(),
-        catmull_clark,
-        |p, n, us, fs| {
-            let rs: Vec<_> = us.iter().map(|&u| scale(add(p, u), 0.5)).collect();
-            scale(
-                add(add(mean(fs), scale(mean(&rs), 2.0)), scale(p, n - 3.0)),
-                1.0 / n,
-            )
-        },
-    );
+    use meshloom::algo::sqrt3_subdivide;
+    let crease = |p, a, b| add(scale(p, 0.75), scale(add(a, b), 0.125));
+    let sum = |us: &[[f64; 3]]| us.iter().fold([0.0; 3], |s, &u| add(s, u));
+    let cc = |p, n: f64, us: &[[f64; 3]], fs: &[[f64; 3]]| {
+        let rs: Vec<_> = us.iter().map(|&u| scale(add(p, u), 0.5)).collect();
+        scale(
+            add(add(mean(fs), scale(mean(&rs), 2.0)), scale(p, n - 3.0)),
+            1.0 / n,
+        )
+    };
+    check_vertex_rules(irregular_mesh_with_holes(), catmull_clark, cc, crease);
+    let loop_rule = |p, n: f64, us: &[[f64; 3]], _: &[[f64; 3]]| {
+        let c = 0.375 + 0.25 * (std::f64::consts::TAU / n).cos();
+        let beta = (0.625 - c * c) / n;
+        add(scale(p, 1.0 - n * beta), scale(sum(us), beta))
+    };
     check_vertex_rules(
         irregular_mesh_with_holes(),
         loop_subdivide,
-        |p, n, us, _| {
-            let c = 0.375 + 0.25 * (std::f64::consts::TAU / n).cos();
-            let beta = (0.625 - c * c) / n;
-            add(
-                scale(p, 1.0 - n * beta),
-                scale(us.iter().fold([0.0; 3], |s, &u| add(s, u)), beta),
-            )
-        },
+        loop_rule,
+        crease,
+    );
+    let sqrt3_rule = |p, n: f64, us: &[[f64; 3]], _: &[[f64; 3]]| {
+        let alpha = (4.0 - 2.0 * (std::f64::consts::TAU / n).cos()) / 9.0;
+        add(scale(p, 1.0 - alpha), scale(sum(us), alpha / n))
+    };
+    let stay = |p, _, _| p;
+    check_vertex_rules(
+        irregular_mesh_with_holes(),
+        sqrt3_subdivide,
+        sqrt3_rule,
+        stay,
     );
 }
 

@@ -54,8 +54,8 @@ use crate::algo::subdivision::refine::{
     check_valence_two, refine, valence_two_error, CutRule, Refinement,
 };
 use crate::algo::subdivision::{
-    check_columns, crease_children, finish_columns, run_levels, LevelReport, RefinePlans, Stage,
-    SubdivisionOptions, SubdivisionReport, ON_HOLE,
+    check_columns, crease_children, finish_columns, run_levels, scatter_edge_ends, LevelReport,
+    RefinePlans, Stage, SubdivisionOptions, SubdivisionReport, ON_HOLE,
 };
 use crate::error::{Error, Result};
 use crate::layout::{with_headroom, Eid, Hid, Vid};
@@ -206,44 +206,6 @@ fn loop_level(
     Ok((topology.into_mesh(attrs), report))
 }
 
-/// In edge order, adds each end of an edge between two faces to the other
-/// end's `sums` and counts it in the other's `valence`; the ends of an
-/// edge on a hole get [`ON_HOLE`] (which the saturating count keeps).
-///
-/// Around an interior vertex every edge lies between two faces, so after
-/// the pass `sums[v]` is `Σ uᵢ` and `valence[v]` is `n`, and the smooth
-/// vertex rule reads `v`'s slot instead of turning around it: the turn
-/// misses the cache for nearly every spoke on a mesh whose vertex order is
-/// not its edge order (icosphere(7)), the pass reads the half-edges in
-/// order.
-fn scatter_edges(
-    mesh: &Mesh,
-    r: &Refinement,
-    p: &[[f64; 3]],
-    sums: &mut [[f64; 3]],
-    valence: &mut [u32],
-) {
-    for ei in 0..mesh.e_slots.slot_count() {
-        if !mesh.e_slots.is_live(ei) {
-            continue;
-        }
-        let [h, t] = Eid::new(ei as u32).halfedges();
-        let (a, b) = (mesh.he[h].origin.index(), mesh.he[t].origin.index());
-        if r.corner_of(h).is_none() || r.corner_of(t).is_none() {
-            valence[a] = ON_HOLE;
-            valence[b] = ON_HOLE;
-            continue;
-        }
-        let (pa, pb) = (p[a], p[b]);
-        for k in 0..3 {
-            sums[a][k] += pb[k];
-            sums[b][k] += pa[k];
-        }
-        valence[a] = valence[a].saturating_add(1);
-        valence[b] = valence[b].saturating_add(1);
-    }
-}
-
 /// The positions of the new level: old vertices by the vertex rules, then
 /// edge points.
 fn loop_positions(
@@ -260,7 +222,7 @@ fn loop_positions(
     let mut out: Vec<[f64; 3]> = with_headroom(r.vertex_slots());
     out.resize(nv, [0.0; 3]);
     let mut valence = vec![0u32; nv];
-    scatter_edges(mesh, r, p, &mut out, &mut valence);
+    scatter_edge_ends(mesh, p, &mut out, &mut valence);
     let betas: Vec<f64> = (0..64).map(loop_beta).collect();
     let mut counts = RuleCounts::default();
     let mut sink = PointSink::new(p);

@@ -82,8 +82,8 @@ use crate::algo::progress::Progress;
 use crate::algo::subdivision::creases::{Features, PlanSink, PointSink, Rule, Sink};
 use crate::algo::subdivision::refine::{fresh_slots, valence_two_error, CutRule, Ranks, Topology};
 use crate::algo::subdivision::{
-    check_columns, finish_columns, run_levels, unsuitable, ColumnPlans, LevelReport, Stage,
-    SubdivisionOptions, SubdivisionReport,
+    check_columns, finish_columns, run_levels, scatter_edge_ends, unsuitable, ColumnPlans,
+    LevelReport, Stage, SubdivisionOptions, SubdivisionReport,
 };
 use crate::error::{Error, Result};
 use crate::layout::{with_headroom, Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};
@@ -760,14 +760,16 @@ fn positions(
 ) -> Result<(Vec<[f64; 3]>, MoveCounts)> {
     let nv = l.nv as usize;
     let mut out = with_headroom(nv + mesh.face_count() + 2 * l.boundary as usize);
+    // The old vertices' slots first hold the neighbour sums.
+    out.resize(nv, [0.0; 3]);
+    let mut valence = vec![0u32; nv];
+    scatter_edge_ends(mesh, p, &mut out, &mut valence);
     let alphas: Vec<f64> = (0..64).map(alpha).collect();
-    let budget = mesh.he.len();
     let mut counts = MoveCounts::default();
     let mut stage = Stage::new(progress, ALGORITHM, level, "vertices", nv)?;
-    for vi in 0..nv {
+    for (vi, out) in out.iter_mut().enumerate() {
         stage.tick(vi)?;
         if !mesh.v_slots.is_live(vi) {
-            out.push([0.0; 3]);
             continue;
         }
         let v = Vid::new(vi as u32);
@@ -782,38 +784,29 @@ fn positions(
             VertexMove::Smooth => {}
             VertexMove::Stay => {
                 counts.corner += 1;
-                out.push(pv);
+                *out = pv;
                 continue;
             }
             VertexMove::Curve(a, b) => {
                 counts.crease += 1;
                 let mut sink = PointSink::new(p);
                 curve_vertex(v, a, b, &mut sink);
-                out.push(sink.take());
+                *out = sink.take();
                 continue;
             }
         }
-        let h0 = mesh.v_halfedge[v];
-        let (mut sum, mut n, mut h) = ([0.0f64; 3], 0usize, h0);
-        loop {
-            let twin = mesh.he[h.twin()];
-            let q = p[twin.origin.index()];
-            sum[0] += q[0];
-            sum[1] += q[1];
-            sum[2] += q[2];
-            n += 1;
-            h = twin.next;
-            if h == h0 || n >= budget {
-                break;
-            }
-        }
+        // Interior (rule 11: no hole at v): `out` holds the sum of the
+        // neighbours.
+        debug_assert!(valence[vi] != super::subdivision::ON_HOLE);
+        let n = valence[vi] as usize;
+        let sum = *out;
         let a = alphas.get(n).copied().unwrap_or_else(|| alpha(n));
         let (keep, share) = (1.0 - a, a / n as f64);
-        out.push([
+        *out = [
             keep * pv[0] + share * sum[0],
             keep * pv[1] + share * sum[1],
             keep * pv[2] + share * sum[2],
-        ]);
+        ];
     }
     stage.finish()?;
     for f in mesh.fids() {

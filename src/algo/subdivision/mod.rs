@@ -70,6 +70,7 @@ use crate::algo::progress::Progress;
 use crate::attr::ValueType;
 use crate::error::{Error, Result};
 use crate::keys::{AnyKey, ElementKind};
+use crate::layout::Eid;
 use crate::mesh::Mesh;
 
 /// How the boundary is treated (boundary edges are always infinitely
@@ -288,6 +289,45 @@ pub(crate) fn run_levels(
 /// A vertex on a hole, in the position passes' valence counts (which
 /// saturate, so it stays).
 pub(crate) const ON_HOLE: u32 = u32::MAX;
+
+/// In edge order, adds each end of an edge between two faces to the other
+/// end's `sums` and counts it in the other's `valence`; the ends of an
+/// edge on a hole get [`ON_HOLE`].
+///
+/// Around an interior vertex every edge lies between two faces, so after
+/// the pass `sums[v]` is `Σ uᵢ` and `valence[v]` is `n`, and a smooth
+/// vertex rule reads `v`'s slot instead of turning around it. The turn
+/// misses the cache for nearly every spoke on a mesh whose vertex order is
+/// not its edge order (icosphere(7)); this pass reads the half-edges in
+/// order. Loop on icosphere(7), one level, paired runs (lower quartile):
+/// 139 ms turning, 115 ms with this pass.
+pub(crate) fn scatter_edge_ends(
+    mesh: &Mesh,
+    p: &[[f64; 3]],
+    sums: &mut [[f64; 3]],
+    valence: &mut [u32],
+) {
+    for ei in 0..mesh.e_slots.slot_count() {
+        if !mesh.e_slots.is_live(ei) {
+            continue;
+        }
+        let [h, t] = Eid::new(ei as u32).halfedges();
+        let (rh, rt) = (mesh.he[h], mesh.he[t]);
+        let (a, b) = (rh.origin.index(), rt.origin.index());
+        if mesh.is_hole(rh.face) || mesh.is_hole(rt.face) {
+            valence[a] = ON_HOLE;
+            valence[b] = ON_HOLE;
+            continue;
+        }
+        let (pa, pb) = (p[a], p[b]);
+        for k in 0..3 {
+            sums[a][k] += pb[k];
+            sums[b][k] += pa[k];
+        }
+        valence[a] = valence[a].saturating_add(1);
+        valence[b] = valence[b].saturating_add(1);
+    }
+}
 
 /// Reports progress every `STRIDE` units of a pass.
 pub(crate) struct Stage<'p, 'a> {
