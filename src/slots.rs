@@ -283,7 +283,10 @@ impl Slots {
             }
             return;
         }
-        let gens = self.generations.get(start..end).unwrap_or(&[]);
+        // Slots past the generations (none in the journal's ranges) are
+        // vacant: scan the part of the range that has generations.
+        let have = self.generations.len();
+        let gens = &self.generations[start.min(have)..end.min(have)];
         let mut live = true;
         let mut at = 0;
         loop {
@@ -296,7 +299,6 @@ impl Slots {
             }
             live = !live;
         }
-        // Slots past the generations (none in practice) are vacant.
         let missing = (end - start) - gens.len();
         if missing > 0 {
             if live {
@@ -837,6 +839,16 @@ mod tests {
             let mut runs = Vec::new();
             s.live_runs(range.clone(), &mut runs);
             assert_eq!(runs, runs_by_scan(&s, range.clone()), "{range:?}");
+        }
+        // Ranges reaching past the slot count: the slots beyond are vacant,
+        // intact or not.
+        let intact = Slots::full(20);
+        for s in [&s, &intact] {
+            for range in [150..230, 10..230, 200..210, 250..260] {
+                let mut runs = Vec::new();
+                s.live_runs(range.clone(), &mut runs);
+                assert_eq!(runs, runs_by_scan(s, range.clone()), "{range:?}");
+            }
         }
     }
 
