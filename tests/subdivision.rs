@@ -42,6 +42,17 @@ fn mean(ps: &[[f64; 3]]) -> [f64; 3] {
     )
 }
 
+/// The mean of face `f`'s corner positions.
+fn centroid(m: &Mesh, f: FaceKey) -> [f64; 3] {
+    let ps: Vec<_> = m
+        .face(f)
+        .unwrap()
+        .vertices()
+        .map(|u| m.position(u).unwrap())
+        .collect();
+    mean(&ps)
+}
+
 /// The new vertex on old edge `a`–`b`: the one vertex next to both that
 /// is not an old vertex.
 fn edge_point(m: &Mesh, old: &[VertexKey], a: VertexKey, b: VertexKey) -> VertexKey {
@@ -261,36 +272,14 @@ fn catmull_clark_stencils_on_a_cube() {
     let mut m = meshloom::shapes::cube();
     let old: Vec<VertexKey> = m.vertices().collect();
     let p: Vec<[f64; 3]> = old.iter().map(|&v| m.position(v).unwrap()).collect();
-    let centroids: Vec<[f64; 3]> = m
-        .faces()
-        .map(|f| {
-            let ps: Vec<_> = m
-                .face(f)
-                .unwrap()
-                .vertices()
-                .map(|v| m.position(v).unwrap())
-                .collect();
-            mean(&ps)
-        })
-        .collect();
+    let centroids: Vec<[f64; 3]> = m.faces().map(|f| centroid(&m, f)).collect();
     let expected_vertex: Vec<[f64; 3]> = old
         .iter()
         .enumerate()
         .map(|(i, &v)| {
             let view = m.vertex(v).unwrap();
             let n = view.degree() as f64;
-            let fs: Vec<_> = view
-                .faces()
-                .map(|f| {
-                    let ps: Vec<_> = m
-                        .face(f)
-                        .unwrap()
-                        .vertices()
-                        .map(|u| m.position(u).unwrap())
-                        .collect();
-                    mean(&ps)
-                })
-                .collect();
+            let fs: Vec<_> = view.faces().map(|f| centroid(&m, f)).collect();
             let rs: Vec<_> = view
                 .neighbors()
                 .map(|u| scale(add(p[i], m.position(u).unwrap()), 0.5))
@@ -380,15 +369,6 @@ fn check_vertex_rules(
     boundary: impl Fn([f64; 3], [f64; 3], [f64; 3]) -> [f64; 3],
 ) {
     let old: Vec<VertexKey> = m.vertices().collect();
-    let centroid = |m: &Mesh, f: FaceKey| {
-        let ps: Vec<_> = m
-            .face(f)
-            .unwrap()
-            .vertices()
-            .map(|u| m.position(u).unwrap())
-            .collect();
-        mean(&ps)
-    };
     let expected: Vec<[f64; 3]> = old
         .iter()
         .map(|&v| {
