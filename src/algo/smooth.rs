@@ -218,7 +218,10 @@ fn smooth_run(
     }
     let mask = mask_slots(mesh, options)?;
     let n = options.iterations;
-    let (x, moved, moves) = match options.method {
+    // `moves`: the slots to write back; `None` for the uniform steps, whose
+    // buffer holds every other slot's position bit for bit, so it is
+    // copied whole.
+    let (x, moved, max_d, moves) = match options.method {
         SmoothMethod::Uniform | SmoothMethod::Taubin => {
             let rings = FreeRings::of(mesh, options.fix_boundary, mask.as_deref());
             check_mask_selects(options, rings.moving)?;
@@ -228,36 +231,43 @@ fn smooth_run(
                 &[step]
             };
             let x = rings.run(p0, steps, n, &mut progress)?;
-            let moves: Vec<bool> = rings.degree.iter().map(|&d| d > 0).collect();
-            (x, rings.moving, moves)
+            let moving = rings.degree.iter().map(|&d| d > 0);
+            let max_d = checked_displacement(mesh, p0, &x, moving)?;
+            (x, rings.moving, max_d, None)
         }
         SmoothMethod::Cotan => {
             let free = free_vertices(mesh, options.fix_boundary, mask.as_deref());
             let moved = check_mask_selects(options, free.iter().filter(|&&f| f).count())?;
             let x = cotan_run(mesh, p0, &free, n, step, &mut progress)?;
-            (x, moved, free)
+            let max_d = checked_displacement(mesh, p0, &x, free.iter().copied())?;
+            (x, moved, max_d, Some(free))
         }
         SmoothMethod::Implicit => {
             let free = free_vertices(mesh, options.fix_boundary, mask.as_deref());
             let moved = check_mask_selects(options, free.iter().filter(|&&f| f).count())?;
             let x = implicit_run(mesh, p0, &free, n, step, &mut progress)?;
-            if options.rescale {
-                let x = rescaled(mesh, p0, x);
+            let (x, moves) = if options.rescale {
                 // A rescale moves every vertex.
                 let live = (0..x.len()).map(|i| mesh.v_slots.is_live(i)).collect();
-                (x, moved, live)
+                (rescaled(mesh, p0, x), live)
             } else {
-                (x, moved, free)
-            }
+                (x, free)
+            };
+            let max_d = checked_displacement(mesh, p0, &x, moves.iter().copied())?;
+            (x, moved, max_d, Some(moves))
         }
     };
     progress.report(ALGORITHM, "iterations", u64::from(n), u64::from(n))?;
-    let max_d = checked_displacement(mesh, p0, &x, &moves)?;
     let stale = stale_columns(mesh);
     let out = mesh.position_slots_mut().ok_or(Error::NoPositions)?;
-    for ((o, q), &m) in out.iter_mut().zip(&x).zip(&moves) {
-        if m {
-            *o = *q;
+    match moves {
+        None => out.copy_from_slice(&x),
+        Some(moves) => {
+            for ((o, q), m) in out.iter_mut().zip(&x).zip(moves) {
+                if m {
+                    *o = *q;
+                }
+            }
         }
     }
     debug_assert!(mesh.validate().is_ok());
@@ -360,9 +370,14 @@ fn free_vertices(mesh: &Mesh, fix_boundary: bool, mask: Option<&[bool]>) -> Vec<
 /// The largest displacement of a moving vertex, or an error naming the
 /// first moving vertex whose new position is not finite (the commit's
 /// check: nothing is written before it passes).
-fn checked_displacement(mesh: &Mesh, p0: &[V3], x: &[V3], moves: &[bool]) -> Result<f64> {
+fn checked_displacement(
+    mesh: &Mesh,
+    p0: &[V3],
+    x: &[V3],
+    moves: impl Iterator<Item = bool>,
+) -> Result<f64> {
     let mut max_d2: f64 = 0.0;
-    for (i, ((q, p), &m)) in x.iter().zip(p0).zip(moves).enumerate() {
+    for (i, ((q, p), m)) in x.iter().zip(p0).zip(moves).enumerate() {
         if !m {
             continue;
         }
