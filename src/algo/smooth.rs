@@ -405,10 +405,11 @@ const MANY: u8 = u8::MAX;
 /// it has, and the first step reads the mesh's positions, so nothing is
 /// copied before it. Measured on the 2M-vertex grid (`smooth_10`, three
 /// paired runs): 386-504 ms with a row list, row offsets and a stored
-/// `1/degree` (24 more bytes per moving vertex) and two position copies
-/// made up front; 289-324 ms this way. Most of the difference is memory
-/// touched for the first time inside the call, about 2.5 µs per 4 KiB page
-/// on that machine.
+/// `1/degree` (16 more bytes per moving vertex) and two position copies
+/// made up front; 289-324 ms this way. The difference is a separate pass
+/// for the boundary test, the two copies, and the 32 MB of the dropped
+/// arrays, touched for the first time inside the call (about 2.5 µs per
+/// 4 KiB page on that machine).
 struct FreeRings {
     /// Per vertex slot: 0 if it stays, else its degree ([`MANY`]: the
     /// degree is the next entry of `many`).
