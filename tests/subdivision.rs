@@ -551,18 +551,7 @@ fn creased_cube(sharpness: f64) -> (Mesh, Vec<VertexKey>, Vec<[f64; 3]>) {
 fn cc_smooth_cube_vertex(m: &Mesh, v: VertexKey) -> [f64; 3] {
     let view = m.vertex(v).unwrap();
     let pv = m.position(v).unwrap();
-    let fs: Vec<_> = view
-        .faces()
-        .map(|f| {
-            let ps: Vec<_> = m
-                .face(f)
-                .unwrap()
-                .vertices()
-                .map(|u| m.position(u).unwrap())
-                .collect();
-            mean(&ps)
-        })
-        .collect();
+    let fs: Vec<_> = view.faces().map(|f| centroid(m, f)).collect();
     let rs: Vec<_> = view
         .neighbors()
         .map(|u| scale(add(pv, m.position(u).unwrap()), 0.5))

@@ -357,12 +357,19 @@ fn check_mask_selects(options: &SmoothOptions, moving: usize) -> Result<usize> {
     Ok(moving)
 }
 
+/// Whether vertex `v` may move: marked in `mask` (if there is one) and,
+/// with `fix_boundary`, off the boundary.
+#[inline]
+fn may_move(mesh: &Mesh, v: Vid, fix_boundary: bool, mask: Option<&[bool]>) -> bool {
+    mask.is_none_or(|m| m[v.index()]) && !(fix_boundary && mesh.on_boundary(v))
+}
+
 /// Whether each vertex slot may move.
 fn free_vertices(mesh: &Mesh, fix_boundary: bool, mask: Option<&[bool]>) -> Vec<bool> {
     let mut free = vec![false; mesh.v_halfedge.len()];
     for v in mesh.vids() {
         let i = v.index();
-        free[i] = mask.is_none_or(|m| m[i]) && !(fix_boundary && mesh.on_boundary(v));
+        free[i] = may_move(mesh, v, fix_boundary, mask);
     }
     free
 }
@@ -434,7 +441,7 @@ impl FreeRings {
         };
         for v in mesh.vids() {
             let i = v.index();
-            if mask.is_some_and(|m| !m[i]) || fix_boundary && mesh.on_boundary(v) {
+            if !may_move(mesh, v, fix_boundary, mask) {
                 continue;
             }
             let start = rings.cols.len();
