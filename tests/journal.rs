@@ -14,7 +14,7 @@
 mod common;
 use common::ops::{self, nth, TopoOp};
 use common::*;
-use meshloom::algo::{decimate, smooth, Progress};
+use meshloom::algo::{self, decimate, smooth, subdivision, Progress};
 use meshloom::attr::{Incompatible, Interpolate, Value};
 use meshloom::journal::{ColumnChangeKind, HistoryLimits};
 use meshloom::{shapes, AnyKey, EdgeKey, ElementKind, FaceKey, Mesh, VertexKey};
@@ -38,6 +38,11 @@ enum Op {
     RawRepoint(usize),
     Smooth,
     Decimate(u8),
+    Subdivide(u8),
+    Remesh,
+    FillHoles,
+    Fair,
+    Normals(u8),
 }
 
 impl Arbitrary for Op {
@@ -45,7 +50,7 @@ impl Arbitrary for Op {
         let i = usize::arbitrary(g);
         let t = u8::arbitrary(g) % 11;
         let d = i8::arbitrary(g);
-        match u8::arbitrary(g) % 36 {
+        match u8::arbitrary(g) % 37 {
             0..=21 => Op::Topo(TopoOp::arbitrary(g)),
             22..=23 => Op::SetPosition(i, d),
             24..=25 => Op::SetWeight(i, d),
@@ -57,6 +62,13 @@ impl Arbitrary for Op {
             31 => Op::RemoveColumn,
             32 => Op::Smooth,
             33 => Op::Decimate(t),
+            34 => match u8::arbitrary(g) % 6 {
+                0 => Op::Remesh,
+                1 => Op::FillHoles,
+                2 => Op::Fair,
+                3 => Op::Normals(t),
+                _ => Op::Subdivide(t),
+            },
             _ => Op::RawRepoint(i),
         }
     }
@@ -79,7 +91,110 @@ fn shape(i: u8) -> Mesh {
         }
     }
     m.add_face_attr::<u32>("label").unwrap();
+    add_every_rule(&mut m);
     m
+}
+
+/// A custom rule as a Python rule object would be: not linear, reads every
+/// contributor and its weight, and splits by building a new value.
+struct Joined;
+
+/// The value of the custom rule's columns (portable as text, so the
+/// snapshot compares it like any other column).
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Tag(String);
+
+impl meshloom::attr::Rule<Tag> for Joined {
+    fn merge(inputs: &[(Option<&Tag>, f64)]) -> Option<Tag> {
+        let parts: Vec<String> = inputs
+            .iter()
+            .map(|(v, w)| format!("{}*{w}", v.map_or("-", |t| t.0.as_str())))
+            .collect();
+        Some(Tag(format!("({})", parts.join("+"))))
+    }
+
+    fn split(source: Option<&Tag>, share: f64) -> Option<Tag> {
+        source.map(|t| Tag(format!("{}/{share}", t.0)))
+    }
+}
+
+impl meshloom::attr::Attribute for Tag {
+    type Rule = Joined;
+
+    fn to_value(&self) -> Option<Value> {
+        Some(Value::Text(self.0.clone()))
+    }
+
+    fn from_value(value: &Value) -> Option<Self> {
+        match value {
+            Value::Text(s) => Some(Tag(s.clone())),
+            _ => None,
+        }
+    }
+}
+
+/// Columns of every element kind under every stock rule and a custom one,
+/// with a distinct value on every element (some left absent), so a value
+/// restored to the wrong slot, or not restored, shows in the snapshot.
+fn add_every_rule(m: &mut Mesh) {
+    use meshloom::attr::{Conserved, Contagion, Discard, KeepFirst};
+    use meshloom::HalfedgeKey;
+    let hs: Vec<HalfedgeKey> = m.halfedges().collect();
+    let es: Vec<EdgeKey> = m.edges().collect();
+    let fs: Vec<FaceKey> = m.faces().collect();
+    let vs: Vec<VertexKey> = m.vertices().collect();
+    let uv = m.add_halfedge_attr::<[f64; 2]>("uv").unwrap();
+    let corner = m
+        .add_attr_with_rule::<HalfedgeKey, u32, KeepFirst>("corner")
+        .unwrap();
+    let htag = m.add_halfedge_attr::<Tag>("corner_tag").unwrap();
+    for (n, &h) in hs.iter().enumerate() {
+        m.set_attr(&uv, h, [n as f64, 0.5 * n as f64]).unwrap();
+        if n % 4 != 1 {
+            m.set_attr(&corner, h, n as u32).unwrap();
+        }
+        m.set_attr(&htag, h, Tag(format!("h{n}"))).unwrap();
+    }
+    let seam = m
+        .add_attr_with_rule::<EdgeKey, bool, Contagion>("seam")
+        .unwrap();
+    let length = m
+        .add_attr_with_rule::<EdgeKey, f64, Conserved>("length")
+        .unwrap();
+    let etag = m.add_edge_attr::<Tag>("edge_tag").unwrap();
+    for (n, &e) in es.iter().enumerate() {
+        m.set_attr(&seam, e, n % 3 == 0).unwrap();
+        m.set_attr(&length, e, 1.0 + n as f64).unwrap();
+        m.set_attr(&etag, e, Tag(format!("e{n}"))).unwrap();
+    }
+    let material = m
+        .add_attr_with_rule::<FaceKey, u32, KeepFirst>("material")
+        .unwrap();
+    let area = m
+        .add_attr_with_rule::<FaceKey, f64, Conserved>("area")
+        .unwrap();
+    let scratch = m
+        .add_attr_with_rule::<FaceKey, f32, Discard>("scratch")
+        .unwrap();
+    let ftag = m.add_face_attr::<Tag>("face_tag").unwrap();
+    for (n, &f) in fs.iter().enumerate() {
+        m.set_attr(&material, f, n as u32).unwrap();
+        m.set_attr(&area, f, 0.25 * n as f64).unwrap();
+        m.set_attr(&scratch, f, n as f32).unwrap();
+        m.set_attr(&ftag, f, Tag(format!("f{n}"))).unwrap();
+    }
+    let mass = m
+        .add_attr_with_rule::<VertexKey, f64, Conserved>("mass")
+        .unwrap();
+    let selected = m
+        .add_attr_with_rule::<VertexKey, bool, Contagion>("selected")
+        .unwrap();
+    let vtag = m.add_vertex_attr::<Tag>("vertex_tag").unwrap();
+    for (n, &v) in vs.iter().enumerate() {
+        m.set_attr(&mass, v, n as f64).unwrap();
+        m.set_attr(&selected, v, n % 2 == 0).unwrap();
+        m.set_attr(&vtag, v, Tag(format!("v{n}"))).unwrap();
+    }
 }
 
 /// Apply one op; errors are fine (a refused op must change nothing, which
@@ -101,6 +216,40 @@ fn apply(m: &mut Mesh, op: &Op) {
                 &decimate::DecimateOptions::to(decimate::Target::Vertices(target)),
                 Progress::none(),
             );
+        }
+        Op::Subdivide(t) => {
+            // Small meshes only: a level multiplies the faces by 3 or 4.
+            if m.face_count() <= 64 {
+                let options = subdivision::SubdivisionOptions::default();
+                let _ = match t % 4 {
+                    0 => algo::loop_subdivide(m, &options, Progress::none()),
+                    1 => algo::catmull_clark(m, &options, Progress::none()),
+                    2 => algo::sqrt3_subdivide(m, &options, Progress::none()),
+                    _ => algo::midpoint_subdivide(
+                        m,
+                        &algo::MidpointOptions::default(),
+                        Progress::none(),
+                    ),
+                };
+            }
+        }
+        Op::Remesh => {
+            if m.face_count() <= 64 {
+                let _ = algo::remesh(m, &algo::RemeshOptions::default(), Progress::none());
+            }
+        }
+        Op::FillHoles => {
+            let _ = algo::fill_holes(m, &algo::FillHoleOptions::default(), Progress::none());
+        }
+        Op::Fair => {
+            let _ = algo::fair::fair(m, &algo::fair::FairOptions::default(), Progress::none());
+        }
+        Op::Normals(t) => {
+            let _ = match t % 3 {
+                0 => algo::add_face_normals(m).map(drop),
+                1 => algo::add_vertex_normals(m, &algo::VertexNormalOptions::default()).map(drop),
+                _ => algo::add_corner_normals(m, &algo::CornerNormalOptions::default()).map(drop),
+            };
         }
         Op::SetPosition(i, d) => {
             if let Some(v) = nth(m.vertices(), m.vertex_count(), i) {
@@ -447,9 +596,13 @@ fn failing_or_panicking_transactions_leave_the_snapshot() {
         if history {
             m.enable_history(HistoryLimits::default());
             apply(&mut m, &Op::Topo(TopoOp::Poke(0)));
+            // A redo branch, which a failed transaction must keep.
+            apply(&mut m, &Op::Topo(TopoOp::Poke(1)));
+            m.undo();
         }
         let before = canon(&m);
         let undo_len = m.undo_len();
+        let redo_len = m.redo_len();
         let stop = fail_at % (ops.len() + 1);
         let run = |m: &mut Mesh| {
             m.transaction(|m| {
@@ -481,6 +634,17 @@ fn failing_or_panicking_transactions_leave_the_snapshot() {
         assert!(!m.in_transaction());
         assert_eq!(canon(&m), before);
         assert_eq!(m.undo_len(), undo_len);
+        assert_eq!(
+            m.redo_len(),
+            redo_len,
+            "a failed transaction changed the redo branch"
+        );
+        if redo_len > 0 {
+            // The kept branch still redoes, and undoes back.
+            assert!(m.redo());
+            assert!(m.undo());
+            assert_eq!(canon(&m), before);
+        }
         assert_eq!(m.history_enabled(), history);
         // The mesh goes on working: a committed transaction is one unit.
         let r = m.transaction(|m| {
@@ -843,4 +1007,45 @@ fn slots_born_and_removed_in_one_step_undo_and_redo_exactly() {
     m.validate().unwrap();
     assert!(m.undo());
     assert_eq!(canon(&m), before);
+}
+
+/// The defect the snapshot test missed while it held no corner column: a
+/// collapse merges and copies corner values, and undo (or a failed
+/// transaction) must put every corner's own value back.
+#[test]
+fn collapse_then_undo_or_rollback_restores_every_corner_value() {
+    let setup = || {
+        let mut m = shapes::cube();
+        let uv = m.add_halfedge_attr::<[f64; 2]>("uv").unwrap();
+        let hs: Vec<_> = m.halfedges().collect();
+        for (n, &h) in hs.iter().enumerate() {
+            m.set_attr(&uv, h, [n as f64, 0.0]).unwrap();
+        }
+        (m, uv, hs)
+    };
+    let values = |m: &Mesh, uv: &meshloom::attr::HalfedgeAttr<[f64; 2]>, hs: &[_]| {
+        hs.iter()
+            .map(|&h| m.attr(uv, h).unwrap().copied())
+            .collect::<Vec<_>>()
+    };
+    // Undo.
+    let (mut m, uv, hs) = setup();
+    let before = values(&m, &uv, &hs);
+    m.enable_history(HistoryLimits::default());
+    m.collapse_edge(hs[0]).unwrap();
+    assert!(m.undo());
+    assert_eq!(values(&m, &uv, &hs), before);
+    // A failing transaction, with and without history.
+    for history in [false, true] {
+        let (mut m, uv, hs) = setup();
+        if history {
+            m.enable_history(HistoryLimits::default());
+        }
+        let r = m.transaction(|m| {
+            m.collapse_edge(hs[0])?;
+            Err::<(), _>(meshloom::Error::Cancelled { algorithm: "tool" })
+        });
+        assert!(r.is_err());
+        assert_eq!(values(&m, &uv, &hs), before, "history: {history}");
+    }
 }

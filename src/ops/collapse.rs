@@ -604,24 +604,29 @@ impl Mesh {
         let (a_left, a_right) = (h, self.next(tw));
         let (b_left, b_right) = (self.next(h), tw);
         let mut runs: Vec<(Hid, bool)> = Vec::new();
-        let cols = &mut self.attrs.halfedge.cols;
-        for (_, col) in cols.iter_mut() {
+        // Every write goes through the column set, which saves the old
+        // value while a journal records (undo and rollback restore it).
+        let cols = &mut self.attrs.halfedge;
+        for ci in 0..cols.cols.len() {
             runs.clear();
             // At a: index 0 is the L corner, index 1 the R corner; at b:
             // index 0 is the R corner, index 1 the L corner.
-            ring_a.runs(&**col, left, right, &mut runs, false);
-            ring_b.runs(&**col, right, left, &mut runs, true);
+            let col = &*cols.cols[ci].1;
+            ring_a.runs(col, left, right, &mut runs, false);
+            ring_b.runs(col, right, left, &mut runs, true);
             // The merged values go to the slots of a's corners beside the
             // edge (h is freed by the commit; a's R corner, when it lives
             // on, belongs to the R wedge anyway).
             if left {
-                col.merge(
+                cols.merge_one(
+                    ci,
                     a_left.index(),
                     &[(b_left.index(), t), (a_left.index(), 1.0 - t)],
                 );
             }
             if right {
-                col.merge(
+                cols.merge_one(
+                    ci,
                     a_right.index(),
                     &[(b_right.index(), t), (a_right.index(), 1.0 - t)],
                 );
@@ -629,7 +634,7 @@ impl Mesh {
             for &(c, is_left) in &runs {
                 let src = if is_left { a_left } else { a_right };
                 if c != src {
-                    col.copy(src.index(), c.index());
+                    cols.copy_one(ci, src.index(), c.index());
                 }
             }
         }

@@ -219,6 +219,26 @@ impl Columns {
         }
     }
 
+    /// Merge rule on column `col` alone, saving the old value first while
+    /// a journal records (only if the merge changes it).
+    #[inline]
+    pub(crate) fn merge_one(&mut self, col: usize, dst: usize, inputs: &[(usize, f64)]) {
+        let c = &mut self.cols[col].1;
+        if dst < self.log_below {
+            self.dirty |= c.merge_saving(dst, inputs);
+        } else {
+            c.merge(dst, inputs);
+        }
+    }
+
+    /// Copy slot `from` to `to` in column `col` alone, saving `to`'s old
+    /// value first while a journal records.
+    #[inline]
+    pub(crate) fn copy_one(&mut self, col: usize, from: usize, to: usize) {
+        self.save_one(col, to);
+        self.cols[col].1.copy(from, to);
+    }
+
     /// Interpolate rule on every column.
     #[inline]
     pub(crate) fn interpolate(&mut self, dst: usize, inputs: &[(usize, f64)]) {
