@@ -493,8 +493,9 @@ impl Mesh {
     /// committed transaction is one undo unit.
     ///
     /// Built on the undo log: rollback undoes to a mark, so its cost is
-    /// the size of what was done, not of the mesh. A failed transaction
-    /// that edited drops the redo branch, as any edit does.
+    /// the size of what was done, not of the mesh. A committed transaction
+    /// that edited drops the redo branch, as any edit does; a failed one
+    /// leaves the history as it was, redo branch included.
     ///
     /// ```
     /// let mut mesh = meshloom::shapes::cube();
@@ -515,6 +516,9 @@ impl Mesh {
     pub fn transaction<R>(&mut self, f: impl FnOnce(&mut Mesh) -> Result<R>) -> Result<R> {
         self.seal_if_on();
         let r = self.ensure_recorder();
+        // The outermost transaction sets the redo branch aside (its held
+        // slots stay held): only a committed edit may drop it.
+        let redo = (r.tx_depth == 0).then(|| std::mem::take(&mut r.redo));
         r.tx_depth += 1;
         r.group_depth += 1;
         let mark = (
@@ -536,6 +540,14 @@ impl Mesh {
             r.undo.names.truncate(mark.2);
             r.group_started = mark.3;
         }
+        if let Some(redo) = redo {
+            let edited = r.undo.bytes.len() != mark.0 || r.undo.units != mark.1;
+            r.redo = redo;
+            if edited {
+                self.drop_redo();
+            }
+        }
+        let r = self.rec.as_deref_mut().expect("recorder");
         r.tx_depth -= 1;
         r.group_depth -= 1;
         if r.group_depth == 0 {
