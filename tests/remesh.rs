@@ -705,3 +705,19 @@ fn share_below(mesh: &Mesh, l: f64) -> f64 {
     let ls = lengths(mesh);
     ls.iter().filter(|&&x| x < l * (1.0 - 1e-9)).count() as f64 / ls.len() as f64
 }
+
+/// Found by the journal's snapshot test: two triangles on the same three
+/// vertices (a closed "pillow") whose edges are longer than the target.
+/// Splitting an edge would join its new vertex to the shared apex twice,
+/// so such an edge is not split; the result stays a valid mesh.
+#[test]
+fn a_two_triangle_pillow_remeshes_without_multi_edges() {
+    let p = [[0.5, 0.866, 0.0], [-0.5, 0.52, 0.0], [-1.0, 0.0, 0.0]];
+    let mut m = Mesh::from_polygons(&p, &[[2u32, 0, 1], [2, 1, 0]]).unwrap();
+    let options = RemeshOptions {
+        sizing: Sizing::Uniform(0.1),
+        ..RemeshOptions::default()
+    };
+    let _ = remesh(&mut m, &options, Progress::none());
+    assert_eq!(m.validate(), Ok(()));
+}

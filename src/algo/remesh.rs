@@ -208,6 +208,12 @@ pub struct RemeshOptions {
     /// as pmp-library's `remove_caps` (default true). Lines and edges at
     /// fixed vertices are never flipped.
     pub remove_caps: bool,
+    /// The most faces the result may have: a target length whose estimate
+    /// (each input triangle's area over that of an equilateral triangle
+    /// of its corners' shortest target) is past it is refused before any
+    /// work with [`Error::TooLarge`] (default
+    /// [`DEFAULT_MAX_FACES`](crate::algo::subdivision::DEFAULT_MAX_FACES)).
+    pub max_faces: usize,
 }
 
 impl Default for RemeshOptions {
@@ -224,6 +230,7 @@ impl Default for RemeshOptions {
             locked: None,
             resample: Resample::Linear,
             remove_caps: true,
+            max_faces: crate::algo::subdivision::DEFAULT_MAX_FACES,
         }
     }
 }
@@ -296,7 +303,9 @@ pub struct RemeshReport {
 /// triangle (naming it), a target length or tolerance that is not a
 /// positive finite number, a feature angle that is not finite, a column to
 /// resample that is missing or does not interpolate linearly; the errors
-/// of a column handle ([`Error::AttributeHandle`]); [`Error::Cancelled`].
+/// of a column handle ([`Error::AttributeHandle`]); [`Error::TooLarge`]
+/// for a target length that would make more than `max_faces` faces
+/// (a unit cube at 1e-6); [`Error::NonFiniteResult`]; [`Error::Cancelled`].
 /// On every error the mesh is unchanged.
 ///
 /// # Complexity
@@ -320,6 +329,7 @@ pub fn remesh(
     mut progress: Progress<'_>,
 ) -> Result<RemeshReport> {
     let setup = Setup::new(mesh, options)?;
+    setup.check_size(mesh, options.max_faces)?;
     let mut report = RemeshReport {
         vertices_before: mesh.vertex_count(),
         faces_before: mesh.face_count(),
@@ -362,6 +372,7 @@ pub fn remesh(
     report.vertices = work.vertex_count();
     report.faces = work.face_count();
     report.edge_lengths = engine.edge_lengths(&work);
+    crate::algo::subdivision::check_finite(&work, ALGORITHM)?;
     mesh.replace_with(work);
     Ok(report)
 }
@@ -407,6 +418,39 @@ struct Setup {
 }
 
 impl Setup {
+    /// Refuse a target that would make more than `max_faces` faces: each
+    /// input triangle's area over that of an equilateral triangle whose
+    /// side is its corners' shortest target length.
+    fn check_size(&self, mesh: &Mesh, max_faces: usize) -> Result<()> {
+        let Some(pos) = mesh.position_slots() else {
+            return Ok(());
+        };
+        let equilateral = 3f64.sqrt() / 4.0;
+        let mut estimate = 0.0;
+        for f in mesh.fids() {
+            if mesh.is_hole(f) {
+                continue;
+            }
+            let h = mesh.face_halfedge(f);
+            let l = [h, mesh.next(h), mesh.prev_fast(h)]
+                .map(|h| self.sizing[mesh.origin(h).index()])
+                .into_iter()
+                .fold(f64::INFINITY, f64::min);
+            let n = triangle_normal(mesh, pos, h);
+            let area = 0.5 * dot(n, n).sqrt();
+            estimate += (area / (equilateral * l * l)).max(1.0);
+        }
+        if estimate > max_faces as f64 {
+            return Err(Error::TooLarge {
+                algorithm: ALGORITHM,
+                estimate: estimate.min(u64::MAX as f64) as u64,
+                limit: max_faces as u64,
+                option: "max_faces",
+            });
+        }
+        Ok(())
+    }
+
     fn new(mesh: &Mesh, options: &RemeshOptions) -> Result<Setup> {
         let pos = mesh.position_slots().ok_or(Error::NoPositions)?;
         for f in mesh.fids() {
@@ -670,6 +714,17 @@ fn resample_columns(mesh: &Mesh, what: &Resample) -> Result<Vec<ResampleColumn>>
     Ok(out)
 }
 
+/// Whether the two triangles beside `h`'s edge have the same third
+/// vertex (two triangles on the same three vertices, as in a closed
+/// two-triangle "pillow"): splitting the edge would join the new vertex to
+/// that apex twice.
+fn same_apex(mesh: &Mesh, h: Hid) -> bool {
+    let t = h.twin();
+    !mesh.is_hole(mesh.face_of(h))
+        && !mesh.is_hole(mesh.face_of(t))
+        && mesh.origin(mesh.prev_fast(h)) == mesh.origin(mesh.prev_fast(t))
+}
+
 /// Twice the area vector of the face of `h` (a triangle).
 fn triangle_normal(mesh: &Mesh, pos: &[V3], h: Hid) -> V3 {
     let n = mesh.next(h);
@@ -922,7 +977,7 @@ impl Engine {
                 let l = self.target(a, b) * (4.0 / 3.0);
                 let d = dist2(pos[a.index()], pos[b.index()]);
                 // (Not `d <= l²`: a NaN must not split forever.)
-                if d.is_nan() || d <= l * l || !d.is_finite() {
+                if d.is_nan() || d <= l * l || !d.is_finite() || same_apex(mesh, h) {
                     continue;
                 }
                 self.split(mesh, e, a, b);
@@ -937,6 +992,7 @@ impl Engine {
     }
 
     /// Split edge `e` (a–b) at its midpoint and the triangles beside it.
+    /// The two triangles must not share their apex (see [`same_apex`]).
     fn split(&mut self, mesh: &mut Mesh, e: Eid, a: Vid, b: Vid) {
         let [h, t] = e.halfedges();
         let (fh, ft) = (mesh.face_of(h), mesh.face_of(t));
