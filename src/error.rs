@@ -91,6 +91,33 @@ pub enum Error {
         /// What was needed and not found.
         reason: String,
     },
+    /// Occurs when an algorithm's options ask for a result larger than the
+    /// limit the caller set (or the default limit): the estimate is made
+    /// from the mesh and the options before any work. The mesh is
+    /// unchanged; raise the named option to allow it.
+    #[error("{algorithm} would make about {estimate} faces, more than the limit of {limit} (raise `{option}` to allow it)")]
+    TooLarge {
+        /// The algorithm.
+        algorithm: &'static str,
+        /// The estimated number of faces of the result.
+        estimate: u64,
+        /// The limit in force.
+        limit: u64,
+        /// The option that sets the limit.
+        option: &'static str,
+    },
+    /// Occurs when an algorithm's arithmetic leaves the range of `f64` on
+    /// this input (coordinates near the largest finite values): the result
+    /// would hold a NaN or an infinity. The mesh is unchanged.
+    #[error("{algorithm} would give {key} the non-finite position {position:?} (the coordinates are too large for its arithmetic)")]
+    NonFiniteResult {
+        /// The algorithm.
+        algorithm: &'static str,
+        /// The first element of the result with a non-finite value.
+        key: AnyKey,
+        /// That value.
+        position: [f64; 3],
+    },
     /// Occurs when input polygons cannot form a half-edge mesh.
     #[error(transparent)]
     Build(#[from] BuildError),

@@ -1260,7 +1260,10 @@ fn midpoint_keeps_the_shape_and_splits_columns() {
         let edges = old_edges(&m);
         let before = topology(&m);
         let (v, e, f, h) = counts(&m);
-        let opts = MidpointOptions { levels: 1, faces };
+        let opts = MidpointOptions {
+            faces,
+            ..MidpointOptions::levels(1)
+        };
         midpoint_subdivide(&mut m, &opts, Progress::none()).unwrap();
         let new_v = if face_points { v + e + f } else { v + e };
         assert_eq!(counts(&m).0, new_v, "{faces:?}");
@@ -1285,8 +1288,8 @@ fn midpoint_keeps_the_shape_and_splits_columns() {
     let mut m = meshloom::shapes::cube();
     let snap = snapshot(&m);
     let opts = MidpointOptions {
-        levels: 1,
         faces: MidpointFaces::Triangles,
+        ..MidpointOptions::levels(1)
     };
     assert!(midpoint_subdivide(&mut m, &opts, Progress::none()).is_err());
     assert_eq!(snapshot(&m), snap);

@@ -637,6 +637,9 @@ pub struct SubdivideArgs {
     /// Keep boundary corners (vertices of a single face) in place.
     #[arg(long)]
     pub corners: bool,
+    /// Refuse, before any work, a result estimated past this many faces.
+    #[arg(long, value_name = "N", default_value_t = meshloom::algo::subdivision::DEFAULT_MAX_FACES)]
+    pub max_faces: usize,
     /// Print the report as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,

@@ -83,6 +83,33 @@ class UnsuitableError(MeshloomError, ValueError):
     element: Any = None
 
 
+class ReentrantError(MeshloomError, RuntimeError):
+    """A mesh was used from inside one of its own attribute rules while
+    meshloom was editing it (a rule's merge or split may only compute a
+    value). The edit is rolled back and this is raised."""
+
+
+class TooLargeError(MeshloomError, ValueError):
+    """An algorithm's options ask for a result larger than its limit (the
+    estimate is made before any work; the mesh is unchanged). `algorithm`
+    names it, `estimate` and `limit` are face counts, `option` names the
+    keyword that raises the limit."""
+
+    algorithm: str = ""
+    estimate: int = 0
+    limit: int = 0
+    option: str = ""
+
+
+class NonFiniteError(MeshloomError, ArithmeticError):
+    """An algorithm's arithmetic would leave the range of float64 on this
+    input (coordinates near the largest finite values); the mesh is
+    unchanged. `algorithm` names it, `element` is the first key it names."""
+
+    algorithm: str = ""
+    element: Any = None
+
+
 __all__ = [
     "MeshloomError",
     "StaleKeyError",
@@ -93,4 +120,7 @@ __all__ = [
     "ColumnError",
     "CancelledError",
     "UnsuitableError",
+    "ReentrantError",
+    "TooLargeError",
+    "NonFiniteError",
 ]

@@ -7,6 +7,7 @@
 //! operators (`mesh::edit`): an error, a cancellation or a Python rule that
 //! raised leaves the mesh as it was, and attribute columns follow by rule.
 
+use crate::errors::busy;
 use std::cell::RefCell;
 
 use meshloom::algo::curvature::{add_curvature, curvature, BoundaryCurvature, CurvatureOptions};
@@ -16,7 +17,7 @@ use meshloom::algo::fill_hole::{fill_holes, FillHoleOptions};
 use meshloom::algo::laplacian::LaplaceWeights;
 use meshloom::algo::remesh::{remesh, BoundaryMode, RemeshOptions, Resample, Sizing};
 use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
-use meshloom::algo::subdivision::SubdivisionReport;
+use meshloom::algo::subdivision::{SubdivisionReport, DEFAULT_MAX_FACES};
 use meshloom::algo::{
     add_corner_normals, add_face_normals, add_vertex_normals, catmull_clark, corner_normals,
     face_normals, loop_subdivide, midpoint_subdivide, sqrt3_subdivide, vertex_normals, Boundary,
@@ -422,7 +423,7 @@ impl PyMesh {
                 _ => {}
             }
         }
-        let this = slf.borrow();
+        let this = slf.try_borrow().map_err(busy)?;
         let m = &this.mesh;
         let err = |e| crate::errors::mesh_err(py, &slf.clone().unbind(), e);
         let out = match kind {
@@ -472,7 +473,7 @@ impl PyMesh {
         if store {
             edit(slf, |m| add_curvature(m, &options).map(drop))?;
         }
-        let this = slf.borrow();
+        let this = slf.try_borrow().map_err(busy)?;
         let m = &this.mesh;
         let c = curvature(m, &options)
             .map_err(|e| crate::errors::mesh_err(py, &slf.clone().unbind(), e))?;
@@ -496,8 +497,10 @@ impl PyMesh {
     /// sharpness; not for sqrt3); `linear_columns`: vertex columns refined
     /// linearly instead of with the scheme's stencil. `progress`: a
     /// callable taking a dict and returning False to cancel
-    /// (`CancelledError`; the mesh is unchanged).
-    #[pyo3(signature = (scheme = "loop", levels = 1, *, boundary = "crease", corner_column = None, crease_column = None, linear_columns = Vec::new(), faces = "auto", progress = None))]
+    /// (`CancelledError`; the mesh is unchanged). `max_faces`: a request
+    /// estimated to make more faces is refused before any work
+    /// (`TooLargeError`; default ten million).
+    #[pyo3(signature = (scheme = "loop", levels = 1, *, boundary = "crease", corner_column = None, crease_column = None, linear_columns = Vec::new(), faces = "auto", progress = None, max_faces = DEFAULT_MAX_FACES))]
     #[allow(clippy::too_many_arguments)]
     fn subdivide(
         slf: &Bound<'_, Self>,
@@ -509,6 +512,7 @@ impl PyMesh {
         linear_columns: Vec<String>,
         faces: &str,
         progress: Option<Bound<'_, PyAny>>,
+        max_faces: usize,
     ) -> PyResult<Py<PyDict>> {
         let py = slf.py();
         let boundary = match boundary {
@@ -525,6 +529,7 @@ impl PyMesh {
             boundary,
             corner_column,
             crease_column,
+            max_faces,
             ..SubdivisionOptions::default()
         };
         for c in &linear_columns {
@@ -551,7 +556,11 @@ impl PyMesh {
                         )))
                     }
                 };
-                let o = MidpointOptions { levels, faces };
+                let o = MidpointOptions {
+                    levels,
+                    faces,
+                    max_faces,
+                };
                 cb.finish(edit(slf, |m| cb.run(|p| midpoint_subdivide(m, &o, p))))?
             }
             other => {
@@ -953,7 +962,7 @@ impl PyMesh {
         )?;
         let cb = Callback::new(progress)?;
         let chain = {
-            let this = slf.borrow();
+            let this = slf.try_borrow().map_err(busy)?;
             let m = &this.mesh;
             let result = kw.options(m, Target::Ratio(0.5)).and_then(|decimate| {
                 let o = LodOptions {
@@ -971,7 +980,7 @@ impl PyMesh {
             cb.finish(result)?
         };
         let out = PyList::empty(py);
-        let this = slf.borrow();
+        let this = slf.try_borrow().map_err(busy)?;
         for level in chain.levels {
             let d = PyDict::new(py);
             match level.mesh {

@@ -30,6 +30,22 @@ pub fn raise(py: Python<'_>, name: &str, msg: String, attrs: &[(&str, Py<PyAny>)
     made.unwrap_or_else(|e| e)
 }
 
+/// The error of using a mesh from inside one of its own Python attribute
+/// rules while meshloom edits it (the edit holds the mesh): a
+/// `ReentrantError`, which the edit then rolls back and raises.
+pub fn busy(e: impl std::fmt::Display) -> PyErr {
+    Python::attach(|py| {
+        raise(
+            py,
+            "ReentrantError",
+            format!(
+                "the mesh is being edited: an attribute rule called during an edit of this mesh cannot use the mesh ({e})"
+            ),
+            &[],
+        )
+    })
+}
+
 /// The snake_case name of a refusal: `LinkCondition` → `link_condition`.
 fn refusal_name(reason: &Refusal) -> String {
     let debug = format!("{reason:?}");
@@ -128,6 +144,48 @@ pub fn mesh_err(py: Python<'_>, mesh: &Py<PyMesh>, e: Error) -> PyErr {
                     reason.into_pyobject(py).unwrap().into_any().unbind(),
                 ),
                 ("element", k.map(key).unwrap_or_else(|| py.None())),
+            ],
+        ),
+        Error::TooLarge {
+            algorithm,
+            estimate,
+            limit,
+            option,
+        } => raise(
+            py,
+            "TooLargeError",
+            msg,
+            &[
+                (
+                    "algorithm",
+                    algorithm.into_pyobject(py).unwrap().into_any().unbind(),
+                ),
+                (
+                    "estimate",
+                    estimate.into_pyobject(py).unwrap().into_any().unbind(),
+                ),
+                (
+                    "limit",
+                    limit.into_pyobject(py).unwrap().into_any().unbind(),
+                ),
+                (
+                    "option",
+                    option.into_pyobject(py).unwrap().into_any().unbind(),
+                ),
+            ],
+        ),
+        Error::NonFiniteResult {
+            algorithm, key: k, ..
+        } => raise(
+            py,
+            "NonFiniteError",
+            msg,
+            &[
+                (
+                    "algorithm",
+                    algorithm.into_pyobject(py).unwrap().into_any().unbind(),
+                ),
+                ("element", key(k)),
             ],
         ),
         _ => raise(py, "MeshloomError", msg, &[]),

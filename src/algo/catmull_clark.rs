@@ -50,8 +50,8 @@ use crate::algo::subdivision::creases::{
 };
 use crate::algo::subdivision::refine::{face_ring, refine, CutRule, Refinement};
 use crate::algo::subdivision::{
-    check_columns, crease_children, finish_columns, run_levels, LevelReport, RefinePlans, Stage,
-    SubdivisionOptions, SubdivisionReport, ON_HOLE,
+    check_columns, crease_children, finish_columns, run_levels, Growth, LevelReport, Levels,
+    RefinePlans, Stage, SubdivisionOptions, SubdivisionReport, ON_HOLE,
 };
 use crate::error::{Error, Result};
 use crate::layout::{Eid, Fid, Hid, Vid};
@@ -106,7 +106,11 @@ fn catmull_clark_run(
     run_levels(
         mesh,
         ALGORITHM,
-        options.levels,
+        Levels {
+            count: options.levels,
+            growth: Growth::Corners,
+            max_faces: options.max_faces,
+        },
         &mut progress,
         |parent, level, progress| cc_level(parent, options, level, progress),
     )

@@ -54,8 +54,8 @@ use crate::algo::subdivision::refine::{
     check_valence_two, refine, valence_two_error, CutRule, Refinement,
 };
 use crate::algo::subdivision::{
-    check_columns, crease_children, finish_columns, run_levels, scatter_edge_ends, LevelReport,
-    RefinePlans, Stage, SubdivisionOptions, SubdivisionReport, ON_HOLE,
+    check_columns, crease_children, finish_columns, run_levels, scatter_edge_ends, Growth,
+    LevelReport, Levels, RefinePlans, Stage, SubdivisionOptions, SubdivisionReport, ON_HOLE,
 };
 use crate::error::{Error, Result};
 use crate::layout::{with_headroom, Eid, Hid, Vid};
@@ -111,7 +111,11 @@ fn loop_subdivide_run(
     run_levels(
         mesh,
         ALGORITHM,
-        options.levels,
+        Levels {
+            count: options.levels,
+            growth: Growth::Four,
+            max_faces: options.max_faces,
+        },
         &mut progress,
         |parent, level, progress| loop_level(parent, options, level, progress),
     )

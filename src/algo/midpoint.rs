@@ -33,7 +33,8 @@ use crate::algo::loop_subdivision::LoopMask;
 use crate::algo::progress::Progress;
 use crate::algo::subdivision::refine::{check_valence_two, refine, CutRule};
 use crate::algo::subdivision::{
-    finish_columns, run_levels, LevelReport, RefinePlans, SubdivisionReport, VertexData,
+    finish_columns, run_levels, Growth, LevelReport, Levels, RefinePlans, SubdivisionReport,
+    VertexData, DEFAULT_MAX_FACES,
 };
 use crate::error::Result;
 use crate::mesh::Mesh;
@@ -59,6 +60,10 @@ pub struct MidpointOptions {
     pub levels: u32,
     /// How faces are cut (default: by the mesh).
     pub faces: MidpointFaces,
+    /// The most faces the result may have (as
+    /// [`SubdivisionOptions::max_faces`](crate::algo::SubdivisionOptions::max_faces);
+    /// default [`DEFAULT_MAX_FACES`]).
+    pub max_faces: usize,
 }
 
 impl Default for MidpointOptions {
@@ -66,6 +71,7 @@ impl Default for MidpointOptions {
         MidpointOptions {
             levels: 1,
             faces: MidpointFaces::Auto,
+            max_faces: DEFAULT_MAX_FACES,
         }
     }
 }
@@ -92,7 +98,7 @@ impl MidpointOptions {
 /// ```
 /// use meshloom::algo::{midpoint_subdivide, MidpointFaces, MidpointOptions, Progress};
 /// let mut mesh = meshloom::shapes::tetrahedron();
-/// let opts = MidpointOptions { levels: 1, faces: MidpointFaces::Quads };
+/// let opts = MidpointOptions { faces: MidpointFaces::Quads, ..MidpointOptions::levels(1) };
 /// midpoint_subdivide(&mut mesh, &opts, Progress::none())?;
 /// assert_eq!((mesh.vertex_count(), mesh.face_count()), (4 + 6 + 4, 12));
 /// # Ok::<(), meshloom::Error>(())
@@ -131,7 +137,14 @@ fn midpoint_subdivide_run(
     run_levels(
         mesh,
         ALGORITHM,
-        options.levels,
+        Levels {
+            count: options.levels,
+            growth: match rule {
+                CutRule::Triangles => Growth::Four,
+                _ => Growth::Corners,
+            },
+            max_faces: options.max_faces,
+        },
         &mut progress,
         |parent, level, progress| {
             check_valence_two(parent, rule, ALGORITHM)?;

@@ -82,8 +82,8 @@ use crate::algo::progress::Progress;
 use crate::algo::subdivision::creases::{Features, PlanSink, PointSink, Rule, Sink};
 use crate::algo::subdivision::refine::{fresh_slots, valence_two_error, CutRule, Ranks, Topology};
 use crate::algo::subdivision::{
-    check_columns, finish_columns, run_levels, scatter_edge_ends, unsuitable, ColumnPlans,
-    LevelReport, Stage, SubdivisionOptions, SubdivisionReport,
+    check_columns, finish_columns, run_levels, scatter_edge_ends, unsuitable, ColumnPlans, Growth,
+    LevelReport, Levels, Stage, SubdivisionOptions, SubdivisionReport,
 };
 use crate::error::{Error, Result};
 use crate::layout::{with_headroom, Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};
@@ -147,7 +147,11 @@ fn sqrt3_subdivide_run(
     run_levels(
         mesh,
         ALGORITHM,
-        options.levels,
+        Levels {
+            count: options.levels,
+            growth: Growth::Three,
+            max_faces: options.max_faces,
+        },
         &mut progress,
         |parent, level, progress| sqrt3_level(parent, options, level, progress),
     )

@@ -367,6 +367,37 @@ fn emit(mut writer: impl std::io::Write, bytes: &[u8]) -> Result<(), Error> {
 
 /// The mesh's positions and faces as dense buffers with their keys, or an
 /// error if it has no positions.
+/// Positions narrowed to `f32` for a format that stores them so, refused
+/// (naming the vertex index and the format) where the narrowing would
+/// lose a coordinate: one beyond `f32`'s range (it would become infinite)
+/// or a nonzero one so small that it would become zero.
+pub(crate) fn narrow_positions(
+    positions: &[[f64; 3]],
+    format: &str,
+) -> Result<Vec<[f32; 3]>, Error> {
+    positions
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let q = p.map(|x| x as f32);
+            let lost = p
+                .iter()
+                .zip(&q)
+                .any(|(&x, &y)| !y.is_finite() || (y == 0.0 && x != 0.0));
+            if lost {
+                Err(Error::Unwritable {
+                    at: Location::whole(),
+                    what: format!(
+                        "vertex {i} at {p:?} does not fit in {format}'s 32-bit floats (a coordinate beyond ±3.4e38 or below 1.4e-45 in magnitude)"
+                    ),
+                })
+            } else {
+                Ok(q)
+            }
+        })
+        .collect()
+}
+
 fn polygons_of(mesh: &Mesh) -> Result<(crate::build::Polygons, crate::build::IndexMaps), Error> {
     let (p, maps) = mesh.to_polygons();
     if p.positions.len() != mesh.vertex_count() {

@@ -66,19 +66,20 @@ pub fn read_stl_with(
     super::read_soup(FORMAT, &bytes, options)
 }
 
-/// Write a mesh as STL; polygons become triangle fans, positions `f32`.
+/// Write a mesh as STL; polygons are cut as [`Mesh::triangulate`] cuts
+/// them (ear clipping in their plane), positions `f32`.
 ///
 /// # Errors
-/// [`Error::Unwritable`] without positions or with more than 2^32
-/// triangles; [`Error::Io`].
+/// [`Error::Unwritable`] without positions, with more than 2^32
+/// triangles, or with a coordinate that `f32` cannot hold (beyond
+/// ±3.4e38, or so small that it would become 0: the message names the
+/// vertex); [`Error::Io`].
 pub fn write_stl(mesh: &Mesh, writer: impl Write, encoding: StlEncoding) -> Result<(), Error> {
-    let (p, _) = polygons_of(mesh)?;
-    let tris: Vec<[u32; 3]> = p
-        .faces()
-        .flat_map(|f| (1..f.len() - 1).map(move |i| [f[0], f[i], f[i + 1]]))
-        .collect();
+    let (p, maps) = polygons_of(mesh)?;
+    let positions = super::narrow_positions(&p.positions, "STL")?;
+    let tris = triangle_indices(mesh, &maps);
     let normal = |t: &[u32; 3]| {
-        let [a, b, c] = t.map(|i| p.positions[i as usize]);
+        let [a, b, c] = t.map(|i| positions[i as usize].map(f64::from));
         let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
         let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
         let n = [
@@ -87,7 +88,7 @@ pub fn write_stl(mesh: &Mesh, writer: impl Write, encoding: StlEncoding) -> Resu
             u[0] * v[1] - u[1] * v[0],
         ];
         let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        if l > 0.0 {
+        if l > 0.0 && l.is_finite() {
             n.map(|x| (x / l) as f32)
         } else {
             [0.0; 3]
@@ -110,8 +111,8 @@ pub fn write_stl(mesh: &Mesh, writer: impl Write, encoding: StlEncoding) -> Resu
                     out.extend_from_slice(&x.to_le_bytes());
                 }
                 for &i in t {
-                    for x in p.positions[i as usize] {
-                        out.extend_from_slice(&(x as f32).to_le_bytes());
+                    for x in positions[i as usize] {
+                        out.extend_from_slice(&x.to_le_bytes());
                     }
                 }
                 out.extend_from_slice(&[0, 0]);
@@ -124,7 +125,7 @@ pub fn write_stl(mesh: &Mesh, writer: impl Write, encoding: StlEncoding) -> Resu
                 writeln!(out, "facet normal {} {} {}\nouter loop", n[0], n[1], n[2])
                     .map_err(Error::io)?;
                 for &i in t {
-                    let q = p.positions[i as usize].map(|x| x as f32);
+                    let q = positions[i as usize];
                     writeln!(out, "vertex {} {} {}", q[0], q[1], q[2]).map_err(Error::io)?;
                 }
                 out.extend_from_slice(b"endloop\nendfacet\n");
@@ -133,6 +134,26 @@ pub fn write_stl(mesh: &Mesh, writer: impl Write, encoding: StlEncoding) -> Resu
         }
     }
     emit(writer, &out)
+}
+
+/// The triangles of every face as indices of `maps`' vertices.
+fn triangle_indices(mesh: &Mesh, maps: &crate::build::IndexMaps) -> Vec<[u32; 3]> {
+    let mut tris = Vec::with_capacity(mesh.face_count() * 2);
+    let mut sides = Vec::new();
+    let mut cuts = Vec::new();
+    for f in mesh.fids() {
+        if mesh.is_hole(f) {
+            continue;
+        }
+        cuts.clear();
+        mesh.triangles_of(f, &mut sides, &mut cuts);
+        let index = |c: u32| {
+            let v = mesh.vkey(mesh.origin(sides[c as usize]));
+            maps.vertex_index(v).map_or(0, |i| i as u32)
+        };
+        tris.extend(cuts.iter().map(|t| t.map(index)));
+    }
+    tris
 }
 
 /// Welds corners by exact `f32` bits.

@@ -23,6 +23,7 @@ pub fn run(args: &SubdivideArgs) -> Result<(), Failure> {
             Boundary::Crease
         },
         crease_column: args.crease_column.clone(),
+        max_faces: args.max_faces,
         ..SubdivisionOptions::default()
     };
     let report = {
@@ -48,7 +49,11 @@ pub fn run(args: &SubdivideArgs) -> Result<(), Failure> {
                         "--crease-column needs --scheme loop or catmull-clark",
                     ));
                 }
-                algo::midpoint_subdivide(&mut mesh, &MidpointOptions::levels(args.levels), progress)
+                let options = MidpointOptions {
+                    max_faces: args.max_faces,
+                    ..MidpointOptions::levels(args.levels)
+                };
+                algo::midpoint_subdivide(&mut mesh, &options, progress)
             }
         };
         done.map_err(Failure::input)?

@@ -162,6 +162,10 @@ pub struct SubdivisionOptions {
     pub crease_column: Option<String>,
     /// Smooth or linear, per vertex column with a linear rule.
     pub vertex_data: VertexData,
+    /// The most faces the result may have: a request estimated past it is
+    /// refused before any work with [`Error::TooLarge`] (default
+    /// [`DEFAULT_MAX_FACES`]). Each level multiplies the faces by 3 or 4.
+    pub max_faces: usize,
 }
 
 impl Default for SubdivisionOptions {
@@ -172,6 +176,7 @@ impl Default for SubdivisionOptions {
             corner_column: None,
             crease_column: None,
             vertex_data: VertexData::default(),
+            max_faces: DEFAULT_MAX_FACES,
         }
     }
 }
@@ -259,10 +264,12 @@ impl SubdivisionReport {
 pub(crate) fn run_levels(
     mesh: &mut Mesh,
     scheme: &'static str,
-    levels: u32,
+    levels: Levels,
     progress: &mut Progress<'_>,
     mut level: impl FnMut(&Mesh, u32, &mut Progress<'_>) -> Result<(Mesh, LevelReport)>,
 ) -> Result<SubdivisionReport> {
+    levels.check(mesh, scheme)?;
+    let Levels { count: levels, .. } = levels;
     let mut report = SubdivisionReport {
         scheme,
         input: Counts::of(mesh),
@@ -275,16 +282,101 @@ pub(crate) fn run_levels(
             break;
         }
         let (next, mut level_report) = level(source, i, progress)?;
-        debug_assert_eq!(next.validate(), Ok(()), "{scheme} level {i}");
+        next.debug_validate();
         level_report.counts = Counts::of(&next);
         report.levels.push(level_report);
         current = Some(next);
     }
     progress.report(scheme, "done", 1, 1)?;
     if let Some(result) = current {
+        check_finite(&result, scheme)?;
         mesh.replace_with(result);
     }
     Ok(report)
+}
+
+/// The default of the schemes' `max_faces`: ten million faces (about
+/// 2 GB of mesh at meshloom's ~110 bytes per vertex, plus the parent
+/// level and the columns).
+pub const DEFAULT_MAX_FACES: usize = 10_000_000;
+
+/// How many faces one level makes of a face.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Growth {
+    /// Every face into four (Loop; midpoint's triangles).
+    Four,
+    /// An n-sided face into n quads, then every quad into four
+    /// (Catmull-Clark; midpoint's quads).
+    Corners,
+    /// Every triangle into three (√3; its boundary trisection adds a few).
+    Three,
+}
+
+/// The levels a driver runs and the size it may reach.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct Levels {
+    pub(crate) count: u32,
+    pub(crate) growth: Growth,
+    pub(crate) max_faces: usize,
+}
+
+impl Levels {
+    /// The faces after every level, estimated from the face count and
+    /// corner count of `mesh` (√3 is counted with its boundary
+    /// trisection's extra faces as one more third).
+    pub(crate) fn estimate(&self, mesh: &Mesh) -> f64 {
+        if self.count == 0 {
+            return mesh.face_count() as f64;
+        }
+        let faces = mesh.face_count() as f64;
+        let later = f64::from(self.count - 1);
+        match self.growth {
+            Growth::Four => faces * 4f64.powf(later + 1.0),
+            Growth::Three => faces * 3f64.powf(later + 1.0) * (4.0 / 3.0),
+            Growth::Corners => {
+                let corners: usize = mesh
+                    .faces()
+                    .filter_map(|f| mesh.face(f).ok())
+                    .map(|f| f.degree())
+                    .sum();
+                corners as f64 * 4f64.powf(later)
+            }
+        }
+    }
+
+    /// Refuse, before any work, a result estimated past `max_faces`.
+    fn check(&self, mesh: &Mesh, scheme: &'static str) -> Result<()> {
+        let estimate = self.estimate(mesh);
+        if estimate > self.max_faces as f64 {
+            return Err(Error::TooLarge {
+                algorithm: scheme,
+                estimate: estimate.min(u64::MAX as f64) as u64,
+                limit: self.max_faces as u64,
+                option: "max_faces",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A rebuilt mesh's positions are all finite (a level's sums of
+/// coordinates near the largest `f64` overflow), else the first vertex
+/// that is not.
+pub(crate) fn check_finite(mesh: &Mesh, algorithm: &'static str) -> Result<()> {
+    let Some(pos) = mesh.position_slots() else {
+        return Ok(());
+    };
+    match mesh
+        .vertices()
+        .find(|v| !pos[v.index()].iter().all(|c| c.is_finite()))
+    {
+        Some(v) => Err(Error::NonFiniteResult {
+            algorithm,
+            key: v.into(),
+            position: pos[v.index()],
+        }),
+        None => Ok(()),
+    }
 }
 
 /// A vertex on a hole, in the position passes' valence counts (which
