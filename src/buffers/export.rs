@@ -8,6 +8,7 @@ use super::{
 use crate::algo::normals::corner_normals;
 use crate::error::Error;
 use crate::keys::{FaceKey, HalfedgeKey, VertexKey};
+use crate::layout::Hid;
 use crate::mesh::Mesh;
 
 /// One corner of an output triangle: its vertex, its half-edge in the mesh
@@ -81,55 +82,28 @@ impl Mesh {
 }
 
 /// The triangles of every face, in face order: a triangle as it is, a
-/// polygon cut by [`Mesh::triangulate`] on `copy` (made on first need), or
-/// as a fan where every cut needs an existing edge.
-fn triangles(mesh: &Mesh, copy: &mut Option<Mesh>) -> Vec<([Corner; 3], FaceKey)> {
+/// polygon cut as [`Mesh::triangulate`] would cut it (ear clipping in its
+/// plane), read from the mesh in one pass: no copy, no edit.
+fn triangles(mesh: &Mesh) -> Vec<([Corner; 3], FaceKey)> {
     let mut out = Vec::with_capacity(mesh.face_count() * 2);
-    let mut orig: Vec<(VertexKey, HalfedgeKey)> = Vec::with_capacity(8);
-    for f in mesh.faces() {
-        let Ok(face) = mesh.face(f) else { continue };
-        orig.clear();
-        for h in face.halfedges() {
-            if let Ok(hv) = mesh.halfedge(h) {
-                orig.push((hv.origin().key(), h));
-            }
-        }
-        let corner = |(v, h): (VertexKey, HalfedgeKey)| Corner {
-            v,
-            work: h,
-            orig: h.index(),
-        };
-        if orig.len() == 3 {
-            out.push(([corner(orig[0]), corner(orig[1]), corner(orig[2])], f));
+    let mut sides: Vec<Hid> = Vec::with_capacity(8);
+    let mut cuts: Vec<[u32; 3]> = Vec::with_capacity(8);
+    for f in mesh.fids() {
+        if mesh.is_hole(f) {
             continue;
         }
-        let work = copy.get_or_insert_with(|| mesh.clone());
-        match work.triangulate(f) {
-            Ok(pieces) => {
-                for g in pieces {
-                    let Ok(piece) = work.face(g) else { continue };
-                    let mut tri = [corner(orig[0]); 3];
-                    for (slot, h) in tri.iter_mut().zip(piece.halfedges()) {
-                        let v = work.halfedge(h).map(|hv| hv.origin().key());
-                        // The corner of the same vertex in the polygon.
-                        let o = orig.iter().find(|(w, _)| Ok(*w) == v).copied();
-                        if let Some((v, oh)) = o {
-                            *slot = Corner {
-                                v,
-                                work: h,
-                                orig: oh.index(),
-                            };
-                        }
-                    }
-                    out.push((tri, f));
-                }
+        cuts.clear();
+        mesh.triangles_of(f, &mut sides, &mut cuts);
+        let corner = |i: u32| {
+            let h = sides[i as usize];
+            Corner {
+                v: mesh.vkey(mesh.origin(h)),
+                work: mesh.hkey(h),
+                orig: h.index(),
             }
-            Err(_) => {
-                for i in 1..orig.len() - 1 {
-                    out.push(([corner(orig[0]), corner(orig[i]), corner(orig[i + 1])], f));
-                }
-            }
-        }
+        };
+        let key = mesh.fkey(f);
+        out.extend(cuts.iter().map(|t| (t.map(corner), key)));
     }
     out
 }
@@ -143,9 +117,8 @@ fn export<S: Scalar>(
         Some(o) => Some(corner_normals(mesh, o)?),
         None => None,
     };
-    let mut copy = None;
-    let tris = triangles(mesh, &mut copy);
-    let work = copy.as_ref().unwrap_or(mesh);
+    let tris = triangles(mesh);
+    let work = mesh;
 
     let mut sources = Vec::with_capacity(options.columns.len());
     let mut columns = Vec::with_capacity(options.columns.len());

@@ -26,17 +26,41 @@ impl Mesh {
         sides: &mut Vec<Hid>,
         ears: &mut Vec<Ear>,
     ) -> Result<()> {
-        self.plan_triangulate_loop(fk, sides, ears, false)
+        self.plan_triangulate_loop(fk, sides, ears, false, true)
+    }
+
+    /// The triangles of face `f` as [`triangulate`](Mesh::triangulate)
+    /// would cut it, as corner indices (0 = the face's first half-edge), for
+    /// output that needs triangles and changes nothing (engine buffers,
+    /// glTF, STL): no copy and no edit, and a diagonal that is an edge
+    /// elsewhere in the mesh does not matter. Appends to `out`; `sides`
+    /// receives the face's half-edges.
+    pub(crate) fn triangles_of(&self, f: Fid, sides: &mut Vec<Hid>, out: &mut Vec<[u32; 3]>) {
+        let mut ears = Vec::new();
+        let planned = self.plan_triangulate_loop(self.fkey(f), sides, &mut ears, true, false);
+        let n = sides.len() as u32;
+        if planned.is_err() || n < 3 {
+            // Only a stale key fails without the edge test: nothing to cut.
+            return;
+        }
+        let mut rest: Vec<u32> = (0..n).collect();
+        for ear in &ears {
+            out.push([ear.l, ear.m, ear.r]);
+            rest.retain(|&c| c != ear.m);
+        }
+        out.push([rest[0], rest[1], rest[2]]);
     }
 
     /// As `plan_triangulate`; with `hole_ok` a hole is planned as if it were
-    /// a face (for `fill_hole_triangulated`).
+    /// a face (for `fill_hole_triangulated`); with `avoid_edges` a diagonal
+    /// that is an edge already is never cut (else it may be).
     fn plan_triangulate_loop(
         &self,
         fk: FaceKey,
         sides: &mut Vec<Hid>,
         ears: &mut Vec<Ear>,
         hole_ok: bool,
+        avoid_edges: bool,
     ) -> Result<()> {
         const OP: &str = "triangulate";
         let f = self.check_face(fk)?;
@@ -51,7 +75,8 @@ impl Mesh {
             return Ok(());
         }
         let corner = |i: u32| self.origin(sides[i as usize]);
-        let joined = |i: u32, j: u32| self.find_halfedge_raw(corner(i), corner(j)).is_some();
+        let joined =
+            |i: u32, j: u32| avoid_edges && self.find_halfedge_raw(corner(i), corner(j)).is_some();
         match self.position_slots() {
             Some(p) if n == 4 => {
                 // The diagonal from the reflex corner (if any) is the only
@@ -289,7 +314,7 @@ impl Mesh {
     /// As [`fill_hole_triangulated`](Mesh::fill_hole_triangulated).
     pub fn check_fill_hole_triangulated(&self, hole: FaceKey) -> Result<()> {
         self.check_fill_hole(hole)?;
-        self.plan_triangulate_loop(hole, &mut Vec::new(), &mut Vec::new(), true)
+        self.plan_triangulate_loop(hole, &mut Vec::new(), &mut Vec::new(), true, true)
     }
 
     /// [`fill_hole`](Mesh::fill_hole) and [`triangulate`](Mesh::triangulate)
@@ -327,7 +352,7 @@ impl Mesh {
         self.check_fill_hole(hole)?;
         let mut sides = Vec::new();
         let mut ears = Vec::new();
-        self.plan_triangulate_loop(hole, &mut sides, &mut ears, true)?;
+        self.plan_triangulate_loop(hole, &mut sides, &mut ears, true, true)?;
         // One edit: the fill does not end its own (one journal step).
         self.fill_hole_open::<J>(hole)?;
         let mut pieces = Vec::new();
