@@ -274,7 +274,7 @@ fn fair_run(
     for (&v, q) in slots.iter().zip(&b) {
         out[v.index()] = *q;
     }
-    debug_assert!(mesh.validate().is_ok());
+    mesh.debug_validate();
     Ok(FairReport {
         moved,
         constraints: constrained.iter().filter(|&&c| c).count(),
@@ -346,7 +346,7 @@ fn fair_region(
     for (&v, q) in free.iter().zip(&solution.positions) {
         out[v.index()] = *q;
     }
-    debug_assert!(mesh.validate().is_ok());
+    mesh.debug_validate();
     Ok(FairReport {
         moved: free.len(),
         constraints: solution.constraints,

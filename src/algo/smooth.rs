@@ -270,7 +270,7 @@ fn smooth_run(
             }
         }
     }
-    debug_assert!(mesh.validate().is_ok());
+    mesh.debug_validate();
     Ok(SmoothReport {
         moved,
         fixed: mesh.vertex_count() - moved,
