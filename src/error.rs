@@ -159,6 +159,10 @@ pub enum Refusal {
     /// A face would be left with fewer than three sides.
     #[error("a face would be left with fewer than three sides")]
     Degenerate,
+    /// The face has no area (its corners are collinear or coincide), so it
+    /// has no normal to move along.
+    #[error("the face has zero area, so it has no normal to move along")]
+    ZeroArea,
     /// The vertices are not both corners of the face.
     #[error("the vertices are not corners of the face")]
     NotInFace,
@@ -354,6 +358,9 @@ pub enum AnyError {
     /// Reading or writing a file failed.
     #[error(transparent)]
     File(#[from] crate::io::Error),
+    /// Making or reading engine buffers failed.
+    #[error(transparent)]
+    Buffers(#[from] crate::buffers::BufferError),
 }
 
 impl From<BuildError> for AnyError {

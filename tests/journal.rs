@@ -235,7 +235,11 @@ fn apply(m: &mut Mesh, op: &Op) {
         }
         Op::Remesh => {
             if m.face_count() <= 64 {
-                let _ = algo::remesh(m, &algo::RemeshOptions::default(), Progress::none());
+                let options = algo::RemeshOptions {
+                    iterations: 2,
+                    ..algo::RemeshOptions::default()
+                };
+                let _ = algo::remesh(m, &options, Progress::none());
             }
         }
         Op::FillHoles => {

@@ -134,3 +134,41 @@ fn split_components_of_real_and_named_meshes() {
     }
     assert!(Mesh::new().split_components(false).is_empty());
 }
+
+/// A zero-area face has no normal to move along: the refusal says so and
+/// names the face (it said "fewer than three sides").
+#[test]
+fn extrude_of_a_zero_area_face_names_it_and_the_reason() {
+    let p = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
+    let mut m = Mesh::from_polygons(&p, &[[0u32, 1, 2]]).unwrap();
+    let f = m.faces().next().unwrap();
+    let err = m.extrude_face(f, 1.0).unwrap_err();
+    assert_eq!(
+        err,
+        Error::Refused {
+            op: "extrude_face",
+            key: f.into(),
+            reason: Refusal::ZeroArea,
+        }
+    );
+    assert!(err.to_string().contains("zero area"), "{err}");
+}
+
+/// Buffers, files and mesh edits mix in one function with `?`.
+#[test]
+fn any_error_takes_buffer_errors() {
+    use meshloom::buffers::{FromBuffersOptions, Indices, TriangleBufferOptions};
+    fn round_trip(mesh: &Mesh, corrupt: bool) -> Result<usize, meshloom::AnyError> {
+        let mut b = mesh.to_triangle_buffers_f64(&TriangleBufferOptions::default())?;
+        if corrupt {
+            b.indices = Indices::U32(vec![0, 1, 99]);
+        }
+        let back = Mesh::from_triangle_buffers(&b, &FromBuffersOptions::default())?;
+        back.validate()?;
+        Ok(back.face_count())
+    }
+    let cube = shapes::cube();
+    assert_eq!(round_trip(&cube, false).unwrap(), 12);
+    let err = round_trip(&cube, true).unwrap_err();
+    assert!(matches!(err, meshloom::AnyError::Buffers(_)), "{err:?}");
+}

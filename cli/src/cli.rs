@@ -483,6 +483,10 @@ pub struct RemeshArgs {
     /// Keep boundary vertices and edges exactly where they are.
     #[arg(long)]
     pub keep_boundary: bool,
+    /// Refuse, before any work, a target length estimated to make more
+    /// faces than this.
+    #[arg(long, value_name = "N", default_value_t = meshloom::algo::subdivision::DEFAULT_MAX_FACES)]
+    pub max_faces: usize,
     /// Print the report as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,

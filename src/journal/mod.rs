@@ -277,7 +277,12 @@ pub struct Changes {
     pub vertices: ElementChanges<VertexKey>,
     /// Edges (half-edge attribute writes count for their edge).
     pub edges: ElementChanges<EdgeKey>,
-    /// Faces and holes.
+    /// Faces and holes, by key. A face and the hole it becomes are one
+    /// element: [`Mesh::remove_face`] keeps the key (now a hole) and
+    /// reports it as *modified*, as does filling a hole that keeps its
+    /// key. A renderer that draws faces and not holes re-reads
+    /// [`FaceView::is_hole`](crate::view::FaceView::is_hole) for each
+    /// modified key: a hole now is a face it stops drawing.
     pub faces: ElementChanges<FaceKey>,
     /// Attribute columns.
     pub columns: Vec<ColumnChange>,

@@ -27,7 +27,7 @@ impl Mesh {
             Some(n) => {
                 let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
                 if !(l > 0.0 && l.is_finite()) {
-                    return Err(refuse(OP, fk, Refusal::Degenerate));
+                    return Err(refuse(OP, fk, Refusal::ZeroArea));
                 }
                 Some([n[0] / l, n[1] / l, n[2] / l])
             }
@@ -65,7 +65,7 @@ impl Mesh {
     /// # Errors
     /// [`Error::StaleKey`](crate::Error::StaleKey); [`Refusal::Hole`];
     /// [`Refusal::Parameter`] for a non-finite distance;
-    /// [`Refusal::Degenerate`] for a face of zero area (no normal).
+    /// [`Refusal::ZeroArea`] for a face of zero area (no normal).
     ///
     /// # Complexity
     /// O(degree of `f`).

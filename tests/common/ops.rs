@@ -172,8 +172,21 @@ pub fn apply(m: &mut Mesh, op: &TopoOp) -> Option<bool> {
     Some(match (op, target) {
         (TopoOp::SplitEdge(..), Target::Edge(e, t)) => m.split_edge(e, t).is_ok(),
         (TopoOp::Flip(_), Target::Edge(e, _)) => m.flip_edge(e).is_ok(),
-        (TopoOp::RemoveEdge(_), Target::Edge(e, _)) => m.remove_edge(e).is_ok(),
-        (TopoOp::SplitFace(..), Target::FaceCorners(f, a, b)) => m.split_face(f, a, b).is_ok(),
+        (TopoOp::RemoveEdge(i), Target::Edge(e, _)) => {
+            if i % 3 == 0 {
+                m.remove_edge_allowing_bridge(e).is_ok()
+            } else {
+                m.remove_edge(e).is_ok()
+            }
+        }
+        (TopoOp::SplitFace(i, ..), Target::FaceCorners(f, a, b)) => {
+            if i % 3 == 0 {
+                // The same cut by its two vertices (the face is found).
+                m.insert_edge(a, b).is_ok()
+            } else {
+                m.split_face(f, a, b).is_ok()
+            }
+        }
         (TopoOp::Poke(_), Target::Face(f)) => m.poke_face(f).is_ok(),
         (TopoOp::RemoveFace(_), Target::Face(f)) => m.remove_face(f).is_ok(),
         (TopoOp::Triangulate(_), Target::Face(f)) => m.triangulate(f).is_ok(),
@@ -186,7 +199,23 @@ pub fn apply(m: &mut Mesh, op: &TopoOp) -> Option<bool> {
             }
         }
         (TopoOp::Collapse(_), Target::Halfedge(h, _)) => m.collapse_edge(h).is_ok(),
-        (TopoOp::CollapseAt(..), Target::Halfedge(h, t)) => m.collapse_edge_at(h, t).is_ok(),
+        (TopoOp::CollapseAt(i, _), Target::Halfedge(h, t)) => {
+            if i % 2 == 0 {
+                m.collapse_edge_at(h, t).is_ok()
+            } else {
+                // To a point off the edge: its position is given.
+                let view = m.halfedge(h).unwrap();
+                let a = view.origin().position();
+                let b = view.dest().position();
+                match (a, b) {
+                    (Some(a), Some(b)) => {
+                        let p = [0, 1, 2].map(|k| a[k] + t * (b[k] - a[k]) + 0.25);
+                        m.collapse_edge_to(h, p).is_ok()
+                    }
+                    _ => m.collapse_edge_at(h, t).is_ok(),
+                }
+            }
+        }
         (TopoOp::MergeFaces(..), Target::Faces(f, g)) => m.merge_faces(f, g).is_ok(),
         (TopoOp::RemoveVertex(_), Target::Vertex(v)) => m.remove_vertex(v).is_ok(),
         (TopoOp::SplitVertex(..), Target::Outgoing(a, b)) => m.split_vertex(a, b).is_ok(),

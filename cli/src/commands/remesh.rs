@@ -30,6 +30,7 @@ fn options(args: &RemeshArgs) -> RemeshOptions {
         } else {
             BoundaryMode::Slide
         },
+        max_faces: args.max_faces,
         ..RemeshOptions::default()
     }
 }
