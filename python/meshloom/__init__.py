@@ -17,9 +17,12 @@ from .errors import (
     CancelledError,
     ColumnError,
     MeshloomError,
+    NonFiniteError,
     ReadError,
+    ReentrantError,
     RefusedError,
     StaleKeyError,
+    TooLargeError,
     UnsuitableError,
     ValidationError,
 )
@@ -42,5 +45,8 @@ __all__ = [
     "ColumnError",
     "CancelledError",
     "UnsuitableError",
+    "TooLargeError",
+    "NonFiniteError",
+    "ReentrantError",
     "__version__",
 ]

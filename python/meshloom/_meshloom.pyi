@@ -205,6 +205,8 @@ class Mesh:
     def faces_and_holes(self) -> List[Face]: ...
     @property
     def positions(self) -> npt.NDArray[np.float64]: ...
+    @positions.setter
+    def positions(self, values: npt.ArrayLike) -> None: ...
     def find_halfedge(self, a: Vertex, b: Vertex) -> Optional[Halfedge]: ...
     def __contains__(self, key: object) -> bool: ...
     def validate(self) -> None: ...
@@ -264,13 +266,13 @@ class Mesh:
         """(n, 3) normals of "face", "vertex" or "corner" (half-edge) kind, in element order."""
     def curvature(self, *, boundary: str = "from_interior", store: bool = False) -> Dict[str, npt.NDArray[np.float64]]:
         """Per-vertex ``mean``, ``gaussian``, ``min``, ``max`` curvature and ``area``."""
-    def subdivide(self, scheme: str = "loop", levels: int = 1, *, boundary: str = "crease", corner_column: Optional[str] = None, crease_column: Optional[str] = None, linear_columns: Sequence[str] = ..., faces: str = "auto", progress: _Progress = None) -> Dict[str, Any]:
+    def subdivide(self, scheme: str = "loop", levels: int = 1, *, boundary: str = "crease", corner_column: Optional[str] = None, crease_column: Optional[str] = None, linear_columns: Sequence[str] = ..., faces: str = "auto", progress: _Progress = None, max_faces: int = 10_000_000) -> Dict[str, Any]:
         """Subdivide in place: "loop", "catmull_clark", "sqrt3" or "midpoint"."""
     def smooth(self, method: str = "uniform", *, iterations: Optional[int] = None, step: Optional[float] = None, taubin_mu: Optional[float] = None, fix_boundary: bool = True, mask: _Mask = None, rescale: bool = False, progress: _Progress = None) -> Dict[str, Any]:
         """Smooth positions in place: "uniform", "cotan", "taubin" or "implicit"."""
     def fair(self, region: Union[_Mask, Sequence[Vertex]] = None, *, order: int = 2, weights: str = "cotan", progress: _Progress = None) -> Dict[str, Any]:
         """The smoothest surface over a region with its surroundings fixed."""
-    def remesh(self, edge_length: Optional[float] = None, *, adaptive: Optional[float] = None, min_length: Optional[float] = None, max_length: Optional[float] = None, iterations: int = 10, smoothing_steps: int = 5, project: bool = True, keep_boundary: bool = False, feature_angle: Optional[float] = None, feature_edges: Optional[str] = None, seams: bool = True, locked: Optional[str] = None, resample: Union[str, Sequence[str], None] = None, progress: _Progress = None) -> Dict[str, Any]:
+    def remesh(self, edge_length: Optional[float] = None, *, adaptive: Optional[float] = None, min_length: Optional[float] = None, max_length: Optional[float] = None, iterations: int = 10, smoothing_steps: int = 5, project: bool = True, keep_boundary: bool = False, feature_angle: Optional[float] = None, feature_edges: Optional[str] = None, seams: bool = True, locked: Optional[str] = None, resample: Union[str, Sequence[str], None] = None, progress: _Progress = None, max_faces: int = 10_000_000) -> Dict[str, Any]:
         """Isotropic remeshing (Botsch-Kobbelt) of a triangle mesh, in place."""
     def fill_holes(self, *, refine: bool = True, fair: bool = True, fair_order: int = 2, max_rim: Optional[int] = None, progress: _Progress = None) -> Dict[str, Any]:
         """Fill every hole by Liepa's method (triangulate, refine, fair), in place."""

@@ -714,9 +714,10 @@ impl PyMesh {
     /// default), `"off"`, or a list of column names, resampled from the
     /// input surface so UVs do not drift. Returns the report (a dict:
     /// `iterations`, `splits`, `collapses`, `flips`, `target_length`, and
-    /// the counts before and after). One undo unit; a cancelled or failed
-    /// run leaves the mesh as it was.
-    #[pyo3(signature = (edge_length = None, *, adaptive = None, min_length = None, max_length = None, iterations = 10, smoothing_steps = 5, project = true, keep_boundary = false, feature_angle = None, feature_edges = None, seams = true, locked = None, resample = None, progress = None))]
+    /// the counts before and after). `max_faces`: a target estimated to
+    /// make more faces is refused before any work (`TooLargeError`). One
+    /// undo unit; a cancelled or failed run leaves the mesh as it was.
+    #[pyo3(signature = (edge_length = None, *, adaptive = None, min_length = None, max_length = None, iterations = 10, smoothing_steps = 5, project = true, keep_boundary = false, feature_angle = None, feature_edges = None, seams = true, locked = None, resample = None, progress = None, max_faces = DEFAULT_MAX_FACES))]
     #[allow(clippy::too_many_arguments)]
     fn remesh(
         slf: &Bound<'_, Self>,
@@ -734,6 +735,7 @@ impl PyMesh {
         locked: Option<String>,
         resample: Option<&Bound<'_, PyAny>>,
         progress: Option<Bound<'_, PyAny>>,
+        max_faces: usize,
     ) -> PyResult<Py<PyDict>> {
         let py = slf.py();
         let sizing = match (edge_length, adaptive) {
@@ -790,6 +792,7 @@ impl PyMesh {
                 seams,
                 locked: flag_column(m, locked.as_deref())?,
                 resample: resample.clone(),
+                max_faces,
                 ..RemeshOptions::default()
             };
             cb.run(|p| remesh(m, &o, p))

@@ -236,6 +236,21 @@ pub fn rule_failed() -> bool {
 }
 
 fn park(err: PyErr) {
+    // PyO3's own refusal to lend a mesh an edit holds (a rule calling a
+    // method of its mesh) becomes the package's `ReentrantError`.
+    let err = Python::attach(|py| {
+        let text = err.value(py).to_string();
+        if err.is_instance_of::<pyo3::exceptions::PyRuntimeError>(py)
+            && text.starts_with("Already")
+            && text.contains("borrowed")
+        {
+            let reentrant = crate::errors::busy(text);
+            reentrant.set_cause(py, Some(err));
+            reentrant
+        } else {
+            err
+        }
+    });
     RULE_ERROR.with(|e| {
         let mut slot = e.borrow_mut();
         if slot.is_none() {
@@ -360,6 +375,11 @@ pub trait PyAttr: Attribute {
     /// From a Python object (`rule` is the column's rule for Python-rule
     /// columns).
     fn from_py(ob: &Bound<'_, PyAny>, rule: Option<&Py<PyAny>>) -> PyResult<Self>;
+    /// A `fill=` value from a Python object: it only stands in for absent
+    /// values in the array handed out, never enters the mesh.
+    fn fill_from_py(ob: &Bound<'_, PyAny>) -> PyResult<Self> {
+        Self::from_py(ob, None)
+    }
     /// A whole column, in element order, as numpy (or a list).
     fn to_array(
         py: Python<'_>,
@@ -620,6 +640,10 @@ impl PyAttr for PyValue {
         let rule =
             rule.ok_or_else(|| PyValueError::new_err("a Python-rule column without its rule"))?;
         Ok(PyValue::new(rule.clone_ref(ob.py()), ob.clone().unbind()))
+    }
+    fn fill_from_py(ob: &Bound<'_, PyAny>) -> PyResult<Self> {
+        // Never merged or split: no rule needed.
+        Ok(PyValue::new(ob.py().None(), ob.clone().unbind()))
     }
 }
 
@@ -961,7 +985,7 @@ pub fn get_all<K: FromAny, T: PyAttr, R: Rule<T>>(
     if let Some(s) = view.dense_slice().filter(|s| s.len() == count) {
         return Ok(Ok(T::dense_to_array(py, s)?));
     }
-    let fill = fill.map(|f| T::from_py(f, None)).transpose()?;
+    let fill = fill.map(|f| T::fill_from_py(f)).transpose()?;
     let values: Vec<Option<T>> = K::all(mesh)
         .into_iter()
         .map(|k| view.get(k).cloned())

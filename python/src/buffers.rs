@@ -4,6 +4,7 @@
 //! position; corner columns come back as half-edge columns, so UV seams
 //! survive the round trip).
 
+use crate::errors::busy;
 use meshloom::buffers::{
     BufferColumn, ColumnChoice, ColumnSource, FromBuffersOptions, IndexWidth, Indices,
     TriangleBufferOptions, TriangleBuffers, Weld,
@@ -127,7 +128,7 @@ impl PyMesh {
         dtype: &str,
     ) -> PyResult<Py<PyDict>> {
         let py = slf.py();
-        let this = slf.borrow();
+        let this = slf.try_borrow().map_err(busy)?;
         let mesh = &this.mesh;
         let mut options = TriangleBufferOptions::default();
         if normals {

@@ -8,7 +8,7 @@ use meshloom::{AnyKey, EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 use pyo3::prelude::*;
 use pyo3::types::PyAny;
 
-use crate::errors::mesh_err;
+use crate::errors::{busy, mesh_err};
 use crate::mesh::PyMesh;
 
 macro_rules! key_class {
@@ -61,7 +61,7 @@ macro_rules! key_class {
             /// Whether the element still exists (the key is not stale).
             #[getter]
             fn is_alive(&self, py: Python<'_>) -> bool {
-                self.mesh.bind(py).borrow().alive(AnyKey::from(self.key))
+                self.mesh.bind(py).try_borrow().is_ok_and(|m| m.alive(AnyKey::from(self.key)))
             }
 
             fn __hash__(&self) -> u64 {
@@ -161,7 +161,7 @@ pub fn faces(
 /// Borrow the mesh of a key object and run `f` on the checked view.
 macro_rules! view {
     ($self:ident, $py:ident, $method:ident, |$m:ident, $v:ident| $body:expr) => {{
-        let cell = $self.mesh.bind($py).borrow();
+        let cell = $self.mesh.bind($py).try_borrow().map_err(busy)?;
         let $m = &$self.mesh;
         let $v = cell
             .mesh
@@ -182,7 +182,7 @@ impl PyVertex {
     /// Set the position (a non-finite one raises `MeshloomError`).
     #[setter]
     fn set_position(&self, py: Python<'_>, p: [f64; 3]) -> PyResult<()> {
-        let mut cell = self.mesh.bind(py).borrow_mut();
+        let mut cell = self.mesh.bind(py).try_borrow_mut().map_err(busy)?;
         cell.mesh
             .set_position(self.key, p)
             .map_err(|e| mesh_err(py, &self.mesh, e))

@@ -19,7 +19,7 @@ use crate::attrs::{
 };
 use crate::dispatch;
 use crate::elements::{self, key_object, PyEdge, PyFace, PyHalfedge, PyVertex};
-use crate::errors::{build_err, mesh_err};
+use crate::errors::{build_err, busy, mesh_err};
 
 /// The element kinds, by `ElementKind as usize`.
 pub const KINDS: [ElementKind; 4] = [
@@ -91,7 +91,7 @@ pub(crate) fn edit<T>(
     op: impl FnOnce(&mut Mesh) -> meshloom::Result<T>,
 ) -> PyResult<T> {
     let py = slf.py();
-    let mut this = slf.borrow_mut();
+    let mut this = slf.try_borrow_mut().map_err(busy)?;
     let _ = take_rule_error();
     let result = if this.has_python_rules() {
         this.mesh.transaction(|m| {
@@ -119,7 +119,7 @@ pub(crate) fn edit<T>(
 
 /// A read-only query that may fail with a meshloom error.
 fn query<T>(slf: &Bound<'_, PyMesh>, op: impl FnOnce(&Mesh) -> meshloom::Result<T>) -> PyResult<T> {
-    let this = slf.borrow();
+    let this = slf.try_borrow().map_err(busy)?;
     op(&this.mesh).map_err(|e| mesh_err(slf.py(), &slf.clone().unbind(), e))
 }
 
@@ -391,7 +391,8 @@ impl PyMesh {
             .chain(vertex_columns.iter().map(|c| ColumnChoice::vertex(c)))
             .collect();
         let b = slf
-            .borrow()
+            .try_borrow()
+            .map_err(busy)?
             .mesh
             .to_triangle_buffers(&options)
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
@@ -463,37 +464,42 @@ impl PyMesh {
     /// Every vertex, in slot order.
     #[getter]
     fn vertices(slf: &Bound<'_, Self>) -> PyResult<Vec<Py<PyVertex>>> {
-        let keys: Vec<_> = slf.borrow().mesh.vertices().collect();
+        let keys: Vec<_> = slf.try_borrow().map_err(busy)?.mesh.vertices().collect();
         elements::vertices(slf.py(), &slf.clone().unbind(), keys)
     }
     /// Every half-edge, in slot order.
     #[getter]
     fn halfedges(slf: &Bound<'_, Self>) -> PyResult<Vec<Py<PyHalfedge>>> {
-        let keys: Vec<_> = slf.borrow().mesh.halfedges().collect();
+        let keys: Vec<_> = slf.try_borrow().map_err(busy)?.mesh.halfedges().collect();
         elements::halfedges(slf.py(), &slf.clone().unbind(), keys)
     }
     /// Every edge, in slot order.
     #[getter]
     fn edges(slf: &Bound<'_, Self>) -> PyResult<Vec<Py<PyEdge>>> {
-        let keys: Vec<_> = slf.borrow().mesh.edges().collect();
+        let keys: Vec<_> = slf.try_borrow().map_err(busy)?.mesh.edges().collect();
         elements::edges(slf.py(), &slf.clone().unbind(), keys)
     }
     /// Every face that is not a hole, in slot order.
     #[getter]
     fn faces(slf: &Bound<'_, Self>) -> PyResult<Vec<Py<PyFace>>> {
-        let keys: Vec<_> = slf.borrow().mesh.faces().collect();
+        let keys: Vec<_> = slf.try_borrow().map_err(busy)?.mesh.faces().collect();
         elements::faces(slf.py(), &slf.clone().unbind(), keys)
     }
     /// Every hole face (one per boundary loop), in slot order.
     #[getter]
     fn holes(slf: &Bound<'_, Self>) -> PyResult<Vec<Py<PyFace>>> {
-        let keys: Vec<_> = slf.borrow().mesh.holes().collect();
+        let keys: Vec<_> = slf.try_borrow().map_err(busy)?.mesh.holes().collect();
         elements::faces(slf.py(), &slf.clone().unbind(), keys)
     }
     /// Faces and holes, in slot order.
     #[getter]
     fn faces_and_holes(slf: &Bound<'_, Self>) -> PyResult<Vec<Py<PyFace>>> {
-        let keys: Vec<_> = slf.borrow().mesh.faces_and_holes().collect();
+        let keys: Vec<_> = slf
+            .try_borrow()
+            .map_err(busy)?
+            .mesh
+            .faces_and_holes()
+            .collect();
         elements::faces(slf.py(), &slf.clone().unbind(), keys)
     }
 
@@ -512,7 +518,7 @@ impl PyMesh {
     /// Whether the key names a live element of this mesh.
     fn __contains__(slf: &Bound<'_, Self>, key: &Bound<'_, PyAny>) -> PyResult<bool> {
         match any_key(slf, key) {
-            Ok(k) => Ok(slf.borrow().alive(k)),
+            Ok(k) => Ok(slf.try_borrow().map_err(busy)?.alive(k)),
             Err(_) => Ok(false),
         }
     }
@@ -529,7 +535,7 @@ impl PyMesh {
         let py = slf.py();
         let me = slf.clone().unbind();
         let (vs, hs, es, fs) = {
-            let m = &slf.borrow().mesh;
+            let m = &slf.try_borrow().map_err(busy)?.mesh;
             (
                 m.vertices().collect::<Vec<_>>(),
                 m.halfedges().collect::<Vec<_>>(),
@@ -632,13 +638,14 @@ impl PyMesh {
         };
         let py = slf.py();
         let result = {
-            let mut this = slf.borrow_mut();
+            let mut this = slf.try_borrow_mut().map_err(busy)?;
             dispatch!(kind, dtype, rule, add(&mut this.mesh, name))?
         };
         result.map_err(|e| mesh_err(py, &slf.clone().unbind(), e))?;
         if dtype == Dtype::Object {
             if let Some(r) = rule_obj {
-                slf.borrow_mut()
+                slf.try_borrow_mut()
+                    .map_err(busy)?
                     .py_rules
                     .insert((kind as usize, name.to_owned()), r.unbind());
             }
@@ -692,7 +699,7 @@ impl PyMesh {
     fn remove_attr(slf: &Bound<'_, Self>, name: &str, kind: &str) -> PyResult<()> {
         let kind = parse_kind(kind)?;
         let py = slf.py();
-        let mut this = slf.borrow_mut();
+        let mut this = slf.try_borrow_mut().map_err(busy)?;
         let (d, r) = column_type(&this.mesh, kind, name)
             .ok_or_else(|| mesh_err(py, &slf.clone().unbind(), missing(kind, name)))?;
         let result = dispatch!(kind, d, r, remove(&mut this.mesh, name))?;
@@ -722,7 +729,7 @@ impl PyMesh {
         let py = slf.py();
         let k = any_key(slf, key)?;
         let kind = kind_of(k);
-        let this = slf.borrow();
+        let this = slf.try_borrow().map_err(busy)?;
         let (d, r) = column_type(&this.mesh, kind, name)
             .ok_or_else(|| mesh_err(py, &slf.clone().unbind(), missing(kind, name)))?;
         let result = dispatch!(kind, d, r, get_one(py, &this.mesh, name, k))?;
@@ -740,7 +747,7 @@ impl PyMesh {
         let py = slf.py();
         let k = any_key(slf, key)?;
         let kind = kind_of(k);
-        let mut this = slf.borrow_mut();
+        let mut this = slf.try_borrow_mut().map_err(busy)?;
         let (d, r) = column_type(&this.mesh, kind, name)
             .ok_or_else(|| mesh_err(py, &slf.clone().unbind(), missing(kind, name)))?;
         let rule = this
@@ -771,7 +778,7 @@ impl PyMesh {
     ) -> PyResult<Py<PyAny>> {
         let py = slf.py();
         let kind = parse_kind(kind)?;
-        let this = slf.borrow();
+        let this = slf.try_borrow().map_err(busy)?;
         let (d, r) = column_type(&this.mesh, kind, name)
             .ok_or_else(|| mesh_err(py, &slf.clone().unbind(), missing(kind, name)))?;
         let result = dispatch!(kind, d, r, get_all(py, &this.mesh, name, fill))?;
@@ -790,7 +797,7 @@ impl PyMesh {
     ) -> PyResult<()> {
         let py = slf.py();
         let kind = parse_kind(kind)?;
-        let mut this = slf.borrow_mut();
+        let mut this = slf.try_borrow_mut().map_err(busy)?;
         let (d, r) = column_type(&this.mesh, kind, name)
             .ok_or_else(|| mesh_err(py, &slf.clone().unbind(), missing(kind, name)))?;
         let rule = this
@@ -807,7 +814,10 @@ impl PyMesh {
         result.map_err(|e| mesh_err(py, &slf.clone().unbind(), e))
     }
 
-    /// Positions as an (n, 3) float64 array in the order of `vertices`.
+    /// Positions as an (n, 3) float64 array in the order of `vertices`;
+    /// settable with an array of the same shape (as
+    /// `set_attr_array("position", ...)`: one undo step, non-finite
+    /// values refused).
     #[getter]
     fn positions(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         let (p, _) = self.mesh.to_polygons();
@@ -816,6 +826,11 @@ impl PyMesh {
             .reshape([n, 3])?
             .into_any()
             .unbind())
+    }
+
+    #[setter]
+    fn set_positions(slf: &Bound<'_, Self>, values: &Bound<'_, PyAny>) -> PyResult<()> {
+        Self::set_attr_array(slf, "position", values, "vertex")
     }
 
     // ----- operators ---------------------------------------------------------------
@@ -1210,7 +1225,7 @@ impl PyMesh {
         let Ok(other) = other.cast::<PyMesh>() else {
             return Ok(false);
         };
-        let other = other.borrow();
+        let other = other.try_borrow().map_err(busy)?;
         let a = self.__getstate__(py)?;
         let b = other.__getstate__(py)?;
         let (a, b) = (a.bind(py), b.bind(py));

@@ -1,0 +1,101 @@
+"""Requests past their limits, rules that reach into their own mesh, and
+fills over Python-rule columns: typed meshloom errors, the mesh unchanged."""
+
+import numpy as np
+import pytest
+
+import meshloom
+
+
+def tetra():
+    p = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    f = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    return meshloom.Mesh.from_arrays(p, f)
+
+
+class FirstRule:
+    def merge(self, values, weights):
+        v = [x for x in values if x is not None]
+        return v[0] if v else None
+
+    def split(self, value, share):
+        return value
+
+
+class ReachingRule(FirstRule):
+    """A rule that uses its own mesh while an edit of it runs."""
+
+    def __init__(self, how):
+        self.how = how
+        self.mesh = None
+
+    def merge(self, values, weights):
+        if self.how == "read":
+            self.mesh.vertex_count
+        elif self.how == "edit":
+            self.mesh.split_edge(self.mesh.edges[0], 0.5)
+        elif self.how == "columns":
+            self.mesh.remove_attr("w")
+        return super().merge(values, weights)
+
+
+@pytest.mark.parametrize("how", ["read", "edit", "columns"])
+@pytest.mark.parametrize("op", ["decimate", "collapse"])
+def test_a_rule_that_uses_its_own_mesh_raises_a_meshloom_error(how, op):
+    m = tetra()
+    m.subdivide("loop", 2)
+    rule = ReachingRule(how)
+    rule.mesh = m
+    m.add_vertex_attr("w", float, rule=rule)
+    m.set_attr_array("w", np.arange(m.vertex_count, dtype=float))
+    before = m.copy()
+    with pytest.raises(meshloom.ReentrantError) as caught:
+        if op == "decimate":
+            m.decimate(0.5)
+        else:
+            for h in m.halfedges:
+                try:
+                    m.collapse_edge(h)
+                    break
+                except meshloom.RefusedError:
+                    pass
+    # An ordinary `except Exception` catches it; the mesh is as before.
+    assert isinstance(caught.value, meshloom.MeshloomError)
+    assert isinstance(caught.value, Exception)
+    m.validate()
+    assert m == before
+
+
+def test_fill_stands_in_for_absent_values_of_a_python_rule_column():
+    m = tetra()
+    m.subdivide("loop", 1)
+    m.add_vertex_attr("w", float, rule=FirstRule())
+    m.set_attr_array("w", np.arange(m.vertex_count, dtype=float))
+    m.decimate(0.5)
+    dense = m.attr_array("w")
+    filled = m.attr_array("w", fill=-1.0)
+    assert list(filled) == [(-1.0 if x is None else x) for x in dense]
+
+
+def test_subdivision_past_max_faces_raises_too_large_and_changes_nothing():
+    m = tetra()
+    with pytest.raises(meshloom.TooLargeError) as caught:
+        m.subdivide("sqrt3", 100)
+    e = caught.value
+    assert (e.algorithm, e.option, e.limit) == ("sqrt3_subdivide", "max_faces", 10_000_000)
+    assert e.estimate > e.limit
+    assert (m.vertex_count, m.face_count) == (4, 4)
+    with pytest.raises(meshloom.TooLargeError):
+        m.subdivide("loop", 3, max_faces=100)
+    m.subdivide("loop", 3, max_faces=256)
+    assert m.face_count == 256
+
+
+def test_positions_are_settable():
+    m = tetra()
+    p = m.positions
+    m.positions = p * 2.0
+    assert np.array_equal(m.positions, p * 2.0)
+    with pytest.raises(meshloom.MeshloomError):
+        m.positions = np.full((4, 3), np.inf)
+    assert np.array_equal(m.positions, p * 2.0)
