@@ -452,3 +452,52 @@ fn unknown_extensions_and_missing_files() {
     assert!(matches!(err, Error::Io { .. }), "{err}");
     assert!(err.to_string().contains("does-not-exist.off"), "{err}");
 }
+
+/// Materials named through the typed helper reach OBJ and glTF files and
+/// come back on the same faces (found by their normals on the cube: the
+/// readers renumber, and glTF comes back triangulated).
+#[test]
+fn face_materials_round_trip_through_obj_and_gltf() {
+    use std::collections::BTreeMap;
+    let mut m = meshloom::shapes::cube();
+    let faces: Vec<_> = m.faces().collect();
+    for (i, &f) in faces.iter().enumerate() {
+        m.set_face_material(f, if i % 2 == 0 { "brick" } else { "glass" })
+            .unwrap();
+    }
+    let by_normal = |m: &meshloom::Mesh| {
+        let mut out = BTreeMap::new();
+        for f in m.faces() {
+            let p: Vec<[f64; 3]> = m
+                .face(f)
+                .unwrap()
+                .vertices()
+                .map(|v| m.position(v).unwrap())
+                .collect();
+            let (u, v) = (
+                [0, 1, 2].map(|k| p[1][k] - p[0][k]),
+                [0, 1, 2].map(|k| p[2][k] - p[0][k]),
+            );
+            let n = [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ];
+            let key = n.map(|x| x.signum() as i32 * i32::from(x.abs() > 1e-9));
+            let name = m.face_material(f);
+            // Every triangle of one cube face carries that face's material.
+            assert_eq!(*out.entry(key).or_insert(name.clone()), name);
+        }
+        out
+    };
+    let expected = by_normal(&m);
+    assert_eq!(expected.len(), 6);
+    for ext in ["obj", "glb"] {
+        let path =
+            std::env::temp_dir().join(format!("meshloom-materials-{}.{ext}", std::process::id()));
+        meshloom::io::write(&m, &path).unwrap();
+        let back = meshloom::io::read(&path).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        assert_eq!(by_normal(&back), expected, "{ext}");
+    }
+}

@@ -47,6 +47,7 @@ mod attrs;
 mod error;
 #[cfg(feature = "gltf")]
 pub mod gltf;
+pub mod names;
 pub mod obj;
 pub mod off;
 pub mod ply;
