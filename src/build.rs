@@ -900,7 +900,6 @@ fn pair_triangle_twins(faces: Flat<'_>, nv: usize) -> Option<Mates> {
     if !all_triangles {
         return None;
     }
-    let dest = |c: usize| idx[if c % 3 == 2 { c - 2 } else { c + 1 }];
     let by_origin = OriginBuckets::of(idx, nv);
     let mut mate = vec![0u32; corners];
     let mut pairs = 0;
@@ -908,24 +907,19 @@ fn pair_triangle_twins(faces: Flat<'_>, nv: usize) -> Option<Mates> {
         if mate[c] != 0 {
             continue;
         }
-        let (a, b) = (idx[c], dest(c));
+        let (a, b) = (idx[c], triangle_dest(idx, c));
         // The first side b -> a. A second one is found when it looks for
         // its own twin: it finds this side taken, or (no side a -> b at
-        // all) its double in its own bucket.
-        let twin = by_origin.bucket(b).iter().find(|&&d| dest(d as usize) == a);
-        match twin {
-            Some(&d) if mate[d as usize] == 0 => {
+        // all) its double.
+        match by_origin.sides(idx, b, a).next() {
+            Some(d) if mate[d as usize] == 0 => {
                 mate[c] = d + 1;
                 mate[d as usize] = c as u32 + 1;
                 pairs += 1;
             }
             Some(_) => return None, // a -> b twice, b -> a once or more
             None => {
-                let twice = by_origin
-                    .bucket(a)
-                    .iter()
-                    .any(|&k| k as usize != c && dest(k as usize) == b);
-                if twice {
+                if by_origin.sides(idx, a, b).any(|k| k as usize != c) {
                     return None; // a -> b twice, on the boundary
                 }
             }
@@ -936,6 +930,35 @@ fn pair_triangle_twins(faces: Flat<'_>, nv: usize) -> Option<Mates> {
         pairs,
         out_degree: by_origin.into_sizes(),
     })
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Bucket entries the triangle path has looked at (tests only).
+    static SCANNED: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+/// Count one bucket entry looked at (tests only: nothing in a build).
+#[inline(always)]
+fn scanned() {
+    #[cfg(test)]
+    SCANNED.with(|s| s.set(s.get() + 1));
+}
+
+/// The vertex after corner `c` of a triangle list.
+#[inline(always)]
+fn triangle_dest(idx: &[u32], c: usize) -> u32 {
+    idx[if c % 3 == 2 { c - 2 } else { c + 1 }]
+}
+
+/// The corner before corner `c` in its triangle.
+#[inline(always)]
+fn triangle_before(c: usize) -> usize {
+    if c % 3 == 0 {
+        c + 2
+    } else {
+        c - 1
+    }
 }
 
 /// Corners bucketed by their origin vertex: bucket `v` is
@@ -973,6 +996,33 @@ impl OriginBuckets {
         let v = v as usize;
         let begin = if v == 0 { 0 } else { self.ends[v - 1] };
         &self.corners[begin as usize..self.ends[v] as usize]
+    }
+
+    /// The corners of the sides `a -> b` (triangles only), found in the
+    /// smaller of the two buckets: those leaving `a` whose destination is
+    /// `b`, or those leaving `b` whose corner before is `a` (the side is
+    /// then that corner before). Scanning the smaller bucket keeps a vertex
+    /// of high valence from being scanned once per neighbour (a fan of `N`
+    /// triangles around one vertex would cost `N²`): the cost per side is
+    /// the lower valence of its two ends.
+    #[inline(always)]
+    fn sides<'s>(&'s self, idx: &'s [u32], a: u32, b: u32) -> impl Iterator<Item = u32> + 's {
+        let (from_a, into_b) = (self.bucket(a), self.bucket(b));
+        let by_a = from_a.len() <= into_b.len();
+        let leaving = if by_a { from_a } else { &[][..] };
+        let entering = if by_a { &[][..] } else { into_b };
+        leaving
+            .iter()
+            .copied()
+            .filter(move |&k| {
+                scanned();
+                triangle_dest(idx, k as usize) == b
+            })
+            .chain(entering.iter().filter_map(move |&k| {
+                scanned();
+                let before = triangle_before(k as usize);
+                (idx[before] == a).then_some(before as u32)
+            }))
     }
 
     /// Each bucket's size (the sides leaving each vertex), in the same
@@ -1419,4 +1469,32 @@ fn input_keys(
     }
     let faces = (0..nf as u32).map(|f| mesh.fkey(Fid::new(f))).collect();
     (keys, faces)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fan of `n` triangles around vertex 0, its rim open.
+    fn fan(n: u32) -> Vec<[u32; 3]> {
+        (0..n).map(|k| [0, 1 + k, 1 + (k + 1) % n]).collect()
+    }
+
+    /// The triangle path pairs each side by scanning the smaller of its
+    /// two vertices' buckets: around one vertex of valence `n` the entries
+    /// looked at grow with `n`, not `n²` (the quadratic read of a fan).
+    #[test]
+    fn triangle_pairing_is_linear_in_valence() {
+        let looked_at = |n: u32| {
+            SCANNED.with(|s| s.set(0));
+            let mesh = Mesh::from_faces(n as usize + 1, &fan(n)).unwrap();
+            assert_eq!(mesh.face_count(), n as usize);
+            SCANNED.with(|s| s.get())
+        };
+        let (small, large) = (looked_at(1_000), looked_at(16_000));
+        // Linear: 16 times the triangles, about 16 times the entries (the
+        // quadratic scan looked at 256 times as many).
+        assert!(large <= 20 * small, "{small} -> {large}");
+        assert!(large <= 16 * 3 * 16_000, "{large} entries for 48,000 sides");
+    }
 }

@@ -255,3 +255,31 @@ fn triangle_path_reports_as_the_general_path() {
         same_on_both_paths(n, &tris);
     }
 }
+
+/// A fan of many triangles around one vertex (the shape whose read was
+/// quadratic in the valence): every side paired, the centre's ring whole,
+/// one hole along the rim; closed, the rim edges pair too. The cost is
+/// checked by the builder's own unit test
+/// (`build::tests::triangle_pairing_is_linear_in_valence`), not by a clock.
+#[test]
+fn a_fan_of_high_valence_builds_whole() {
+    let n = 60_000u32;
+    let open: Vec<[u32; 3]> = (0..n - 1).map(|k| [0, 1 + k, 2 + k]).collect();
+    let closed: Vec<[u32; 3]> = (0..n).map(|k| [0, 1 + k, 1 + (k + 1) % n]).collect();
+    let m = Mesh::from_faces(n as usize + 1, &open).unwrap();
+    m.validate().unwrap();
+    let n = n as usize;
+    assert_eq!(counts(&m), (n + 1, 2 * n - 1, n - 1, 1));
+    let centre = m
+        .vertices()
+        .max_by_key(|&v| m.vertex(v).unwrap().degree())
+        .unwrap();
+    assert_eq!(m.vertex(centre).unwrap().degree(), n);
+    let hole = m.holes().next().unwrap();
+    assert_eq!(m.face(hole).unwrap().degree(), n + 1);
+    let m = Mesh::from_faces(n + 1, &closed).unwrap();
+    m.validate().unwrap();
+    assert_eq!(counts(&m), (n + 1, 2 * n, n, 1));
+    let hole = m.holes().next().unwrap();
+    assert_eq!(m.face(hole).unwrap().degree(), n);
+}
