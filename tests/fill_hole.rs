@@ -583,3 +583,105 @@ fn a_thin_slot_whose_triangles_fit_the_density_is_not_refined() {
     assert_eq!(report.vertices_added, 0);
     mesh.validate().unwrap();
 }
+
+/// The repro of the fairing panic: a 13 × 13 grid of quads with holes.
+/// The bi-Laplacian's rows at the rim name the far corners of the quads
+/// around it, which the region-local system (grown by edges) had not
+/// numbered: "no entry found for key" in `fair.rs`.
+#[test]
+fn fairing_a_patch_beside_quads_does_not_panic() {
+    let mut mesh = meshloom::io::read("../shared/data/repros/fair_panic_grid13.obj").unwrap();
+    let holes = mesh.hole_count();
+    let options = FillHoleOptions::default();
+    assert!(options.fair);
+    let report = fill_holes(&mut mesh, &options, Progress::none()).unwrap();
+    mesh.validate().unwrap();
+    assert_eq!(report.holes_filled + report.skipped.len(), holes);
+    assert!(report.vertices_added > 0, "nothing was faired");
+    // A flat grid is filled flat.
+    for &v in &report.vertices {
+        assert!(mesh.position(v).unwrap()[2].abs() < 1e-9);
+    }
+}
+
+/// A grid (quads or triangles, gently curved) with some faces removed.
+#[derive(Clone, Debug)]
+struct HoledGrid {
+    cols: usize,
+    rows: usize,
+    quads: bool,
+    removed: Vec<usize>,
+    bend: f64,
+    fair_order: u32,
+}
+
+impl quickcheck::Arbitrary for HoledGrid {
+    fn arbitrary(g: &mut quickcheck::Gen) -> Self {
+        let cols = 2 + usize::arbitrary(g) % 13;
+        let rows = 2 + usize::arbitrary(g) % 13;
+        let k = 1 + usize::arbitrary(g) % 12;
+        HoledGrid {
+            cols,
+            rows,
+            quads: bool::arbitrary(g),
+            removed: (0..k).map(|_| usize::arbitrary(g)).collect(),
+            bend: f64::from(u8::arbitrary(g) % 4) * 0.05,
+            fair_order: 1 + u32::arbitrary(g) % 3,
+        }
+    }
+
+    fn shrink(&self) -> Box<dyn Iterator<Item = Self>> {
+        let me = self.clone();
+        Box::new(self.removed.shrink().map(move |removed| HoledGrid {
+            removed,
+            ..me.clone()
+        }))
+    }
+}
+
+/// Random grids with random holes: `fill_holes` with fairing never panics,
+/// and either fills (a valid mesh, every hole closed or listed as skipped)
+/// or refuses with the mesh unchanged.
+#[test]
+fn fill_holes_with_fairing_on_random_holed_grids() {
+    fn prop(case: HoledGrid) -> quickcheck::TestResult {
+        let faces = if case.quads {
+            GridFaces::Quads
+        } else {
+            GridFaces::Triangles
+        };
+        let mut mesh = shapes::grid(case.cols, case.rows, faces);
+        let vs: Vec<VertexKey> = mesh.vertices().collect();
+        for v in vs {
+            let p = mesh.position(v).unwrap();
+            let z = case.bend * ((p[0] - 3.0).powi(2) + (p[1] - 3.0).powi(2));
+            mesh.set_position(v, [p[0], p[1], z]).unwrap();
+        }
+        for &r in &case.removed {
+            let faces: Vec<FaceKey> = mesh.faces().collect();
+            if faces.len() > 1 {
+                mesh.remove_face(faces[r % faces.len()]).unwrap();
+            }
+        }
+        let holes = mesh.hole_count();
+        let before = fingerprint(&mesh);
+        let options = FillHoleOptions {
+            fair_order: case.fair_order,
+            ..FillHoleOptions::default()
+        };
+        match fill_holes(&mut mesh, &options, Progress::none()) {
+            Ok(report) => {
+                mesh.validate().unwrap();
+                assert_eq!(report.holes_filled + report.skipped.len(), holes);
+                assert_eq!(mesh.hole_count(), report.skipped.len());
+            }
+            Err(e) => {
+                assert_eq!(fingerprint(&mesh), before, "{e}");
+            }
+        }
+        quickcheck::TestResult::passed()
+    }
+    quickcheck::QuickCheck::new()
+        .tests(300)
+        .quickcheck(prop as fn(HoledGrid) -> quickcheck::TestResult);
+}

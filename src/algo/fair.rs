@@ -612,11 +612,12 @@ pub(crate) fn solve_local(
     }
     let mut ring_end = vec![order.len()];
     let mut begin = 0;
+    let mut near = Vec::new();
     for _ in 0..k {
         let end = order.len();
         for i in begin..end {
-            for g in mesh.outgoing(order[i]) {
-                let w = mesh.dest(g);
+            stencil(mesh, order[i], weights, &mut near);
+            for &w in &near {
                 if let Entry::Vacant(slot) = local.entry(w) {
                     slot.insert(order.len() as u32);
                     order.push(w);
@@ -682,6 +683,30 @@ pub(crate) fn solve_local(
         positions: rhs,
         constraints: constrained.iter().filter(|&&c| c).count(),
     })
+}
+
+/// The vertices [`laplacian_row`] can name for `v`: its neighbours across
+/// edges, and with cotangent weights every corner of the faces around it
+/// (a polygon's Laplacian joins `v` to corners it shares no edge with, as
+/// the far corner of a quad). The rings of [`solve_local`] grow by this
+/// stencil, so every vertex a row names has a local number.
+fn stencil(mesh: &Mesh, v: Vid, weights: LaplaceWeights, out: &mut Vec<Vid>) {
+    out.clear();
+    for h in mesh.outgoing(v) {
+        out.push(mesh.dest(h));
+        if weights == LaplaceWeights::Uniform || mesh.is_hole(mesh.face_of(h)) {
+            continue;
+        }
+        // Corners of a triangle are neighbours already.
+        let far = mesh.next(mesh.next(h));
+        if mesh.next(far) != h {
+            out.extend(
+                mesh.face_loop_from(h)
+                    .map(|g| mesh.origin(g))
+                    .filter(|&u| u != v),
+            );
+        }
+    }
 }
 
 /// The Laplacian row of `v` (neighbours with their weights, cotangent
