@@ -1,6 +1,7 @@
 //! `triangulate` and `triangulate_all`: ear clipping with positions, a fan
 //! without.
 
+use super::ear_clip::{clip_ears, QUEUED_FROM};
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::journal::{journaled, Journaling};
@@ -99,7 +100,21 @@ impl Mesh {
                 let pts: Vec<[f64; 3]> = (0..n as u32).map(|i| p[corner(i).index()]).collect();
                 let proj = projector(&pts);
                 let q: Vec<[f64; 2]> = pts.iter().map(|&x| proj(x)).collect();
-                let mut rest: Vec<u32> = (0..n as u32).collect();
+                let mut rest: Vec<u32> = if n >= QUEUED_FROM {
+                    // Large faces and holes: the queued clipper, near
+                    // O(n log n); the scan below takes what it leaves.
+                    let key: Vec<u32> = (0..n as u32).collect();
+                    let clipped = clip_ears(&q, &key, joined);
+                    ears.extend(
+                        clipped
+                            .ears
+                            .iter()
+                            .map(|&[pl, l, m, r]| Ear { pl, l, m, r }),
+                    );
+                    clipped.rest
+                } else {
+                    (0..n as u32).collect()
+                };
                 while rest.len() > 3 {
                     let k = rest.len();
                     let at = |i: usize| rest[i % k];
@@ -194,8 +209,11 @@ impl Mesh {
     /// is an edge already.
     ///
     /// # Complexity
-    /// O(n²) for a face of degree n with positions (O(n³) worst case for
-    /// non-convex ones), plus the degree of the corners.
+    /// With positions, near O(n log n) for a face of degree n ≥ 64 (ears
+    /// queued shortest cut first, each checked against the reflex corners
+    /// under it in a grid; what that leaves, on degenerate faces, as
+    /// below); O(n²) below 64 (O(n³) worst case for non-convex ones); plus
+    /// the degree of the corners.
     ///
     /// # Examples
     /// ```
