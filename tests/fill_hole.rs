@@ -792,3 +792,27 @@ fn holes_over_the_optimal_bound_are_ear_clipped() {
     let report = fill_holes(&mut mesh, &options, Progress::none()).unwrap();
     assert_eq!(report.ear_clipped, 0);
 }
+
+/// Rims over `max_refined_rim` (default 2000) are filled by the
+/// triangulation alone: their refined patch would grow as the square of
+/// the rim (a 100,000-edge rim, about 10⁹ vertices). They are counted.
+#[test]
+fn rims_over_the_refinement_bound_are_filled_unrefined() {
+    let mut mesh = wavy_tube(2100, 0.05, false);
+    let report = fill_holes(&mut mesh, &FillHoleOptions::default(), Progress::none()).unwrap();
+    assert_eq!((report.holes_filled, report.unrefined), (2, 2));
+    assert_eq!((report.vertices_added, report.faces_added), (0, 2 * 2098));
+    assert!(mesh.is_closed());
+    mesh.validate().unwrap();
+    let mut mesh = wavy_tube(60, 0.05, false);
+    let options = FillHoleOptions {
+        max_refined_rim: 59,
+        ..FillHoleOptions::default()
+    };
+    let report = fill_holes(&mut mesh, &options, Progress::none()).unwrap();
+    assert_eq!((report.unrefined, report.vertices_added), (2, 0));
+    let mut mesh = wavy_tube(60, 0.05, false);
+    let report = fill_holes(&mut mesh, &FillHoleOptions::default(), Progress::none()).unwrap();
+    assert_eq!(report.unrefined, 0);
+    assert!(report.vertices_added > 0);
+}
