@@ -15,8 +15,14 @@
 //!    with a repeated corner, or a vertex with more than one fan of faces,
 //!    stays apart and is counted in [`RepairReport::weld_refused`].
 //! 2. **Degenerate faces.** Runs of one vertex in a face (`a b b c`) are
-//!    collapsed to one corner; a face left with fewer than three corners, or
-//!    with a vertex at two separate corners, is dropped.
+//!    collapsed to one corner; a face left with fewer than three corners is
+//!    dropped. A face with a vertex at two separate corners is replaced by
+//!    simple faces over the same area, never dropped whole: a figure eight
+//!    is cut where it touches itself; a face that walks an edge both ways
+//!    (an outline and a hole joined by a bridge, as LightWave writes them)
+//!    is triangulated in its plane as a polygon with a hole. The pieces
+//!    keep the face's corners (and so their UVs), and are counted in
+//!    [`RepairReport::split_faces`].
 //! 3. **Duplicate faces.** A face with the same vertex set as an earlier
 //!    face (in either orientation) is dropped; the first one stays.
 //! 4. **Orientation.** Faces are visited breadth-first across edges shared
@@ -79,6 +85,7 @@ use crate::build::Polygons;
 use crate::error::{BuildError, Error, Result};
 
 mod policies;
+mod split;
 
 use policies::Soup;
 
@@ -153,6 +160,10 @@ pub struct RepairReport {
     pub collapsed_corners: usize,
     /// Faces dropped as degenerate.
     pub degenerate_faces: usize,
+    /// Faces that visited a vertex twice, replaced by simple faces over
+    /// the same area (cut where they touch themselves, or triangulated
+    /// where they walk an edge both ways: a polygon with a hole).
+    pub split_faces: usize,
     /// Faces dropped as duplicates.
     pub duplicate_faces: usize,
     /// Faces flipped to agree with their neighbours.
@@ -204,6 +215,7 @@ impl RepairReport {
         self.weld_refused = pass.weld_refused;
         self.collapsed_corners += pass.collapsed_corners;
         self.degenerate_faces += pass.degenerate_faces;
+        self.split_faces += pass.split_faces;
         self.duplicate_faces += pass.duplicate_faces;
         self.flipped_faces += pass.flipped_faces;
         // Conflicts are found again in every pass that orients; the most
@@ -216,7 +228,7 @@ impl RepairReport {
         self.warnings.extend(pass.warnings);
     }
 
-    fn rows(&self) -> [(&'static str, usize); 11] {
+    fn rows(&self) -> [(&'static str, usize); 12] {
         [
             ("vertices welded", self.welded_vertices),
             (
@@ -225,6 +237,10 @@ impl RepairReport {
             ),
             ("repeated corners collapsed", self.collapsed_corners),
             ("degenerate faces dropped", self.degenerate_faces),
+            (
+                "faces visiting a vertex twice split into simple faces",
+                self.split_faces,
+            ),
             ("duplicate faces dropped", self.duplicate_faces),
             ("faces flipped", self.flipped_faces),
             (
@@ -406,7 +422,11 @@ pub fn repair_with(
         // the builder would refuse the polygons.
         if soup.needs_repair() {
             if options.drop_degenerate_faces {
-                (pass.collapsed_corners, pass.degenerate_faces) = soup.drop_degenerate();
+                (
+                    pass.collapsed_corners,
+                    pass.degenerate_faces,
+                    pass.split_faces,
+                ) = soup.drop_degenerate();
             }
             if options.drop_duplicate_faces {
                 pass.duplicate_faces = soup.drop_duplicates();

@@ -103,6 +103,7 @@ mod collapse;
 mod compact;
 mod components;
 mod cut;
+pub(crate) mod ear_clip;
 mod extrude;
 mod flip;
 mod holes;

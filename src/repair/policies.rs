@@ -3,6 +3,7 @@
 
 use std::collections::HashMap;
 
+use super::split;
 use super::Provenance;
 use crate::build::Polygons;
 use crate::mesh::Mesh;
@@ -198,9 +199,14 @@ impl Soup {
         self.prov.vertex_source = source;
     }
 
-    pub(super) fn drop_degenerate(&mut self) -> (usize, usize) {
+    /// Collapse runs of one vertex in a face, split faces that visit a
+    /// vertex twice into simple ones ([`split::simple_pieces`]), and drop
+    /// faces left with no area; returns (corners collapsed, faces dropped,
+    /// faces split).
+    pub(super) fn drop_degenerate(&mut self) -> (usize, usize, usize) {
         let mut collapsed = 0;
         let mut dropped = 0;
+        let mut split_faces = 0;
         let mut kept = Vec::with_capacity(self.face_count());
         let mut changed = false;
         for f in 0..self.face_count() {
@@ -218,26 +224,36 @@ impl Soup {
                 .map(|c| c as u32)
                 .collect();
             // A face whose corners are all one vertex keeps none above.
-            let distinct_ok = corners.len() >= 3 && {
+            let distinct = corners.len() >= 3 && {
                 let mut vs: Vec<u32> = corners.iter().map(|&c| self.indices[c as usize]).collect();
                 vs.sort_unstable();
                 vs.windows(2).all(|w| w[0] != w[1])
             };
-            if !distinct_ok {
-                dropped += 1;
-                changed = true;
+            // Corners collapsed count for faces that stay (whole or in
+            // pieces).
+            let runs = n - corners.len();
+            if distinct {
+                collapsed += runs;
+                changed |= runs > 0;
+                kept.push((f as u32, corners));
                 continue;
             }
-            if corners.len() != n {
-                collapsed += n - corners.len();
-                changed = true;
+            // A vertex at two separate corners: simple pieces over the
+            // same area, each keeping the face's own corners.
+            changed = true;
+            let pieces = split::simple_pieces(&corners, &self.indices, &self.positions);
+            if pieces.is_empty() {
+                dropped += 1;
+            } else {
+                collapsed += runs;
+                split_faces += 1;
             }
-            kept.push((f as u32, corners));
+            kept.extend(pieces.into_iter().map(|p| (f as u32, p)));
         }
         if changed {
             self.rebuild_faces(kept.into_iter());
         }
-        (collapsed, dropped)
+        (collapsed, dropped, split_faces)
     }
 
     pub(super) fn drop_duplicates(&mut self) -> usize {

@@ -280,6 +280,7 @@ fn fill_holes_liepa(args: &FillHolesArgs) -> Result<(), Failure> {
             "faces_added": report.faces_added,
             "vertices_added": report.vertices_added,
             "ear_clipped": report.ear_clipped,
+            "unrefined": report.unrefined,
             "holes": mesh.hole_count(),
         }));
     }
@@ -305,6 +306,13 @@ fn fill_holes_liepa(args: &FillHolesArgs) -> Result<(), Failure> {
         text.push_str(&format!(
             "{} holes were cut by ear clipping (too long for the optimal triangulation)\n",
             report.ear_clipped
+        ));
+    }
+    if report.unrefined > 0 {
+        text.push_str(&format!(
+            "{} holes were filled without refinement (rims over {} edges)\n",
+            report.unrefined,
+            FillHoleOptions::default().max_refined_rim
         ));
     }
     text.push_str(&format!("wrote {}\n", args.output.display()));
