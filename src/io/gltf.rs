@@ -12,10 +12,18 @@
 //! - **Scene.** The default scene (else the first; else every mesh once),
 //!   walked from its root nodes with each node's transform applied:
 //!   positions by the node's matrix, normals by its inverse transpose.
-//! - **Welding.** The primitives of one mesh instance are welded into one
-//!   surface by exact position; different mesh instances stay separate
-//!   components (parts that only touch are not joined). Triangles whose
-//!   corners weld together (no area) are dropped.
+//! - **Welding.** glTF has no connectivity: a vertex is split into one
+//!   glTF vertex per corner value. The primitives of one mesh instance are
+//!   welded into one surface: by the custom attribute `_VERTEX_ID` where
+//!   every primitive has it (meshloom writes it: its own files come back
+//!   with the same vertices, components and holes), else by exact
+//!   position, where the result stays manifold: coincident vertices whose
+//!   joining would make an edge or a vertex non-manifold (parts that only
+//!   touch at a point, distinct vertices of one surface that share a
+//!   position) stay apart. The [`RepairReport`] counts the vertices
+//!   welded and those left apart, and the triangles dropped for two
+//!   corners at one position (no area). Different mesh instances stay
+//!   separate components.
 //! - **Attributes.** `NORMAL` becomes the half-edge column `normal`,
 //!   `TEXCOORD_n` the half-edge column `texcoord` (`texcoord1`, ... for
 //!   n ≥ 1), so a UV seam, where the file splits a vertex, becomes corner
@@ -83,7 +91,10 @@ use super::{ReadOptions, RepairReport};
 use crate::mesh::Mesh;
 
 mod base64;
+mod gather;
 mod read;
+mod scene;
+mod weld;
 mod write;
 
 /// The face column whose text values name the primitives' materials.
@@ -91,6 +102,9 @@ const MATERIAL: &str = "material";
 /// Written before a face column's name in its custom attribute
 /// (`_FACE_NAME`), so that the reader knows it for a face column.
 const FACE_PREFIX: &str = "FACE_";
+/// The custom attribute (`_VERTEX_ID`, without its underscore as the
+/// `gltf` crate names it) that carries each glTF vertex's mesh vertex.
+const VERTEX_ID: &str = "VERTEX_ID";
 
 /// How to read a glTF file beyond [`ReadOptions`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
