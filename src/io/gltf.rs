@@ -67,8 +67,20 @@
 //! - other text and boolean face columns (OBJ's `object` and `group`) are
 //!   not written.
 //!
-//! Values are stored as 32-bit floats. A `.gltf` holds its buffer as a
-//! base64 `data:` URI, so the file stands alone; `.glb` is binary.
+//! Every glTF vertex also carries its mesh vertex's number (in the mesh's
+//! vertex order) as the custom attribute `_VERTEX_ID` (a float scalar,
+//! as glTF forbids unsigned int custom attributes; left out past 2²⁴
+//! vertices, where floats stop being exact): reading it back welds by it,
+//! so a round trip keeps the vertices, components, holes and seams (and
+//! triangulates polygons). Other tools see an ordinary custom attribute.
+//! Do not name other columns `VERTEX_ID`.
+//!
+//! Values are stored as 32-bit floats. A position they cannot hold is an
+//! [`Error::Unwritable`]: out of their range always, and a nonzero
+//! coordinate that would become zero or subnormal unless
+//! [`GltfWriteOptions::allow_lossy_f32`] is set. A `.gltf` holds its
+//! buffer as a base64 `data:` URI, so the file stands alone; `.glb` is
+//! binary.
 //!
 //! ```
 //! use meshloom::io;
@@ -122,6 +134,19 @@ pub enum GltfEncoding {
     /// Binary glTF (`.glb`).
     #[default]
     Binary,
+}
+
+/// How to write glTF.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GltfWriteOptions {
+    /// JSON or binary.
+    pub encoding: GltfEncoding,
+    /// glTF positions are 32-bit floats. A position out of their range is
+    /// always refused (glTF positions must be finite); a nonzero
+    /// coordinate that would become zero or subnormal (below about
+    /// 1.2e-38 in magnitude) is refused too, unless this is set (default
+    /// off: the writer never loses a position silently).
+    pub allow_lossy_f32: bool,
 }
 
 /// Whether the path names a glTF file (`.gltf` or `.glb`,
@@ -199,8 +224,10 @@ pub fn read_gltf_bytes(
 /// Write a mesh as glTF.
 ///
 /// # Errors
-/// [`Error::Unwritable`] without positions, or past 2³² − 1 glTF vertices;
-/// [`Error::Io`].
+/// [`Error::Unwritable`] without positions, past 2³² − 1 glTF vertices,
+/// or for a position that 32-bit floats cannot hold (out of their range,
+/// or a nonzero coordinate that would become zero or subnormal: see
+/// [`GltfWriteOptions::allow_lossy_f32`]); [`Error::Io`].
 ///
 /// ```
 /// use meshloom::io::gltf::{read_gltf_bytes, write_gltf, GltfEncoding, GltfOptions};
@@ -212,7 +239,39 @@ pub fn read_gltf_bytes(
 /// # Ok::<(), meshloom::io::Error>(())
 /// ```
 pub fn write_gltf(mesh: &Mesh, writer: impl Write, encoding: GltfEncoding) -> Result<(), Error> {
-    let bytes = write::write(mesh, encoding)?;
+    let options = GltfWriteOptions {
+        encoding,
+        ..GltfWriteOptions::default()
+    };
+    write_gltf_with(mesh, writer, &options)
+}
+
+/// [`write_gltf`] with options: the encoding, and whether positions may
+/// lose precision to glTF's 32-bit floats.
+///
+/// # Errors
+/// As [`write_gltf`].
+///
+/// ```
+/// use meshloom::io::gltf::{write_gltf_with, GltfEncoding, GltfWriteOptions};
+/// let mut tiny = meshloom::shapes::tetrahedron();
+/// let vs: Vec<_> = tiny.vertices().collect();
+/// for v in vs {
+///     let p = tiny.position(v)?;
+///     tiny.set_position(v, p.map(|c| c * 1e-300))?;
+/// }
+/// let strict = GltfWriteOptions::default();
+/// assert!(write_gltf_with(&tiny, Vec::new(), &strict).is_err());
+/// let lossy = GltfWriteOptions { allow_lossy_f32: true, ..strict };
+/// assert!(write_gltf_with(&tiny, Vec::new(), &lossy).is_ok());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_gltf_with(
+    mesh: &Mesh,
+    writer: impl Write,
+    options: &GltfWriteOptions,
+) -> Result<(), Error> {
+    let bytes = write::write(mesh, options)?;
     super::emit(writer, &bytes)
 }
 

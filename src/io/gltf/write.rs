@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use serde_json::{json, Value as Json};
 
 use super::super::error::{Error, Location};
-use super::{base64, GltfEncoding, FACE_PREFIX, MATERIAL};
+use super::{base64, GltfEncoding, GltfWriteOptions, FACE_PREFIX, MATERIAL, VERTEX_ID};
 use crate::attr::{Value, ValueType};
 use crate::buffers::{ColumnChoice, Reader, TriangleBufferOptions};
 use crate::keys::{ElementKind, FaceKey};
@@ -48,13 +48,66 @@ fn numeric(ty: Option<ValueType>) -> bool {
     !matches!(ty, None | Some(ValueType::Bool | ValueType::Text))
 }
 
-pub(super) fn write(mesh: &Mesh, encoding: GltfEncoding) -> Result<Vec<u8>, Error> {
+/// The most vertices whose `_VERTEX_ID`s are written: every vertex number
+/// up to it is exact in a 32-bit float (glTF forbids unsigned int custom
+/// attributes). Larger meshes are written without, and read back welded
+/// by position.
+const MAX_VERTEX_IDS: usize = 1 << 24;
+
+/// Refuse positions that 32-bit floats cannot hold: one out of their range
+/// (always: glTF positions must be finite), or a nonzero coordinate that
+/// becomes zero or subnormal (unless `allow_lossy`).
+fn check_f32(mesh: &Mesh, allow_lossy: bool) -> Result<(), Error> {
+    for (i, v) in mesh.vertices().enumerate() {
+        let Ok(p) = mesh.position(v) else {
+            continue;
+        };
+        for &x in &p {
+            let y = x as f32;
+            if !y.is_finite() {
+                return Err(unwritable(format!(
+                    "vertex {i}: the position {p:?} is out of the range of 32-bit floats (at most {:e}), which glTF positions are",
+                    f32::MAX
+                )));
+            }
+            if !allow_lossy && x != 0.0 && (y == 0.0 || y.is_subnormal()) {
+                return Err(unwritable(format!(
+                    "vertex {i}: narrowing the position {p:?} to the 32-bit floats of glTF turns {x:e} into {y:e}; \
+                     scale the mesh, or allow it with GltfWriteOptions::allow_lossy_f32"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Each buffer vertex's mesh vertex, numbered in the mesh's vertex order
+/// (`None` past [`MAX_VERTEX_IDS`] vertices).
+fn vertex_ids(mesh: &Mesh, sources: &[crate::keys::VertexKey]) -> Option<Vec<f32>> {
+    if mesh.vertex_count() > MAX_VERTEX_IDS {
+        return None;
+    }
+    let slots = mesh.vertices().map(|v| v.index() + 1).max().unwrap_or(0);
+    let mut dense = vec![0u32; slots];
+    for (i, v) in mesh.vertices().enumerate() {
+        dense[v.index()] = i as u32;
+    }
+    let ids = sources
+        .iter()
+        .map(|v| dense.get(v.index()).copied().unwrap_or(0) as f32)
+        .collect();
+    Some(ids)
+}
+
+pub(super) fn write(mesh: &Mesh, options: &GltfWriteOptions) -> Result<Vec<u8>, Error> {
+    let encoding = options.encoding;
     if !mesh.has_positions() {
         return Err(unwritable("the mesh has no vertex positions".into()));
     }
     if mesh.face_count() == 0 {
         return Err(unwritable("the mesh has no faces".into()));
     }
+    check_f32(mesh, options.allow_lossy_f32)?;
     let mut columns: Vec<ColumnChoice> = mesh
         .attr_info(ElementKind::Halfedge)
         .into_iter()
@@ -110,6 +163,11 @@ pub(super) fn write(mesh: &Mesh, encoding: GltfEncoding) -> Result<Vec<u8>, Erro
     let flat: Vec<f32> = positions.into_iter().flatten().collect();
     let at = out.floats(&flat, 3, json!({"min": lo, "max": hi}));
     attributes.insert("POSITION".into(), json!(at));
+    if let Some(ids) = vertex_ids(mesh, &b.vertex_sources) {
+        let ids: Vec<f32> = split.source.iter().map(|&o| ids[o as usize]).collect();
+        let at = out.floats(&ids, 1, json!({}));
+        attributes.insert(format!("_{VERTEX_ID}"), json!(at));
+    }
     for c in &b.columns {
         let name = semantic(&c.name, c.components);
         if attributes.contains_key(&name) {
