@@ -99,6 +99,37 @@ fn indices_must_be_unsigned_integer_scalars() {
     );
 }
 
+#[test]
+fn many_instances_of_a_mesh_are_bounded_by_the_byte_limit() {
+    use serde_json::json;
+    // One triangle, drawn by 200 nodes: every instance reads its
+    // accessors again, and the byte limit bounds the total.
+    let floats: [f32; 9] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+    let bytes: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+    let nodes: Vec<_> = (0..200)
+        .map(|i| json!({"mesh": 0, "translation": [i, 0, 0]}))
+        .collect();
+    let doc = json!({
+        "asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 36, "uri": format!("data:application/octet-stream;base64,{}", b64(&bytes))}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "nodes": nodes,
+        "scenes": [{"nodes": (0..200).collect::<Vec<_>>()}],
+    })
+    .to_string();
+    let pick = GltfOptions::default();
+    let (all, _) = read_gltf_bytes(doc.as_bytes(), &ReadOptions::strict(), &pick).unwrap();
+    assert_eq!(all.face_count(), 200);
+    let small = ReadOptions {
+        max_bytes: 4000,
+        ..ReadOptions::strict()
+    };
+    let err = read_gltf_bytes(doc.as_bytes(), &small, &pick).unwrap_err();
+    assert!(matches!(err, Error::TooLarge { .. }), "{err}");
+}
+
 /// Base64 for a data URI.
 fn b64(data: &[u8]) -> String {
     const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";

@@ -483,10 +483,13 @@ pub(super) fn read(
     let bufs = load_buffers(&doc, bin, path.and_then(Path::parent), budget)?;
     let instances = scene::instances(&doc, pick)?;
     let mut gather = Gather::new(bufs.iter().all(Buffer::in_glb));
-    let corner_limit = usize::try_from(options.max_bytes / 4).unwrap_or(usize::MAX);
+    // The elements read (every instance reads its mesh's accessors again)
+    // and the corners made are bounded by the byte limit, so a scene of
+    // many instances of a large mesh is an error, not a long wait.
+    let mut budget = usize::try_from(options.max_bytes / 4).unwrap_or(usize::MAX);
     for (m, mesh) in &instances {
-        let left = corner_limit.saturating_sub(gather.corner_count());
-        let instance = scene::read_instance(mesh, m, &bufs, left)?;
+        let instance = scene::read_instance(mesh, m, &bufs, budget)?;
+        budget = budget.saturating_sub(instance.work);
         let welded = weld::weld(&instance)?;
         gather.add(&instance, &welded, mesh.index())?;
     }

@@ -177,15 +177,17 @@ pub(super) struct Instance {
     pub(super) ids: Option<Vec<u32>>,
     /// Whether the transform mirrors (triangles are turned over).
     pub(super) mirrored: bool,
+    /// Elements read and corners made, against the reader's budget.
+    pub(super) work: usize,
 }
 
 /// Read one mesh instance: every primitive's triangles and the vertices
-/// they use; at most `corners_left` corners.
+/// they use; `budget` bounds the elements read and corners made.
 pub(super) fn read_instance(
     mesh: &gltf::Mesh,
     xf: &Xf,
     bufs: &[Buffer],
-    corners_left: usize,
+    budget: usize,
 ) -> Result<Instance, Error> {
     let mut inst = Instance {
         positions: Vec::new(),
@@ -194,10 +196,11 @@ pub(super) fn read_instance(
         attrs: BTreeMap::new(),
         ids: Some(Vec::new()),
         mirrored: xf.det < 0.0,
+        work: 0,
     };
     for prim in mesh.primitives() {
         let what = format!("mesh {} primitive {}", mesh.index(), prim.index());
-        read_primitive(&prim, &what, bufs, xf, &mut inst, corners_left)?;
+        read_primitive(&prim, &what, bufs, xf, &mut inst, budget)?;
     }
     Ok(inst)
 }
@@ -210,7 +213,7 @@ fn read_primitive(
     bufs: &[Buffer],
     xf: &Xf,
     inst: &mut Instance,
-    corners_left: usize,
+    budget: usize,
 ) -> Result<(), Error> {
     let mode = prim.mode();
     if !matches!(
@@ -234,10 +237,18 @@ fn read_primitive(
     let n = pos.count();
     let (idx, idx_at) = corner_indices(prim, bufs, what, n)?;
     let mut tris = triangles(mode, &idx, idx_at.as_ref());
-    if inst.triangles.len().saturating_add(tris.len()) > corners_left / 3 {
+    let attributes = prim.attributes().count();
+    let work = n
+        .saturating_mul(attributes.max(1))
+        .saturating_add(idx.len())
+        .saturating_add(tris.len().saturating_mul(3));
+    inst.work = inst.work.saturating_add(work);
+    if inst.work > budget {
         return Err(Error::TooLarge {
             at: Location::whole(),
-            what: "more triangles than the byte limit allows".into(),
+            what: format!(
+                "{what}: more vertex values and triangles than the byte limit allows (each instance of a mesh counts)"
+            ),
         });
     }
     let used = renumber(&mut tris, n, inst.positions.len());
