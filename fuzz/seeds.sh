@@ -32,6 +32,15 @@ done
 # The PLY of issue 10's defect 1 and a Blender-style header.
 printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nelement vertex 1\nend_header\n\n' > "$corpus/ply/issue10_dup_vertex.ply"
 printf "ply\nformat ascii 1.0\nCreated by Blender 2.79 - www.blender.org, source file: ''\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar uint vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n" > "$corpus/ply/issue10_blender.ply"
-# Synthetic seeds (buffers, repair, serde, ops).
+# glTF: the shared samples (a .gltf whose buffer is in another file still
+# exercises the JSON) and the repros of the glTF reader's panics.
+mkdir -p "$corpus/gltf"
+for f in "$data"/gltf/BoxTextured.glb "$data"/gltf/BoxTextured/BoxTextured.gltf \
+         "$data"/gltf/BoxTexcoords/boxTexcoords.gltf "$data"/gltf/invalid/BoxWithInfinites.glb \
+         "$data"/gltf/invalid/badNumber.gltf "$data"/gltf/invalid/IndexOutOfRange/IndexOutOfRange.gltf \
+         "$here"/../../shared/data/repros/gltf_*; do
+    cp "$f" "$corpus/gltf/$(basename "$f")"
+done
+# Synthetic seeds (buffers, repair, serde, ops, meshloom's own glTF).
 cargo run --quiet --manifest-path "$here/Cargo.toml" --bin seeds -- "$corpus"
 du -sh "$corpus"

@@ -14,7 +14,7 @@ root="$(cd "$here/.." && pwd)"
 seconds="${1:-60}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj off ply stl gzip buffers repair serde ops)
+[ ${#targets[@]} -gt 0 ] || targets=(obj off ply stl gzip buffers repair serde ops gltf)
 
 skip() { echo "fuzz smoke: SKIPPED: $*" >&2; exit 0; }
 

@@ -337,6 +337,46 @@ fn convert_reads_and_writes_gltf() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The defects issue, items 2 and 3: malformed glTF is a located error
+/// (not "internal error"), the cow written as GLB reads back, and a
+/// position that f32 would round to zero is refused.
+#[test]
+fn gltf_defects_give_errors_and_round_trips() {
+    let repros = format!("{SHARED}/../repros");
+    for name in [
+        "gltf_dep_meshrs151_panic.gltf",
+        "gltf_position_accessor_oob.gltf",
+        "gltf_read688_normal_panic.glb",
+        "gltf_read755_slice_panic.glb",
+        "gltf_read761_slice_panic.glb",
+        "gltf_read285_overflow_debugonly.glb",
+    ] {
+        let o = run(&["stats", &format!("{repros}/{name}")]);
+        assert_ne!(code(&o), 0, "{name}");
+        assert!(
+            !stderr(&o).contains("internal error"),
+            "{name}: {}",
+            stderr(&o)
+        );
+        assert!(stderr(&o).contains(name), "{name}: {}", stderr(&o));
+    }
+    let dir = scratch("gltf-defects");
+    let cow = dir.join("cow.glb");
+    let o = run(&["convert", &shared("closed/cgal_cow.off"), path_str(&cow)]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let s = json(&run(&["stats", "--json", path_str(&cow)]));
+    assert_eq!((&s["vertices"], &s["faces"]), (&2904.into(), &5804.into()));
+    let tiny = dir.join("tiny.glb");
+    let o = run(&[
+        "convert",
+        &format!("{repros}/tiny1e-300.obj"),
+        path_str(&tiny),
+    ]);
+    assert_ne!(code(&o), 0);
+    assert!(stderr(&o).contains("32-bit"), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn repair_writes_a_valid_mesh_and_reports() {
     let dir = scratch("repair");

@@ -97,6 +97,37 @@ pub fn gzip(data: &[u8]) {
     }
 }
 
+/// glTF reader (JSON or GLB, from bytes), strict and with every repair:
+/// every mesh read validates, and writes as GLB that reads back strictly
+/// (welded by its `_VERTEX_ID`s) with the same vertex and face counts
+/// (unless the writer refuses a position 32-bit floats cannot hold).
+pub fn gltf(data: &[u8]) {
+    use meshloom::io::gltf::{read_gltf_bytes, write_gltf, GltfEncoding, GltfOptions};
+    let pick = GltfOptions::default();
+    for repair in [RepairOptions::none(), RepairOptions::all()] {
+        let options = ReadOptions {
+            repair,
+            max_bytes: 1 << 20,
+        };
+        let Ok((m, _)) = read_gltf_bytes(data, &options, &pick) else {
+            continue;
+        };
+        m.validate().expect("a glTF read validates");
+        let mut bytes = Vec::new();
+        if write_gltf(&m, &mut bytes, GltfEncoding::Binary).is_err() {
+            continue;
+        }
+        let (back, _) = read_gltf_bytes(&bytes, &ReadOptions::strict(), &pick)
+            .expect("meshloom's own glTF reads back");
+        back.validate().expect("a glTF read validates");
+        assert_eq!(
+            (back.vertex_count(), back.face_count()),
+            (m.vertex_count(), m.face_count()),
+            "a glTF round trip changed the counts"
+        );
+    }
+}
+
 /// Bytes taken one at a time; zeros once they run out.
 struct Bytes<'a>(&'a [u8]);
 
@@ -536,6 +567,33 @@ pub fn synthetic_seeds() -> Vec<(&'static str, String, Vec<u8>)> {
             ops.extend_from_slice(&[k, k.wrapping_mul(7), k.wrapping_mul(13), 128]);
         }
         out.push(("ops", format!("shape{shape}"), ops));
+    }
+    // glTF as meshloom writes it: both encodings, with a face column and
+    // materials on the GLB.
+    use meshloom::io::gltf::{write_gltf, GltfEncoding};
+    let mut cube = shapes::cube();
+    let faces: Vec<FaceKey> = cube.faces().collect();
+    let weight = cube.add_face_attr::<f64>("weight").expect("new column");
+    let material = cube
+        .add_face_attr::<String>("material")
+        .expect("new column");
+    for (i, &f) in faces.iter().enumerate() {
+        cube.set_attr(&weight, f, i as f64).expect("live key");
+        let name = if i % 2 == 0 { "red" } else { "blue" };
+        cube.set_attr(&material, f, name.to_owned())
+            .expect("live key");
+    }
+    for (mesh, name, encoding) in [
+        (&cube, "meshloom_cube.glb", GltfEncoding::Binary),
+        (
+            &shapes::tetrahedron(),
+            "meshloom_tetrahedron.gltf",
+            GltfEncoding::Json,
+        ),
+    ] {
+        let mut bytes = Vec::new();
+        write_gltf(mesh, &mut bytes, encoding).expect("writes");
+        out.push(("gltf", name.to_owned(), bytes));
     }
     out
 }

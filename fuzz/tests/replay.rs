@@ -66,6 +66,11 @@ fn ops() {
     replay("ops", meshloom_fuzz::ops);
 }
 
+#[test]
+fn gltf() {
+    replay("gltf", meshloom_fuzz::gltf);
+}
+
 /// The synthetic seeds in code match the committed ones (rerun
 /// `seeds.sh` after changing them).
 #[test]

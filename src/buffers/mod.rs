@@ -79,8 +79,6 @@ mod export;
 mod import;
 mod read;
 
-#[cfg(feature = "gltf")]
-pub(crate) use import::weld;
 pub use import::{FromBuffers, FromBuffersOptions, Weld};
 #[cfg(feature = "gltf")]
 pub(crate) use read::Reader;

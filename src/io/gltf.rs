@@ -12,10 +12,18 @@
 //! - **Scene.** The default scene (else the first; else every mesh once),
 //!   walked from its root nodes with each node's transform applied:
 //!   positions by the node's matrix, normals by its inverse transpose.
-//! - **Welding.** The primitives of one mesh instance are welded into one
-//!   surface by exact position; different mesh instances stay separate
-//!   components (parts that only touch are not joined). Triangles whose
-//!   corners weld together (no area) are dropped.
+//! - **Welding.** glTF has no connectivity: a vertex is split into one
+//!   glTF vertex per corner value. The primitives of one mesh instance are
+//!   welded into one surface: by the custom attribute `_VERTEX_ID` where
+//!   every primitive has it (meshloom writes it: its own files come back
+//!   with the same vertices, components and holes), else by exact
+//!   position, where the result stays manifold: coincident vertices whose
+//!   joining would make an edge or a vertex non-manifold (parts that only
+//!   touch at a point, distinct vertices of one surface that share a
+//!   position) stay apart. The [`RepairReport`] counts the vertices
+//!   welded and those left apart, and the triangles dropped for two
+//!   corners at one position (no area). Different mesh instances stay
+//!   separate components.
 //! - **Attributes.** `NORMAL` becomes the half-edge column `normal`,
 //!   `TEXCOORD_n` the half-edge column `texcoord` (`texcoord1`, ... for
 //!   n ≥ 1), so a UV seam, where the file splits a vertex, becomes corner
@@ -59,8 +67,20 @@
 //! - other text and boolean face columns (OBJ's `object` and `group`) are
 //!   not written.
 //!
-//! Values are stored as 32-bit floats. A `.gltf` holds its buffer as a
-//! base64 `data:` URI, so the file stands alone; `.glb` is binary.
+//! Every glTF vertex also carries its mesh vertex's number (in the mesh's
+//! vertex order) as the custom attribute `_VERTEX_ID` (a float scalar,
+//! as glTF forbids unsigned int custom attributes; left out past 2²⁴
+//! vertices, where floats stop being exact): reading it back welds by it,
+//! so a round trip keeps the vertices, components, holes and seams (and
+//! triangulates polygons). Other tools see an ordinary custom attribute.
+//! Do not name other columns `VERTEX_ID`.
+//!
+//! Values are stored as 32-bit floats. A position they cannot hold is an
+//! [`Error::Unwritable`]: out of their range always, and a nonzero
+//! coordinate that would become zero or subnormal unless
+//! [`GltfWriteOptions::allow_lossy_f32`] is set. A `.gltf` holds its
+//! buffer as a base64 `data:` URI, so the file stands alone; `.glb` is
+//! binary.
 //!
 //! ```
 //! use meshloom::io;
@@ -83,7 +103,10 @@ use super::{ReadOptions, RepairReport};
 use crate::mesh::Mesh;
 
 mod base64;
+mod gather;
 mod read;
+mod scene;
+mod weld;
 mod write;
 
 /// The face column whose text values name the primitives' materials.
@@ -91,6 +114,9 @@ const MATERIAL: &str = "material";
 /// Written before a face column's name in its custom attribute
 /// (`_FACE_NAME`), so that the reader knows it for a face column.
 const FACE_PREFIX: &str = "FACE_";
+/// The custom attribute (`_VERTEX_ID`, without its underscore as the
+/// `gltf` crate names it) that carries each glTF vertex's mesh vertex.
+const VERTEX_ID: &str = "VERTEX_ID";
 
 /// How to read a glTF file beyond [`ReadOptions`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -108,6 +134,19 @@ pub enum GltfEncoding {
     /// Binary glTF (`.glb`).
     #[default]
     Binary,
+}
+
+/// How to write glTF.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GltfWriteOptions {
+    /// JSON or binary.
+    pub encoding: GltfEncoding,
+    /// glTF positions are 32-bit floats. A position out of their range is
+    /// always refused (glTF positions must be finite); a nonzero
+    /// coordinate that would become zero or subnormal (below about
+    /// 1.2e-38 in magnitude) is refused too, unless this is set (default
+    /// off: the writer never loses a position silently).
+    pub allow_lossy_f32: bool,
 }
 
 /// Whether the path names a glTF file (`.gltf` or `.glb`,
@@ -185,8 +224,10 @@ pub fn read_gltf_bytes(
 /// Write a mesh as glTF.
 ///
 /// # Errors
-/// [`Error::Unwritable`] without positions, or past 2³² − 1 glTF vertices;
-/// [`Error::Io`].
+/// [`Error::Unwritable`] without positions, past 2³² − 1 glTF vertices,
+/// or for a position that 32-bit floats cannot hold (out of their range,
+/// or a nonzero coordinate that would become zero or subnormal: see
+/// [`GltfWriteOptions::allow_lossy_f32`]); [`Error::Io`].
 ///
 /// ```
 /// use meshloom::io::gltf::{read_gltf_bytes, write_gltf, GltfEncoding, GltfOptions};
@@ -198,7 +239,39 @@ pub fn read_gltf_bytes(
 /// # Ok::<(), meshloom::io::Error>(())
 /// ```
 pub fn write_gltf(mesh: &Mesh, writer: impl Write, encoding: GltfEncoding) -> Result<(), Error> {
-    let bytes = write::write(mesh, encoding)?;
+    let options = GltfWriteOptions {
+        encoding,
+        ..GltfWriteOptions::default()
+    };
+    write_gltf_with(mesh, writer, &options)
+}
+
+/// [`write_gltf`] with options: the encoding, and whether positions may
+/// lose precision to glTF's 32-bit floats.
+///
+/// # Errors
+/// As [`write_gltf`].
+///
+/// ```
+/// use meshloom::io::gltf::{write_gltf_with, GltfEncoding, GltfWriteOptions};
+/// let mut tiny = meshloom::shapes::tetrahedron();
+/// let vs: Vec<_> = tiny.vertices().collect();
+/// for v in vs {
+///     let p = tiny.position(v)?;
+///     tiny.set_position(v, p.map(|c| c * 1e-300))?;
+/// }
+/// let strict = GltfWriteOptions::default();
+/// assert!(write_gltf_with(&tiny, Vec::new(), &strict).is_err());
+/// let lossy = GltfWriteOptions { allow_lossy_f32: true, ..strict };
+/// assert!(write_gltf_with(&tiny, Vec::new(), &lossy).is_ok());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_gltf_with(
+    mesh: &Mesh,
+    writer: impl Write,
+    options: &GltfWriteOptions,
+) -> Result<(), Error> {
+    let bytes = write::write(mesh, options)?;
     super::emit(writer, &bytes)
 }
 

@@ -218,6 +218,10 @@ pub struct WriteOptions {
     pub ply: PlyEncoding,
     /// STL encoding (default binary).
     pub stl: StlEncoding,
+    /// glTF: write positions even where narrowing them to 32-bit floats
+    /// turns a nonzero coordinate into zero or a subnormal (default off:
+    /// an error; see `gltf::GltfWriteOptions::allow_lossy_f32`).
+    pub allow_lossy_f32: bool,
 }
 
 impl Default for WriteOptions {
@@ -225,6 +229,7 @@ impl Default for WriteOptions {
         WriteOptions {
             ply: PlyEncoding::BinaryLittleEndian,
             stl: StlEncoding::Binary,
+            allow_lossy_f32: false,
         }
     }
 }
@@ -235,6 +240,7 @@ impl WriteOptions {
         WriteOptions {
             ply: PlyEncoding::Ascii,
             stl: StlEncoding::Ascii,
+            ..WriteOptions::default()
         }
     }
 }
@@ -273,7 +279,11 @@ pub fn write_with(
     #[cfg(feature = "gltf")]
     if let Some(encoding) = gltf::encoding_of(path) {
         let mut bytes = Vec::new();
-        gltf::write_gltf(mesh, &mut bytes, encoding).map_err(|e| e.with_path(path))?;
+        let gltf_options = gltf::GltfWriteOptions {
+            encoding,
+            allow_lossy_f32: options.allow_lossy_f32,
+        };
+        gltf::write_gltf_with(mesh, &mut bytes, &gltf_options).map_err(|e| e.with_path(path))?;
         return std::fs::write(path, &bytes).map_err(|e| Error::io(e).with_path(path));
     }
     let (format, gz) = format_of(path)?;

@@ -1,78 +1,99 @@
-//! glTF reading: container, buffers, accessors (all checked here), scene
-//! walk, welding, and the soup every reader ends in.
+//! glTF reading, stage by stage: the container and its JSON (indices the
+//! `gltf` crate would follow unchecked are checked first), the buffers,
+//! the accessors (every offset, stride and count checked), then the scene
+//! ([`super::scene`]), the weld ([`super::weld`]) and the soup
+//! ([`super::gather`]) every reader ends in.
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use gltf::accessor::{DataType, Dimensions};
-use gltf::mesh::{Mode, Semantic};
 
-use super::super::attrs::{Data, SoupColumn};
 use super::super::error::{Error, Location, Position};
-use super::super::soup::Soup;
 use super::super::{ReadOptions, RepairReport};
-use super::{at_byte, base64, GltfOptions, FACE_PREFIX, MATERIAL};
-use crate::buffers::{weld, Weld};
+use super::gather::Gather;
+use super::{at_byte, base64, scene, weld, GltfOptions};
 use crate::mesh::Mesh;
 
 const JSON_CHUNK: u32 = 0x4E4F_534A;
 const BIN_CHUNK: u32 = 0x004E_4942;
 
-type M4 = [[f64; 4]; 4];
-const IDENTITY: M4 = [
-    [1.0, 0.0, 0.0, 0.0],
-    [0.0, 1.0, 0.0, 0.0],
-    [0.0, 0.0, 1.0, 0.0],
-    [0.0, 0.0, 0.0, 1.0],
-];
-
 /// One buffer's bytes and where they sit in which file.
-struct Buffer {
+pub(super) struct Buffer {
     data: Vec<u8>,
     /// The file the bytes are in (`None`: the file being read).
     path: Option<PathBuf>,
     /// Offset of `data[0]` in that file (`None`: not file bytes, a `data:`
     /// URI).
-    base: Option<u64>,
+    pub(super) base: Option<u64>,
 }
 
-/// An accessor's values as `f64`, and where element `i` sits.
-struct Values {
-    data: Vec<f64>,
-    comps: usize,
-    first: Option<u64>,
-    stride: u64,
-    path: Option<PathBuf>,
-}
-
-impl Values {
-    fn count(&self) -> usize {
-        self.data.len() / self.comps.max(1)
+impl Buffer {
+    /// Whether the bytes are the GLB's own `BIN` chunk.
+    pub(super) fn in_glb(&self) -> bool {
+        self.path.is_none() && self.base.is_some()
     }
 
-    fn get(&self, i: usize) -> &[f64] {
-        &self.data[i * self.comps..(i + 1) * self.comps]
-    }
-
-    fn location(&self, i: usize) -> Location {
+    /// Where byte `offset` of the buffer is (saturating: an offset from
+    /// the file may be anything).
+    fn at(&self, offset: usize) -> Location {
         Location {
             path: self.path.clone(),
-            position: match self.first {
-                Some(b) => Position::Byte(b + i as u64 * self.stride),
+            position: match self.base {
+                Some(b) => Position::Byte(b.saturating_add(offset as u64)),
                 None => Position::Whole,
             },
         }
     }
 }
 
-fn unsupported(what: String) -> Error {
+/// An accessor's values as `f64`, and where element `i` sits.
+pub(super) struct Values {
+    pub(super) data: Vec<f64>,
+    pub(super) comps: usize,
+    /// Byte offset of element 0 in its file (`None`: a `data:` URI).
+    pub(super) first: Option<u64>,
+    pub(super) stride: u64,
+    /// The file (`None`: the file being read).
+    pub(super) path: Option<PathBuf>,
+    /// Whether the values are integers as stored (an integer component
+    /// type, not normalized).
+    pub(super) integer: bool,
+}
+
+impl Values {
+    pub(super) fn count(&self) -> usize {
+        self.data.len() / self.comps.max(1)
+    }
+
+    /// Element `i` (below [`count`](Self::count)).
+    pub(super) fn get(&self, i: usize) -> &[f64] {
+        self.data
+            .get(i * self.comps..(i + 1) * self.comps)
+            .unwrap_or(&[])
+    }
+
+    /// Byte offset of element `i` in its file.
+    pub(super) fn offset(&self, i: usize) -> Option<u64> {
+        self.first
+            .map(|f| f.saturating_add((i as u64).saturating_mul(self.stride)))
+    }
+
+    pub(super) fn location(&self, i: usize) -> Location {
+        Location {
+            path: self.path.clone(),
+            position: self.offset(i).map_or(Position::Whole, Position::Byte),
+        }
+    }
+}
+
+pub(super) fn unsupported(what: String) -> Error {
     Error::UnsupportedFormat {
         at: Location::whole(),
         what,
     }
 }
 
-fn header(at: Location, message: String) -> Error {
+pub(super) fn header(at: Location, message: String) -> Error {
     Error::Header { at, message }
 }
 
@@ -161,68 +182,7 @@ fn load_buffers(
     let mut out = Vec::new();
     for b in doc.buffers() {
         let i = b.index();
-        let mut buffer = match b.source() {
-            gltf::buffer::Source::Bin => {
-                let (data, base) = bin.ok_or_else(|| {
-                    header(
-                        Location::whole(),
-                        format!("buffer {i} is the GLB BIN chunk, and there is none"),
-                    )
-                })?;
-                Buffer {
-                    data: data.to_vec(),
-                    path: None,
-                    base: Some(base),
-                }
-            }
-            gltf::buffer::Source::Uri(uri) if uri.starts_with("data:") => {
-                let comma = uri.find(',').unwrap_or(uri.len());
-                if !uri[..comma].ends_with(";base64") {
-                    return Err(unsupported(format!(
-                        "buffer {i}: a data URI that is not base64"
-                    )));
-                }
-                let text = &uri.as_bytes()[(comma + 1).min(uri.len())..];
-                if text.len() as u64 / 4 * 3 > budget {
-                    return Err(Error::TooLarge {
-                        at: Location::whole(),
-                        what: format!("buffer {i} is larger than the byte limit left"),
-                    });
-                }
-                let data = base64::decode(text).map_err(|k| Error::Syntax {
-                    at: Location::whole(),
-                    expected: format!("base64 in the data URI of buffer {i}"),
-                    found: format!("byte {k} of its data"),
-                })?;
-                Buffer {
-                    data,
-                    path: None,
-                    base: None,
-                }
-            }
-            gltf::buffer::Source::Uri(uri) => {
-                if uri.contains(':') || uri.starts_with('/') || uri.starts_with('\\') {
-                    return Err(unsupported(format!(
-                        "buffer {i} is at {uri:?}: only files beside the glTF file and data URIs are read"
-                    )));
-                }
-                let dir = dir.ok_or_else(|| {
-                    unsupported(format!(
-                        "buffer {i} is in the file {uri:?}, and bytes in memory have no folder"
-                    ))
-                })?;
-                let name = String::from_utf8_lossy(&percent_decode(uri)).into_owned();
-                let path = dir.join(name);
-                let file = std::fs::File::open(&path).map_err(|e| Error::io(e).with_path(&path))?;
-                let data = super::super::source::read_all(file, budget, 0)
-                    .map_err(|e| e.with_path(&path))?;
-                Buffer {
-                    data,
-                    path: Some(path),
-                    base: Some(0),
-                }
-            }
-        };
+        let mut buffer = buffer_source(b.source(), i, bin, dir, budget)?;
         if buffer.data.len() < b.length() {
             return Err(Error::Truncated {
                 at: Location {
@@ -239,8 +199,95 @@ fn load_buffers(
     Ok(out)
 }
 
-/// Read an accessor with checked offsets; `what` names it in errors.
-fn read_accessor(acc: &gltf::Accessor, bufs: &[Buffer], what: &str) -> Result<Values, Error> {
+/// The bytes of buffer `i`, from the GLB, a `data:` URI or a file beside
+/// the one read.
+fn buffer_source(
+    source: gltf::buffer::Source<'_>,
+    i: usize,
+    bin: BinChunk<'_>,
+    dir: Option<&Path>,
+    budget: u64,
+) -> Result<Buffer, Error> {
+    match source {
+        gltf::buffer::Source::Bin => {
+            let (data, base) = bin.ok_or_else(|| {
+                header(
+                    Location::whole(),
+                    format!("buffer {i} is the GLB BIN chunk, and there is none"),
+                )
+            })?;
+            Ok(Buffer {
+                data: data.to_vec(),
+                path: None,
+                base: Some(base),
+            })
+        }
+        gltf::buffer::Source::Uri(uri) if uri.starts_with("data:") => Ok(Buffer {
+            data: data_uri(uri, i, budget)?,
+            path: None,
+            base: None,
+        }),
+        gltf::buffer::Source::Uri(uri) => {
+            if uri.contains(':') || uri.starts_with('/') || uri.starts_with('\\') {
+                return Err(unsupported(format!(
+                    "buffer {i} is at {uri:?}: only files beside the glTF file and data URIs are read"
+                )));
+            }
+            let dir = dir.ok_or_else(|| {
+                unsupported(format!(
+                    "buffer {i} is in the file {uri:?}, and bytes in memory have no folder"
+                ))
+            })?;
+            let name = String::from_utf8_lossy(&percent_decode(uri)).into_owned();
+            let path = dir.join(name);
+            let file = std::fs::File::open(&path).map_err(|e| Error::io(e).with_path(&path))?;
+            let data =
+                super::super::source::read_all(file, budget, 0).map_err(|e| e.with_path(&path))?;
+            Ok(Buffer {
+                data,
+                path: Some(path),
+                base: Some(0),
+            })
+        }
+    }
+}
+
+/// The bytes of a base64 `data:` URI, within `budget`.
+fn data_uri(uri: &str, i: usize, budget: u64) -> Result<Vec<u8>, Error> {
+    let comma = uri.find(',').unwrap_or(uri.len());
+    if !uri[..comma].ends_with(";base64") {
+        return Err(unsupported(format!(
+            "buffer {i}: a data URI that is not base64"
+        )));
+    }
+    let text = &uri.as_bytes()[(comma + 1).min(uri.len())..];
+    if text.len() as u64 / 4 * 3 > budget {
+        return Err(Error::TooLarge {
+            at: Location::whole(),
+            what: format!("buffer {i} is larger than the byte limit left"),
+        });
+    }
+    base64::decode(text).map_err(|k| Error::Syntax {
+        at: Location::whole(),
+        expected: format!("base64 in the data URI of buffer {i}"),
+        found: format!("byte {k} of its data"),
+    })
+}
+
+/// Where an accessor's elements lie in its buffer, every bound checked.
+struct Layout {
+    comps: usize,
+    /// Bytes per component.
+    size: usize,
+    start: usize,
+    stride: usize,
+    count: usize,
+}
+
+/// The accessor's layout in `buffer`: its elements, `count` of them every
+/// `stride` bytes from `start`, all within its buffer view and the buffer
+/// (checked arithmetic: offsets from the file may be anything).
+fn layout(acc: &gltf::Accessor, bufs: &[Buffer], what: &str) -> Result<(Layout, usize), Error> {
     let i = acc.index();
     if acc.sparse().is_some() {
         return Err(unsupported(format!("{what}: accessor {i} is sparse")));
@@ -264,7 +311,8 @@ fn read_accessor(acc: &gltf::Accessor, bufs: &[Buffer], what: &str) -> Result<Va
     let view = acc
         .view()
         .ok_or_else(|| unsupported(format!("{what}: accessor {i} has no buffer view")))?;
-    let buffer = bufs.get(view.buffer().index()).ok_or_else(|| {
+    let b = view.buffer().index();
+    let buffer = bufs.get(b).ok_or_else(|| {
         header(
             Location::whole(),
             format!("{what}: accessor {i} names a missing buffer"),
@@ -279,22 +327,15 @@ fn read_accessor(acc: &gltf::Accessor, bufs: &[Buffer], what: &str) -> Result<Va
     });
     let end = start.zip(span).and_then(|(s, n)| s.checked_add(n));
     let view_end = view.offset().checked_add(view.length());
-    let at = |offset: usize| Location {
-        path: buffer.path.clone(),
-        position: match buffer.base {
-            Some(b) => Position::Byte(b + offset as u64),
-            None => Position::Whole,
-        },
-    };
     let (Some(start), Some(end), Some(view_end)) = (start, end, view_end) else {
         return Err(Error::TooLarge {
-            at: at(view.offset()),
+            at: buffer.at(view.offset()),
             what: format!("{what}: accessor {i} spans more bytes than can be addressed"),
         });
     };
     if stride < elem || end > view_end || view_end > buffer.data.len() {
         return Err(Error::Truncated {
-            at: at(start),
+            at: buffer.at(start),
             expected: format!(
                 "{what}: accessor {i}: {count} elements of {elem} bytes every {stride} bytes within buffer view {} ({} bytes from byte {})",
                 view.index(),
@@ -303,138 +344,65 @@ fn read_accessor(acc: &gltf::Accessor, bufs: &[Buffer], what: &str) -> Result<Va
             ),
         });
     }
-    let normalized = acc.normalized();
-    let d = &buffer.data;
-    let mut data = Vec::with_capacity(count * comps);
-    for k in 0..count {
-        let base = start + k * stride;
-        for c in 0..comps {
-            let o = base + c * size;
-            let x = match acc.data_type() {
-                DataType::I8 => {
-                    let v = f64::from(d[o] as i8);
-                    if normalized {
-                        (v / 127.0).max(-1.0)
-                    } else {
-                        v
-                    }
-                }
-                DataType::U8 => {
-                    let v = f64::from(d[o]);
-                    if normalized {
-                        v / 255.0
-                    } else {
-                        v
-                    }
-                }
-                DataType::I16 => {
-                    let v = f64::from(i16::from_le_bytes([d[o], d[o + 1]]));
-                    if normalized {
-                        (v / 32767.0).max(-1.0)
-                    } else {
-                        v
-                    }
-                }
-                DataType::U16 => {
-                    let v = f64::from(u16::from_le_bytes([d[o], d[o + 1]]));
-                    if normalized {
-                        v / 65535.0
-                    } else {
-                        v
-                    }
-                }
-                DataType::U32 => {
-                    f64::from(u32::from_le_bytes([d[o], d[o + 1], d[o + 2], d[o + 3]]))
-                }
-                DataType::F32 => {
-                    f64::from(f32::from_le_bytes([d[o], d[o + 1], d[o + 2], d[o + 3]]))
-                }
-            };
-            data.push(x);
+    let layout = Layout {
+        comps,
+        size,
+        start,
+        stride,
+        count,
+    };
+    Ok((layout, b))
+}
+
+/// Read an accessor with checked offsets; `what` names it in errors.
+pub(super) fn read_accessor(
+    acc: &gltf::Accessor,
+    bufs: &[Buffer],
+    what: &str,
+) -> Result<Values, Error> {
+    let (l, b) = layout(acc, bufs, what)?;
+    let buffer = &bufs[b];
+    let (ty, normalized) = (acc.data_type(), acc.normalized());
+    let mut data = Vec::with_capacity(l.count * l.comps);
+    for k in 0..l.count {
+        let base = l.start + k * l.stride;
+        for c in 0..l.comps {
+            let o = base + c * l.size;
+            data.push(component(&buffer.data[o..o + l.size], ty, normalized));
         }
     }
     Ok(Values {
         data,
-        comps,
-        first: buffer.base.map(|b| b + start as u64),
-        stride: stride as u64,
+        comps: l.comps,
+        first: buffer.base.map(|b| b.saturating_add(l.start as u64)),
+        stride: l.stride as u64,
         path: buffer.path.clone(),
+        integer: !normalized && !matches!(ty, DataType::F32),
     })
 }
 
-/// A node's matrix, column-major, in f64.
-fn matrix(node: &gltf::Node) -> M4 {
-    node.transform().matrix().map(|c| c.map(f64::from))
-}
-
-fn mul(a: &M4, b: &M4) -> M4 {
-    let mut m = [[0.0; 4]; 4];
-    for (c, col) in m.iter_mut().enumerate() {
-        for (r, x) in col.iter_mut().enumerate() {
-            *x = (0..4).map(|k| a[k][r] * b[c][k]).sum();
-        }
-    }
-    m
-}
-
-fn apply(m: &M4, p: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|r| m[0][r] * p[0] + m[1][r] * p[1] + m[2][r] * p[2] + m[3][r])
-}
-
-/// The cofactor matrix of the upper 3×3 (rows), and its determinant:
-/// normals go by it (the inverse transpose up to a positive scale when
-/// the determinant is positive).
-fn normal_matrix(m: &M4) -> ([[f64; 3]; 3], f64) {
-    let a = |r: usize, c: usize| m[c][r];
-    let cof = |r: usize, c: usize| {
-        let (r1, r2) = ((r + 1) % 3, (r + 2) % 3);
-        let (c1, c2) = ((c + 1) % 3, (c + 2) % 3);
-        a(r1, c1) * a(r2, c2) - a(r1, c2) * a(r2, c1)
+/// One component of type `ty` from its little-endian bytes (`d` holds
+/// exactly its size), scaled to [-1, 1] or [0, 1] when `normalized`.
+fn component(d: &[u8], ty: DataType, normalized: bool) -> f64 {
+    let (v, scale) = match ty {
+        DataType::I8 => (f64::from(d[0] as i8), 127.0),
+        DataType::U8 => (f64::from(d[0]), 255.0),
+        DataType::I16 => (f64::from(i16::from_le_bytes([d[0], d[1]])), 32767.0),
+        DataType::U16 => (f64::from(u16::from_le_bytes([d[0], d[1]])), 65535.0),
+        DataType::U32 => return f64::from(u32::from_le_bytes([d[0], d[1], d[2], d[3]])),
+        DataType::F32 => return f64::from(f32::from_le_bytes([d[0], d[1], d[2], d[3]])),
     };
-    let n: [[f64; 3]; 3] = std::array::from_fn(|r| std::array::from_fn(|c| cof(r, c)));
-    let det = a(0, 0) * n[0][0] + a(0, 1) * n[0][1] + a(0, 2) * n[0][2];
-    (n, det)
-}
-
-/// One attribute gathered over the whole file.
-struct Gathered {
-    /// Whether it may be a vertex column (`COLOR_n`, custom).
-    vertex_kind: bool,
-    comps: usize,
-    /// Where it was first met, for errors.
-    first_seen: String,
-    corner: Vec<f64>,
-    corner_present: Vec<bool>,
-    vertex: Vec<f64>,
-    vertex_present: Vec<bool>,
-    /// Copies of a welded vertex disagree: not a vertex column.
-    disagree: bool,
-}
-
-/// The column name of an attribute, and whether it may be a vertex column.
-fn column_of(semantic: &Semantic) -> Option<(String, bool)> {
-    let numbered = |base: &str, n: u32| {
-        if n == 0 {
-            base.to_owned()
-        } else {
-            format!("{base}{n}")
-        }
-    };
-    match semantic {
-        Semantic::Normals => Some(("normal".into(), false)),
-        Semantic::TexCoords(n) => Some((numbered("texcoord", *n), false)),
-        Semantic::Colors(n) => Some((numbered("color", *n), true)),
-        Semantic::Extras(name) => Some((name.clone(), true)),
-        _ => None,
+    if normalized {
+        (v / scale).max(-1.0)
+    } else {
+        v
     }
 }
 
-pub(super) fn read(
-    bytes: &[u8],
-    path: Option<&Path>,
-    options: &ReadOptions,
-    pick: &GltfOptions,
-) -> Result<(Mesh, RepairReport), Error> {
+/// The container and its JSON as a validated document (bounds of
+/// accessors excepted: they only help culling, and the values are checked
+/// here anyway), and the GLB `BIN` chunk.
+fn document(bytes: &[u8]) -> Result<(gltf::Document, BinChunk<'_>), Error> {
     let (json, bin) = if bytes.starts_with(b"glTF") {
         glb(bytes)?
     } else {
@@ -451,9 +419,7 @@ pub(super) fn read(
             .into(),
             found: e.to_string(),
         })?;
-    // Validation, except the bounds of accessors: they only help culling,
-    // and a file whose bounds are missing is read (its values are checked
-    // here anyway, non-finite positions included).
+    check_positions(&root)?;
     let doc = match gltf::Document::from_json(root.clone()) {
         Ok(doc) => doc,
         Err(gltf::Error::Validation(mut list)) => {
@@ -477,426 +443,55 @@ pub(super) fn read(
         }
         Err(other) => return Err(header(Location::whole(), format!("invalid glTF: {other}"))),
     };
-    let budget = options.max_bytes.saturating_sub(bytes.len() as u64);
-    let bufs = load_buffers(&doc, bin, path.and_then(Path::parent), budget)?;
+    Ok((doc, bin))
+}
 
-    // Mesh instances, in scene order, with their world matrices.
-    let mut instances: Vec<(M4, gltf::Mesh)> = Vec::new();
-    match doc.default_scene().or_else(|| doc.scenes().next()) {
-        Some(scene) => {
-            let mut stack: Vec<(gltf::Node, M4)> =
-                scene.nodes().map(|n| (n, IDENTITY)).collect::<Vec<_>>();
-            stack.reverse();
-            let limit = doc.nodes().len().saturating_mul(4) + 16;
-            let mut visits = 0usize;
-            while let Some((node, parent)) = stack.pop() {
-                visits += 1;
-                if visits > limit {
-                    return Err(header(
-                        Location::whole(),
-                        format!(
-                            "node {} is reached again and again: the node hierarchy is not a tree",
-                            node.index()
-                        ),
-                    ));
-                }
-                let m = mul(&parent, &matrix(&node));
-                if let Some(mesh) = node.mesh() {
-                    instances.push((m, mesh));
-                }
-                let children: Vec<_> = node.children().collect();
-                stack.extend(children.into_iter().rev().map(|c| (c, m)));
-            }
-        }
-        None => instances.extend(doc.meshes().map(|m| (IDENTITY, m))),
-    }
-    if let Some(i) = pick.mesh {
-        let Some(mesh) = doc.meshes().nth(i) else {
-            return Err(unsupported(format!(
-                "there is no mesh {i} to pick (the file has {})",
-                doc.meshes().len()
-            )));
-        };
-        instances.retain(|(_, m)| m.index() == i);
-        if instances.is_empty() {
-            instances.push((IDENTITY, mesh));
-        }
-    }
-
-    let mut soup = Soup::new(false);
-    let mut positions: Vec<[f64; 3]> = Vec::new();
-    let mut face_at: Vec<u64> = Vec::new();
-    let mut vertex_at: Vec<u64> = Vec::new();
-    let mut all_in_file = true;
-    let mut materials: Vec<Option<String>> = Vec::new();
-    let mut gathered: BTreeMap<String, Gathered> = BTreeMap::new();
-    let corner_limit = options.max_bytes / 4;
-    let in_glb = bufs.iter().all(|b| b.path.is_none() && b.base.is_some());
-    for (m, mesh) in &instances {
-        let (nmat, det) = normal_matrix(m);
-        // The instance's vertices (referenced ones only) and triangles.
-        let mut local: Vec<[f64; 3]> = Vec::new();
-        let mut local_at: Vec<Option<u64>> = Vec::new();
-        let mut tris: Vec<([u32; 3], Option<u64>, Option<String>)> = Vec::new();
-        let mut attrs: BTreeMap<String, (bool, usize, Vec<f64>, Vec<bool>)> = BTreeMap::new();
-        for prim in mesh.primitives() {
-            let what = format!("mesh {} primitive {}", mesh.index(), prim.index());
-            let mode = prim.mode();
-            if !matches!(
-                mode,
-                Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
-            ) {
-                return Err(unsupported(format!(
-                    "{what} has mode {mode:?}: only triangles, strips and fans hold faces"
-                )));
-            }
-            let pos_acc = prim
-                .get(&Semantic::Positions)
-                .ok_or_else(|| header(Location::whole(), format!("{what} has no POSITION")))?;
-            let pos = read_accessor(&pos_acc, &bufs, &format!("{what} POSITION"))?;
-            if pos.comps != 3 {
+/// Every primitive's `POSITION` names an accessor that exists. The `gltf`
+/// crate's validation looks the accessor up unchecked (gltf-json 1.4
+/// panics on a missing one), so this runs before it.
+fn check_positions(root: &gltf::json::Root) -> Result<(), Error> {
+    use gltf::json::validation::Checked;
+    let position = Checked::Valid(gltf::json::mesh::Semantic::Positions);
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let Some(acc) = prim.attributes.get(&position) else {
+                continue;
+            };
+            if acc.value() >= root.accessors.len() {
                 return Err(header(
                     Location::whole(),
-                    format!("{what}: POSITION is not VEC3"),
+                    format!(
+                        "invalid glTF: meshes[{m}].primitives[{p}].attributes.POSITION names accessor {}, and there are {}",
+                        acc.value(),
+                        root.accessors.len()
+                    ),
                 ));
             }
-            let n = pos.count();
-            // Triangle corners as accessor elements.
-            let (idx, idx_at): (Vec<u32>, Option<Values>) = match prim.indices() {
-                Some(acc) => {
-                    let v = read_accessor(&acc, &bufs, &format!("{what} indices"))?;
-                    let list: Vec<u32> = v.data.iter().map(|&x| x as u32).collect();
-                    if let Some(k) = list.iter().position(|&x| x as usize >= n) {
-                        return Err(Error::IndexOutOfRange {
-                            at: v.location(k),
-                            what: "vertex",
-                            index: i64::from(list[k]),
-                            count: n,
-                        });
-                    }
-                    (list, Some(v))
-                }
-                None => ((0..n as u32).collect(), None),
-            };
-            let corners_at = |k: usize| {
-                idx_at
-                    .as_ref()
-                    .and_then(|v| v.first.map(|f| f + k as u64 * v.stride))
-            };
-            let mut prim_tris: Vec<([u32; 3], Option<u64>)> = Vec::new();
-            match mode {
-                Mode::Triangles => {
-                    for (t, c) in idx.chunks_exact(3).enumerate() {
-                        prim_tris.push(([c[0], c[1], c[2]], corners_at(3 * t)));
-                    }
-                }
-                Mode::TriangleStrip => {
-                    for i in 0..idx.len().saturating_sub(2) {
-                        let c = if i % 2 == 0 {
-                            [idx[i], idx[i + 1], idx[i + 2]]
-                        } else {
-                            [idx[i + 1], idx[i], idx[i + 2]]
-                        };
-                        prim_tris.push((c, corners_at(i)));
-                    }
-                }
-                _ => {
-                    for i in 1..idx.len().saturating_sub(1) {
-                        prim_tris.push(([idx[0], idx[i], idx[i + 1]], corners_at(i)));
-                    }
-                }
-            }
-            if tris.len() + prim_tris.len() > corner_limit as usize / 3 {
-                return Err(Error::TooLarge {
-                    at: Location::whole(),
-                    what: "more triangles than the byte limit allows".into(),
-                });
-            }
-            // Keep only the elements the triangles use, in first-use order.
-            let mut remap = vec![u32::MAX; n];
-            let mut used: Vec<usize> = Vec::new();
-            for (c, _) in &mut prim_tris {
-                for x in c.iter_mut() {
-                    let r = &mut remap[*x as usize];
-                    if *r == u32::MAX {
-                        *r = (local.len() + used.len()) as u32;
-                        used.push(*x as usize);
-                    }
-                    *x = *r;
-                }
-            }
-            for &e in &used {
-                let q = pos.get(e);
-                let p = [q[0], q[1], q[2]];
-                if !p.iter().all(|c| c.is_finite()) {
-                    return Err(Error::NonFinite {
-                        at: pos.location(e),
-                        vertex: e,
-                        position: p,
-                    });
-                }
-                local.push(apply(m, p));
-                local_at.push(
-                    pos.first
-                        .filter(|_| pos.path.is_none())
-                        .map(|f| f + e as u64 * pos.stride),
-                );
-            }
-            let material = prim.material().name().map(str::to_owned);
-            for (c, at) in prim_tris {
-                tris.push((c, at, material.clone()));
-            }
-            // Attributes of the used elements; absent for earlier primitives.
-            let before = local.len() - used.len();
-            let mut seen: Vec<String> = Vec::new();
-            for (semantic, acc) in prim.attributes() {
-                let Some((name, vertex_kind)) = column_of(&semantic) else {
-                    continue;
-                };
-                let vals = read_accessor(&acc, &bufs, &format!("{what} {}", semantic.to_string()))?;
-                if vals.count() != n {
-                    return Err(header(
-                        Location::whole(),
-                        format!(
-                            "{what}: {} has {} elements, POSITION {n}",
-                            semantic.to_string(),
-                            vals.count()
-                        ),
-                    ));
-                }
-                let entry = attrs.entry(name.clone()).or_insert_with(|| {
-                    (
-                        vertex_kind,
-                        vals.comps,
-                        vec![0.0; before * vals.comps],
-                        vec![false; before],
-                    )
-                });
-                if entry.1 != vals.comps {
-                    return Err(unsupported(format!(
-                        "{what}: {} has {} values per vertex where another primitive has {}; read one mesh with GltfOptions::mesh",
-                        semantic.to_string(),
-                        vals.comps,
-                        entry.1
-                    )));
-                }
-                for &e in &used {
-                    let mut v = vals.get(e).to_vec();
-                    if name == "normal" {
-                        let s = det.signum();
-                        let t: [f64; 3] = std::array::from_fn(|r| {
-                            s * (nmat[r][0] * v[0] + nmat[r][1] * v[1] + nmat[r][2] * v[2])
-                        });
-                        let l = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
-                        v = if l > 0.0 {
-                            t.map(|c| c / l).to_vec()
-                        } else {
-                            t.to_vec()
-                        };
-                    }
-                    entry.2.extend(v);
-                    entry.3.push(true);
-                }
-                seen.push(name);
-            }
-            for (name, entry) in attrs.iter_mut() {
-                if !seen.contains(name) {
-                    entry
-                        .2
-                        .extend(std::iter::repeat_n(0.0, used.len() * entry.1));
-                    entry.3.extend(std::iter::repeat_n(false, used.len()));
-                }
-            }
-        }
-        // Weld the instance and add it to the soup.
-        let (rep, welded) =
-            weld(&local, Weld::Exact).map_err(|e| header(Location::whole(), e.to_string()))?;
-        let base = positions.len() as u32;
-        let mut first_copy = vec![usize::MAX; welded.len()];
-        for (i, &r) in rep.iter().enumerate() {
-            if first_copy[r as usize] == usize::MAX {
-                first_copy[r as usize] = i;
-            }
-        }
-        positions.extend_from_slice(&welded);
-        for &i in &first_copy {
-            match local_at[i] {
-                Some(b) => vertex_at.push(b),
-                None => {
-                    all_in_file = false;
-                    vertex_at.push(0);
-                }
-            }
-        }
-        let corners_before = soup.polygons.indices.len();
-        let vertices_before = base as usize;
-        for (name, (vertex_kind, comps, values, present)) in &attrs {
-            let g = gathered.entry(name.clone()).or_insert_with(|| Gathered {
-                vertex_kind: *vertex_kind,
-                comps: *comps,
-                first_seen: format!("mesh {}", mesh.index()),
-                corner: vec![0.0; corners_before * comps],
-                corner_present: vec![false; corners_before],
-                vertex: vec![0.0; vertices_before * comps],
-                vertex_present: vec![false; vertices_before],
-                disagree: false,
-            });
-            if g.comps != *comps {
-                return Err(unsupported(format!(
-                    "attribute {name:?} has {comps} values per vertex in mesh {} and {} in {}; read one mesh with GltfOptions::mesh",
-                    mesh.index(),
-                    g.comps,
-                    g.first_seen
-                )));
-            }
-            // Vertex values: the first copy's; do the other copies agree?
-            for &i in &first_copy {
-                g.vertex
-                    .extend_from_slice(&values[i * comps..(i + 1) * comps]);
-                g.vertex_present.push(present[i]);
-            }
-            for (i, &r) in rep.iter().enumerate() {
-                let j = first_copy[r as usize];
-                if present[i] != present[j]
-                    || values[i * comps..(i + 1) * comps] != values[j * comps..(j + 1) * comps]
-                {
-                    g.disagree = true;
-                }
-            }
-        }
-        for (c, at, material) in tris {
-            let mut w = c.map(|x| rep[x as usize]);
-            let mut c = c;
-            if det < 0.0 {
-                w.swap(1, 2);
-                c.swap(1, 2);
-            }
-            if w[0] == w[1] || w[1] == w[2] || w[2] == w[0] {
-                continue;
-            }
-            soup.polygons.indices.extend(w.map(|x| x + base));
-            soup.polygons
-                .offsets
-                .push(soup.polygons.indices.len() as u32);
-            match at {
-                Some(b) if in_glb => face_at.push(b),
-                _ => {
-                    all_in_file = false;
-                    face_at.push(0);
-                }
-            }
-            materials.push(material);
-            for (name, (_, comps, values, present)) in &attrs {
-                let g = gathered.get_mut(name).expect("gathered above");
-                for &x in &c {
-                    let x = x as usize;
-                    g.corner
-                        .extend_from_slice(&values[x * comps..(x + 1) * comps]);
-                    g.corner_present.push(present[x]);
-                }
-            }
-        }
-        // Attributes this instance lacks stay absent here.
-        let corners_now = soup.polygons.indices.len();
-        for (name, g) in gathered.iter_mut() {
-            if !attrs.contains_key(name) {
-                g.corner.resize(corners_now * g.comps, 0.0);
-                g.corner_present.resize(corners_now, false);
-                g.vertex.resize(positions.len() * g.comps, 0.0);
-                g.vertex_present.resize(positions.len(), false);
-            }
         }
     }
-    soup.polygons.positions = positions;
-    if all_in_file {
-        soup.record = true;
-        soup.binary = true;
-        soup.face_at = face_at;
-        soup.vertex_at = vertex_at;
-    }
-    for (name, g) in gathered {
-        if let Some(column) = face_column(&name, &g) {
-            soup.attrs.face.push(column);
-            continue;
-        }
-        let vertex = g.vertex_kind && !g.disagree;
-        let (values, present) = if vertex {
-            (g.vertex, g.vertex_present)
-        } else {
-            (g.corner, g.corner_present)
-        };
-        let column = SoupColumn {
-            name,
-            data: data_of(values, g.comps),
-            present: (!present.iter().all(|&p| p)).then_some(present),
-        };
-        if vertex {
-            soup.attrs.vertex.push(column);
-        } else {
-            soup.attrs.corner.push(column);
-        }
-    }
-    if materials.iter().any(Option::is_some) && !soup.attrs.face.iter().any(|c| c.name == MATERIAL)
-    {
-        let present: Vec<bool> = materials.iter().map(Option::is_some).collect();
-        let names: Vec<String> = materials
-            .into_iter()
-            .map(Option::unwrap_or_default)
-            .collect();
-        soup.attrs.face.push(SoupColumn {
-            name: MATERIAL.into(),
-            data: Data::Text(names),
-            present: (!present.iter().all(|&p| p)).then_some(present),
-        });
-    }
-    soup.finish(options)
+    Ok(())
 }
 
-/// Values of `comps` numbers apiece as soup data.
-fn data_of(values: Vec<f64>, comps: usize) -> Data {
-    match comps {
-        1 => Data::Scalar(values),
-        2 => Data::Vec2(values.chunks_exact(2).map(|c| [c[0], c[1]]).collect()),
-        3 => Data::Vec3(values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()),
-        _ => Data::Vec4(
-            values
-                .chunks_exact(4)
-                .map(|c| [c[0], c[1], c[2], c[3]])
-                .collect(),
-        ),
+pub(super) fn read(
+    bytes: &[u8],
+    path: Option<&Path>,
+    options: &ReadOptions,
+    pick: &GltfOptions,
+) -> Result<(Mesh, RepairReport), Error> {
+    let (doc, bin) = document(bytes)?;
+    let budget = options.max_bytes.saturating_sub(bytes.len() as u64);
+    let bufs = load_buffers(&doc, bin, path.and_then(Path::parent), budget)?;
+    let instances = scene::instances(&doc, pick)?;
+    let mut gather = Gather::new(bufs.iter().all(Buffer::in_glb));
+    // The elements read (every instance reads its mesh's accessors again)
+    // and the corners made are bounded by the byte limit, so a scene of
+    // many instances of a large mesh is an error, not a long wait.
+    let mut budget = usize::try_from(options.max_bytes / 4).unwrap_or(usize::MAX);
+    for (m, mesh) in &instances {
+        let instance = scene::read_instance(mesh, m, &bufs, budget)?;
+        budget = budget.saturating_sub(instance.work);
+        let welded = weld::weld(&instance)?;
+        gather.add(&instance, &welded, mesh.index())?;
     }
-}
-
-/// A custom attribute `_FACE_NAME` (as meshloom writes a face column) as
-/// the face column `NAME`, when its values are the same at the three
-/// corners of every triangle; `None` otherwise (it is then read as any
-/// other custom attribute, under the name `FACE_NAME`).
-fn face_column(name: &str, g: &Gathered) -> Option<SoupColumn> {
-    let face = name.strip_prefix(FACE_PREFIX).filter(|f| !f.is_empty())?;
-    if !g.vertex_kind {
-        return None;
-    }
-    let k = g.comps;
-    let corner = |c: usize| (g.corner_present[c], &g.corner[c * k..(c + 1) * k]);
-    let same = |a: (bool, &[f64]), b: (bool, &[f64])| {
-        a.0 == b.0 && a.1.iter().zip(b.1).all(|(x, y)| x.to_bits() == y.to_bits())
-    };
-    let triangles = g.corner_present.len() / 3;
-    let constant = (0..triangles)
-        .all(|t| same(corner(3 * t), corner(3 * t + 1)) && same(corner(3 * t), corner(3 * t + 2)));
-    if !constant {
-        return None;
-    }
-    let mut values = Vec::with_capacity(triangles * k);
-    let mut present = Vec::with_capacity(triangles);
-    for t in 0..triangles {
-        let (has, v) = corner(3 * t);
-        values.extend_from_slice(v);
-        present.push(has);
-    }
-    Some(SoupColumn {
-        name: face.to_owned(),
-        data: data_of(values, k),
-        present: (!present.iter().all(|&p| p)).then_some(present),
-    })
+    gather.finish(options)
 }

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use serde_json::{json, Value as Json};
 
 use super::super::error::{Error, Location};
-use super::{base64, GltfEncoding, FACE_PREFIX, MATERIAL};
+use super::{base64, GltfEncoding, GltfWriteOptions, FACE_PREFIX, MATERIAL, VERTEX_ID};
 use crate::attr::{Value, ValueType};
 use crate::buffers::{ColumnChoice, Reader, TriangleBufferOptions};
 use crate::keys::{ElementKind, FaceKey};
@@ -48,13 +48,90 @@ fn numeric(ty: Option<ValueType>) -> bool {
     !matches!(ty, None | Some(ValueType::Bool | ValueType::Text))
 }
 
-pub(super) fn write(mesh: &Mesh, encoding: GltfEncoding) -> Result<Vec<u8>, Error> {
+/// The most vertices whose `_VERTEX_ID`s are written: every vertex number
+/// up to it is exact in a 32-bit float (glTF forbids unsigned int custom
+/// attributes). Larger meshes are written without, and read back welded
+/// by position.
+const MAX_VERTEX_IDS: usize = 1 << 24;
+
+/// Refuse positions that 32-bit floats cannot hold: one out of their range
+/// (always: glTF positions must be finite), or a nonzero coordinate that
+/// becomes zero or subnormal (unless `allow_lossy`).
+fn check_f32(mesh: &Mesh, allow_lossy: bool) -> Result<(), Error> {
+    for (i, v) in mesh.vertices().enumerate() {
+        let Ok(p) = mesh.position(v) else {
+            continue;
+        };
+        for &x in &p {
+            let y = x as f32;
+            if !y.is_finite() {
+                return Err(unwritable(format!(
+                    "vertex {i}: the position {p:?} is out of the range of 32-bit floats (at most {:e}), which glTF positions are",
+                    f32::MAX
+                )));
+            }
+            if !allow_lossy && x != 0.0 && (y == 0.0 || y.is_subnormal()) {
+                return Err(unwritable(format!(
+                    "vertex {i}: narrowing the position {p:?} to the 32-bit floats of glTF turns {x:e} into {y:e}; \
+                     scale the mesh, or allow it with GltfWriteOptions::allow_lossy_f32"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Each buffer vertex's mesh vertex, numbered in the mesh's vertex order
+/// (`None` past [`MAX_VERTEX_IDS`] vertices).
+fn vertex_ids(mesh: &Mesh, sources: &[crate::keys::VertexKey]) -> Option<Vec<f32>> {
+    if mesh.vertex_count() > MAX_VERTEX_IDS {
+        return None;
+    }
+    let slots = mesh.vertices().map(|v| v.index() + 1).max().unwrap_or(0);
+    let mut dense = vec![0u32; slots];
+    for (i, v) in mesh.vertices().enumerate() {
+        dense[v.index()] = i as u32;
+    }
+    let ids = sources
+        .iter()
+        .map(|v| dense.get(v.index()).copied().unwrap_or(0) as f32)
+        .collect();
+    Some(ids)
+}
+
+pub(super) fn write(mesh: &Mesh, options: &GltfWriteOptions) -> Result<Vec<u8>, Error> {
     if !mesh.has_positions() {
         return Err(unwritable("the mesh has no vertex positions".into()));
     }
     if mesh.face_count() == 0 {
         return Err(unwritable("the mesh has no faces".into()));
     }
+    check_f32(mesh, options.allow_lossy_f32)?;
+    let b = triangle_buffers(mesh)?;
+    let faces = face_columns(mesh)?;
+    let width: usize = faces.iter().map(|c| c.reader.components()).sum();
+    let triangle_values = triangle_face_values(&faces, &b.triangle_faces, width);
+    let split = split_by_face_values(
+        b.vertex_count(),
+        &b.indices.to_u32(),
+        &triangle_values,
+        width,
+    )?;
+    let (material_names, triangle_material) = materials(mesh, &b.triangle_faces);
+    let mut out = Binary::new(split.source.len());
+    let mut attributes = vertex_attributes(mesh, &b, &split, &mut out);
+    face_attributes(&faces, &split, width, &mut attributes, &mut out);
+    let primitives = primitives(&attributes, &triangle_material, &split.corners, &mut out);
+    let (text, bin) = document(out, primitives, &material_names, options.encoding)?;
+    match options.encoding {
+        GltfEncoding::Json => Ok(text),
+        GltfEncoding::Binary => glb(&text, &bin),
+    }
+}
+
+/// The mesh as triangle buffers split at corner values, with every
+/// numeric corner column and every other numeric vertex column.
+fn triangle_buffers(mesh: &Mesh) -> Result<crate::buffers::TriangleBuffers, Error> {
     let mut columns: Vec<ColumnChoice> = mesh
         .attr_info(ElementKind::Halfedge)
         .into_iter()
@@ -82,18 +159,17 @@ pub(super) fn write(mesh: &Mesh, encoding: GltfEncoding) -> Result<Vec<u8>, Erro
             "a position is too large for a 32-bit float".into(),
         ));
     }
-    let faces = face_columns(mesh)?;
-    let width: usize = faces.iter().map(|c| c.reader.components()).sum();
-    let triangle_values = triangle_face_values(&faces, &b.triangle_faces, width);
-    let split = split_by_face_values(
-        b.vertex_count(),
-        &b.indices.to_u32(),
-        &triangle_values,
-        width,
-    )?;
-    let (material_names, triangle_material) = materials(mesh, &b.triangle_faces);
+    Ok(b)
+}
 
-    let mut out = Binary::new(split.source.len());
+/// `POSITION` (with its bounds), `_VERTEX_ID` and the columns' attributes
+/// of the written vertices.
+fn vertex_attributes(
+    mesh: &Mesh,
+    b: &crate::buffers::TriangleBuffers,
+    split: &FaceSplit,
+    out: &mut Binary,
+) -> serde_json::Map<String, Json> {
     let mut attributes = serde_json::Map::new();
     let positions: Vec<[f32; 3]> = split
         .source
@@ -110,6 +186,11 @@ pub(super) fn write(mesh: &Mesh, encoding: GltfEncoding) -> Result<Vec<u8>, Erro
     let flat: Vec<f32> = positions.into_iter().flatten().collect();
     let at = out.floats(&flat, 3, json!({"min": lo, "max": hi}));
     attributes.insert("POSITION".into(), json!(at));
+    if let Some(ids) = vertex_ids(mesh, &b.vertex_sources) {
+        let ids: Vec<f32> = split.source.iter().map(|&o| ids[o as usize]).collect();
+        let at = out.floats(&ids, 1, json!({}));
+        attributes.insert(format!("_{VERTEX_ID}"), json!(at));
+    }
     for c in &b.columns {
         let name = semantic(&c.name, c.components);
         if attributes.contains_key(&name) {
@@ -125,8 +206,19 @@ pub(super) fn write(mesh: &Mesh, encoding: GltfEncoding) -> Result<Vec<u8>, Erro
         let at = out.floats(&data, k, json!({}));
         attributes.insert(name, json!(at));
     }
+    attributes
+}
+
+/// The face columns as `_FACE_NAME` attributes of the written vertices.
+fn face_attributes(
+    faces: &[FaceColumn<'_>],
+    split: &FaceSplit,
+    width: usize,
+    attributes: &mut serde_json::Map<String, Json>,
+    out: &mut Binary,
+) {
     let mut first = 0;
-    for c in &faces {
+    for c in faces {
         let k = c.reader.components();
         let name = format!("_{FACE_PREFIX}{}", c.name);
         if !attributes.contains_key(&name) {
@@ -141,8 +233,16 @@ pub(super) fn write(mesh: &Mesh, encoding: GltfEncoding) -> Result<Vec<u8>, Erro
         }
         first += k;
     }
-    // One primitive per material, in order of first use; the triangles
-    // with none in one more, without a material.
+}
+
+/// One primitive per material, in order of first use; the triangles with
+/// none in one more, without a material. They share the attributes.
+fn primitives(
+    attributes: &serde_json::Map<String, Json>,
+    triangle_material: &[Option<u32>],
+    corners: &[u32],
+    out: &mut Binary,
+) -> Vec<Json> {
     let mut groups: Vec<(Option<u32>, Vec<u32>)> = Vec::new();
     for (t, m) in triangle_material.iter().enumerate() {
         let at = match groups.iter().position(|(g, _)| g == m) {
@@ -152,11 +252,9 @@ pub(super) fn write(mesh: &Mesh, encoding: GltfEncoding) -> Result<Vec<u8>, Erro
                 groups.len() - 1
             }
         };
-        groups[at]
-            .1
-            .extend_from_slice(&split.corners[3 * t..3 * t + 3]);
+        groups[at].1.extend_from_slice(&corners[3 * t..3 * t + 3]);
     }
-    let primitives: Vec<Json> = groups
+    groups
         .iter()
         .map(|(m, corners)| {
             let mut prim =
@@ -166,7 +264,17 @@ pub(super) fn write(mesh: &Mesh, encoding: GltfEncoding) -> Result<Vec<u8>, Erro
             }
             prim
         })
-        .collect();
+        .collect()
+}
+
+/// The JSON document and the binary buffer (inside the JSON as a `data:`
+/// URI for [`GltfEncoding::Json`]).
+fn document(
+    out: Binary,
+    primitives: Vec<Json>,
+    material_names: &[String],
+    encoding: GltfEncoding,
+) -> Result<(Vec<u8>, Vec<u8>), Error> {
     let Binary {
         mut bin,
         views,
@@ -197,9 +305,11 @@ pub(super) fn write(mesh: &Mesh, encoding: GltfEncoding) -> Result<Vec<u8>, Erro
         doc["materials"] = material_names.iter().map(|n| json!({"name": n})).collect();
     }
     let text = serde_json::to_vec(&doc).map_err(|e| unwritable(e.to_string()))?;
-    if encoding == GltfEncoding::Json {
-        return Ok(text);
-    }
+    Ok((text, bin))
+}
+
+/// The GLB container: header, JSON chunk (padded with spaces), BIN chunk.
+fn glb(text: &[u8], bin: &[u8]) -> Result<Vec<u8>, Error> {
     let json_len = text.len().next_multiple_of(4);
     let total = 12 + 8 + json_len + 8 + bin.len();
     let total32 =
@@ -210,11 +320,11 @@ pub(super) fn write(mesh: &Mesh, encoding: GltfEncoding) -> Result<Vec<u8>, Erro
     out.extend_from_slice(&total32.to_le_bytes());
     out.extend_from_slice(&(json_len as u32).to_le_bytes());
     out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&text);
+    out.extend_from_slice(text);
     out.resize(20 + json_len, b' ');
     out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
     out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin);
+    out.extend_from_slice(bin);
     Ok(out)
 }
 
