@@ -99,3 +99,24 @@ def test_positions_are_settable():
     with pytest.raises(meshloom.MeshloomError):
         m.positions = np.full((4, 3), np.inf)
     assert np.array_equal(m.positions, p * 2.0)
+
+
+class RaisingMerge(FirstRule):
+    def merge(self, values, weights):
+        raise ZeroDivisionError("merge refused")
+
+
+def test_a_raising_rule_in_a_collapse_restores_every_corner_value():
+    # The defect: the rollback restored links and keys, but two corners
+    # came back with other corners' values.
+    m = tetra()
+    m.subdivide("catmull_clark", 1)
+    m.add_halfedge_attr("uv", "vec2")
+    uv = np.stack([np.arange(m.halfedge_count, dtype=float), np.zeros(m.halfedge_count)], 1)
+    m.set_attr_array("uv", uv, kind="halfedge")
+    m.add_vertex_attr("w", float, rule=RaisingMerge())
+    m.set_attr_array("w", np.arange(m.vertex_count, dtype=float))
+    with pytest.raises(ZeroDivisionError) as caught:
+        m.collapse_edge(m.halfedges[0])
+    assert any("unchanged" in n for n in getattr(caught.value, "__notes__", []))
+    assert np.array_equal(m.attr_array("uv", kind="halfedge"), uv)
