@@ -334,11 +334,13 @@ impl Levels {
             Growth::Four => faces * 4f64.powf(later + 1.0),
             Growth::Three => faces * 3f64.powf(later + 1.0) * (4.0 / 3.0),
             Growth::Corners => {
-                let corners: usize = mesh
-                    .faces()
+                // Every half-edge is a corner of a face or of a hole.
+                let in_holes: usize = mesh
+                    .holes()
                     .filter_map(|f| mesh.face(f).ok())
                     .map(|f| f.degree())
                     .sum();
+                let corners = mesh.halfedge_count() - in_holes;
                 corners as f64 * 4f64.powf(later)
             }
         }
