@@ -805,13 +805,16 @@ impl PyMesh {
     /// triangulation of the rim (dihedral angle, then area), refined to the
     /// rim's edge length (`refine`), its new vertices faired (`fair`,
     /// k-harmonic of `fair_order` 1 to 3, default 2). Holes with more than
-    /// `max_rim` rim edges are left open. Attributes come from the rim:
+    /// `max_rim` rim edges are left open; rims over `max_refined_rim`
+    /// (default 2000) are triangulated but not refined or faired (the
+    /// patch grows as the rim's square). Attributes come from the rim:
     /// face values from the neighbouring face, rim corners (UVs) continue
     /// the outer corners, new vertices interpolate. Returns the report (a
     /// dict: `holes_filled`, `faces_added`, `vertices_added`,
-    /// `ear_clipped`, `skipped`). One undo unit; a cancelled or failed run
-    /// leaves the mesh as it was.
-    #[pyo3(signature = (*, refine = true, fair = true, fair_order = 2, max_rim = None, progress = None))]
+    /// `ear_clipped`, `unrefined`, `skipped`). One undo unit; a cancelled
+    /// or failed run leaves the mesh as it was.
+    #[pyo3(signature = (*, refine = true, fair = true, fair_order = 2, max_rim = None, progress = None, max_refined_rim = None))]
+    #[allow(clippy::too_many_arguments)]
     fn fill_holes(
         slf: &Bound<'_, Self>,
         refine: bool,
@@ -819,18 +822,22 @@ impl PyMesh {
         fair_order: u32,
         max_rim: Option<usize>,
         progress: Option<Bound<'_, PyAny>>,
+        max_refined_rim: Option<usize>,
     ) -> PyResult<Py<PyDict>> {
         let py = slf.py();
+        let defaults = FillHoleOptions::default();
         let o = FillHoleOptions {
             max_rim,
             refine,
             fair,
             fair_order,
-            ..FillHoleOptions::default()
+            max_refined_rim: max_refined_rim.unwrap_or(defaults.max_refined_rim),
+            ..defaults
         };
         let cb = Callback::new(progress)?;
         let r = cb.finish(edit(slf, |m| cb.run(|p| fill_holes(m, &o, p))))?;
-        let d = fields_dict!(py, r; holes_filled, faces_added, vertices_added, ear_clipped);
+        let d =
+            fields_dict!(py, r; holes_filled, faces_added, vertices_added, ear_clipped, unrefined);
         d.set_item("skipped", r.skipped.len())?;
         Ok(d.unbind())
     }

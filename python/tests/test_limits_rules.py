@@ -120,3 +120,20 @@ def test_a_raising_rule_in_a_collapse_restores_every_corner_value():
         m.collapse_edge(m.halfedges[0])
     assert any("unchanged" in n for n in getattr(caught.value, "__notes__", []))
     assert np.array_equal(m.attr_array("uv", kind="halfedge"), uv)
+
+
+def test_rims_over_max_refined_rim_are_filled_unrefined():
+    # A 12-sided hole: refined by default, triangulated only below the bound.
+    m = meshloom.Mesh.from_arrays(
+        np.array(
+            [[np.cos(a), np.sin(a), 0.0] for a in np.linspace(0, 2 * np.pi, 12, endpoint=False)]
+            + [[0.0, 0.0, -1.0]],
+            float,
+        ),
+        np.array([[(i + 1) % 12, i, 12] for i in range(12)]),
+    )
+    plain = m.copy()
+    report = m.fill_holes(max_refined_rim=11)
+    assert (report["holes_filled"], report["unrefined"], report["vertices_added"]) == (1, 1, 0)
+    report = plain.fill_holes()
+    assert report["unrefined"] == 0
