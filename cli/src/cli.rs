@@ -409,6 +409,10 @@ pub struct FillHolesArgs {
     /// (default), 3 minimum variation.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=3), requires = "fair")]
     pub fair_order: Option<u32>,
+    /// With --refine or --fair: holes with more rim edges than this are
+    /// triangulated but not refined (the patch grows as the rim's square).
+    #[arg(long, value_name = "N", default_value_t = meshloom::algo::FillHoleOptions::default().max_refined_rim)]
+    pub max_refined_rim: usize,
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,

@@ -83,3 +83,46 @@ fn convert_to_stl_refuses_coordinates_f32_cannot_hold() {
         assert!(!out.exists(), "{name}: a file was written");
     }
 }
+
+/// Holes with more rim edges than --max-refined-rim are triangulated but
+/// not refined, and the report counts them.
+#[test]
+fn fill_holes_leaves_rims_over_the_bound_unrefined() {
+    let input = out_path("cone.obj");
+    let mut obj = String::new();
+    for k in 0..12 {
+        let a = std::f64::consts::TAU * f64::from(k) / 12.0;
+        obj += &format!("v {} {} 0\n", a.cos(), a.sin());
+    }
+    obj += "v 0 0 -1\n";
+    for k in 0..12 {
+        obj += &format!("f {} {} 13\n", (k + 1) % 12 + 1, k + 1);
+    }
+    std::fs::write(&input, obj).unwrap();
+    let out = out_path("filled.obj");
+    let run = |bound: &str| {
+        let o = Command::new(BIN)
+            .args([
+                "fill-holes",
+                input.to_str().unwrap(),
+                out.to_str().unwrap(),
+                "--refine",
+                "--max-refined-rim",
+                bound,
+                "--json",
+            ])
+            .output()
+            .unwrap();
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        String::from_utf8_lossy(&o.stdout).into_owned()
+    };
+    assert!(run("11").contains("\"unrefined\":1"), "{}", run("11"));
+    assert!(run("12").contains("\"unrefined\":0"), "{}", run("12"));
+    std::fs::remove_file(&input).unwrap();
+    std::fs::remove_file(&out).unwrap();
+}

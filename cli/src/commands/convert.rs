@@ -258,6 +258,7 @@ fn fill_holes_liepa(args: &FillHolesArgs) -> Result<(), Failure> {
         refine: true,
         fair: args.fair,
         fair_order: args.fair_order.unwrap_or(2),
+        max_refined_rim: args.max_refined_rim,
         ..Default::default()
     };
     let report = {
