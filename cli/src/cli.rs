@@ -489,7 +489,7 @@ pub struct RemeshArgs {
     pub keep_boundary: bool,
     /// Refuse, before any work, a target length estimated to make more
     /// faces than this.
-    #[arg(long, value_name = "N", default_value_t = meshloom::algo::subdivision::DEFAULT_MAX_FACES)]
+    #[arg(long, value_name = "N", default_value_t = meshloom::algo::DEFAULT_MAX_FACES)]
     pub max_faces: usize,
     /// Print the report as one JSON object instead of text.
     #[arg(long)]
@@ -646,7 +646,7 @@ pub struct SubdivideArgs {
     #[arg(long)]
     pub corners: bool,
     /// Refuse, before any work, a result estimated past this many faces.
-    #[arg(long, value_name = "N", default_value_t = meshloom::algo::subdivision::DEFAULT_MAX_FACES)]
+    #[arg(long, value_name = "N", default_value_t = meshloom::algo::DEFAULT_MAX_FACES)]
     pub max_faces: usize,
     /// Print the report as one JSON object instead of text.
     #[arg(long)]

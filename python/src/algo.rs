@@ -17,7 +17,8 @@ use meshloom::algo::fill_hole::{fill_holes, FillHoleOptions};
 use meshloom::algo::laplacian::LaplaceWeights;
 use meshloom::algo::remesh::{remesh, BoundaryMode, RemeshOptions, Resample, Sizing};
 use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
-use meshloom::algo::subdivision::{SubdivisionReport, DEFAULT_MAX_FACES};
+use meshloom::algo::subdivision::SubdivisionReport;
+use meshloom::algo::DEFAULT_MAX_FACES;
 use meshloom::algo::{
     add_corner_normals, add_face_normals, add_vertex_normals, catmull_clark, corner_normals,
     face_normals, loop_subdivide, midpoint_subdivide, sqrt3_subdivide, vertex_normals, Boundary,

@@ -34,7 +34,7 @@ use crate::algo::progress::Progress;
 use crate::algo::subdivision::refine::{check_valence_two, refine, CutRule};
 use crate::algo::subdivision::{
     finish_columns, run_levels, Growth, LevelReport, Levels, RefinePlans, SubdivisionReport,
-    VertexData, DEFAULT_MAX_FACES,
+    VertexData,
 };
 use crate::error::Result;
 use crate::mesh::Mesh;
@@ -62,7 +62,7 @@ pub struct MidpointOptions {
     pub faces: MidpointFaces,
     /// The most faces the result may have (as
     /// [`SubdivisionOptions::max_faces`](crate::algo::SubdivisionOptions::max_faces);
-    /// default [`DEFAULT_MAX_FACES`]).
+    /// default [`DEFAULT_MAX_FACES`](crate::algo::DEFAULT_MAX_FACES)).
     pub max_faces: usize,
 }
 
@@ -71,7 +71,7 @@ impl Default for MidpointOptions {
         MidpointOptions {
             levels: 1,
             faces: MidpointFaces::Auto,
-            max_faces: DEFAULT_MAX_FACES,
+            max_faces: super::DEFAULT_MAX_FACES,
         }
     }
 }

@@ -48,6 +48,34 @@ pub mod sqrt3;
 pub mod subdivision;
 
 pub use catmull_clark::catmull_clark;
+
+/// The default `max_faces` of the algorithms whose output size follows
+/// from their options (the subdivisions, remeshing): ten million faces
+/// (about 2 GB of mesh at ~110 bytes per vertex, plus the input and the
+/// columns). A request estimated past it is refused before any work with
+/// [`Error::TooLarge`](crate::Error::TooLarge).
+pub const DEFAULT_MAX_FACES: usize = 10_000_000;
+
+/// A rebuilt mesh's positions are all finite (a level's sums of
+/// coordinates near the largest `f64` overflow), else the first vertex
+/// that is not.
+pub(crate) fn check_finite(mesh: &crate::Mesh, algorithm: &'static str) -> crate::Result<()> {
+    let Some(pos) = mesh.position_slots() else {
+        return Ok(());
+    };
+    match mesh
+        .vertices()
+        .find(|v| !pos[v.index()].iter().all(|c| c.is_finite()))
+    {
+        Some(v) => Err(crate::Error::NonFiniteResult {
+            algorithm,
+            key: v.into(),
+            position: pos[v.index()],
+        }),
+        None => Ok(()),
+    }
+}
+
 pub use decimate::{decimate, DecimateOptions, DecimateReport};
 pub use fill_hole::{fill_hole, fill_holes, FillHoleOptions, FillHoleReport};
 pub use loop_subdivision::loop_subdivide;

@@ -212,7 +212,7 @@ pub struct RemeshOptions {
     /// (each input triangle's area over that of an equilateral triangle
     /// of its corners' shortest target) is past it is refused before any
     /// work with [`Error::TooLarge`] (default
-    /// [`DEFAULT_MAX_FACES`](crate::algo::subdivision::DEFAULT_MAX_FACES)).
+    /// [`DEFAULT_MAX_FACES`](crate::algo::DEFAULT_MAX_FACES)).
     pub max_faces: usize,
 }
 
@@ -230,7 +230,7 @@ impl Default for RemeshOptions {
             locked: None,
             resample: Resample::Linear,
             remove_caps: true,
-            max_faces: crate::algo::subdivision::DEFAULT_MAX_FACES,
+            max_faces: crate::algo::DEFAULT_MAX_FACES,
         }
     }
 }
@@ -372,7 +372,7 @@ pub fn remesh(
     report.vertices = work.vertex_count();
     report.faces = work.face_count();
     report.edge_lengths = engine.edge_lengths(&work);
-    crate::algo::subdivision::check_finite(&work, ALGORITHM)?;
+    crate::algo::check_finite(&work, ALGORITHM)?;
     mesh.replace_with(work);
     Ok(report)
 }

@@ -118,14 +118,13 @@ fn export<S: Scalar>(
         None => None,
     };
     let tris = triangles(mesh);
-    let work = mesh;
 
     let mut sources = Vec::with_capacity(options.columns.len());
     let mut columns = Vec::with_capacity(options.columns.len());
     for c in &options.columns {
         let source = match c.source {
-            ColumnSource::Vertex => Source::Vertex(Reader::new(work, &c.name, work.vertices())?),
-            ColumnSource::Corner => Source::Corner(Reader::new(work, &c.name, work.halfedges())?),
+            ColumnSource::Vertex => Source::Vertex(Reader::new(mesh, &c.name, mesh.vertices())?),
+            ColumnSource::Corner => Source::Corner(Reader::new(mesh, &c.name, mesh.halfedges())?),
         };
         let components = match &source {
             Source::Vertex(r) => r.components(),

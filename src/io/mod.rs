@@ -378,35 +378,42 @@ fn emit(mut writer: impl std::io::Write, bytes: &[u8]) -> Result<(), Error> {
 
 /// The mesh's positions and faces as dense buffers with their keys, or an
 /// error if it has no positions.
-/// Positions narrowed to `f32` for a format that stores them so, refused
-/// (naming the vertex index and the format) where the narrowing would
-/// lose a coordinate: one beyond `f32`'s range (it would become infinite)
-/// or a nonzero one so small that it would become zero.
-pub(crate) fn narrow_positions(
-    positions: &[[f64; 3]],
+/// Refuse positions that the 32-bit floats of `format` cannot hold: a
+/// coordinate out of their range (always: it would become infinite), or a
+/// nonzero one that would become zero or subnormal, unless `allow_lossy`
+/// (`option`, if the format has one, names the setting that allows it).
+/// The message names the vertex by its index in vertex order.
+pub(crate) fn check_f32_positions(
+    mesh: &Mesh,
     format: &str,
-) -> Result<Vec<[f32; 3]>, Error> {
-    positions
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let q = p.map(|x| x as f32);
-            let lost = p
-                .iter()
-                .zip(&q)
-                .any(|(&x, &y)| !y.is_finite() || (y == 0.0 && x != 0.0));
-            if lost {
-                Err(Error::Unwritable {
-                    at: Location::whole(),
-                    what: format!(
-                        "vertex {i} at {p:?} does not fit in {format}'s 32-bit floats (a coordinate beyond ±3.4e38 or below 1.4e-45 in magnitude)"
-                    ),
-                })
-            } else {
-                Ok(q)
+    allow_lossy: bool,
+    option: Option<&str>,
+) -> Result<(), Error> {
+    let unwritable = |what| Error::Unwritable {
+        at: Location::whole(),
+        what,
+    };
+    for (i, v) in mesh.vertices().enumerate() {
+        let Ok(p) = mesh.position(v) else {
+            continue;
+        };
+        for &x in &p {
+            let y = x as f32;
+            if !y.is_finite() {
+                return Err(unwritable(format!(
+                    "vertex {i}: the position {p:?} is out of the range of 32-bit floats (at most {:e}), which {format} positions are",
+                    f32::MAX
+                )));
             }
-        })
-        .collect()
+            if !allow_lossy && x != 0.0 && (y == 0.0 || y.is_subnormal()) {
+                let hint = option.map_or(String::new(), |o| format!(", or allow it with {o}"));
+                return Err(unwritable(format!(
+                    "vertex {i}: narrowing the position {p:?} to the 32-bit floats of {format} turns {x:e} into {y:e}; scale the mesh{hint}"
+                )));
+            }
+        }
+    }
+    Ok(())
 }
 
 fn polygons_of(mesh: &Mesh) -> Result<(crate::build::Polygons, crate::build::IndexMaps), Error> {

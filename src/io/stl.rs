@@ -72,11 +72,12 @@ pub fn read_stl_with(
 /// # Errors
 /// [`Error::Unwritable`] without positions, with more than 2^32
 /// triangles, or with a coordinate that `f32` cannot hold (beyond
-/// ±3.4e38, or so small that it would become 0: the message names the
-/// vertex); [`Error::Io`].
+/// ±3.4e38, or so small that it would become 0 or subnormal: the message
+/// names the vertex); [`Error::Io`].
 pub fn write_stl(mesh: &Mesh, writer: impl Write, encoding: StlEncoding) -> Result<(), Error> {
+    super::check_f32_positions(mesh, "STL", false, None)?;
     let (p, maps) = polygons_of(mesh)?;
-    let positions = super::narrow_positions(&p.positions, "STL")?;
+    let positions: Vec<[f32; 3]> = p.positions.iter().map(|q| q.map(|x| x as f32)).collect();
     let tris = triangle_indices(mesh, &maps);
     let normal = |t: &[u32; 3]| {
         let [a, b, c] = t.map(|i| positions[i as usize].map(f64::from));

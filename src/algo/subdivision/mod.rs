@@ -164,7 +164,7 @@ pub struct SubdivisionOptions {
     pub vertex_data: VertexData,
     /// The most faces the result may have: a request estimated past it is
     /// refused before any work with [`Error::TooLarge`] (default
-    /// [`DEFAULT_MAX_FACES`]). Each level multiplies the faces by 3 or 4.
+    /// [`DEFAULT_MAX_FACES`](crate::algo::DEFAULT_MAX_FACES)). Each level multiplies the faces by 3 or 4.
     pub max_faces: usize,
 }
 
@@ -176,7 +176,7 @@ impl Default for SubdivisionOptions {
             corner_column: None,
             crease_column: None,
             vertex_data: VertexData::default(),
-            max_faces: DEFAULT_MAX_FACES,
+            max_faces: super::DEFAULT_MAX_FACES,
         }
     }
 }
@@ -289,16 +289,11 @@ pub(crate) fn run_levels(
     }
     progress.report(scheme, "done", 1, 1)?;
     if let Some(result) = current {
-        check_finite(&result, scheme)?;
+        super::check_finite(&result, scheme)?;
         mesh.replace_with(result);
     }
     Ok(report)
 }
-
-/// The default of the schemes' `max_faces`: ten million faces (about
-/// 2 GB of mesh at meshloom's ~110 bytes per vertex, plus the parent
-/// level and the columns).
-pub const DEFAULT_MAX_FACES: usize = 10_000_000;
 
 /// How many faces one level makes of a face.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -358,26 +353,6 @@ impl Levels {
             });
         }
         Ok(())
-    }
-}
-
-/// A rebuilt mesh's positions are all finite (a level's sums of
-/// coordinates near the largest `f64` overflow), else the first vertex
-/// that is not.
-pub(crate) fn check_finite(mesh: &Mesh, algorithm: &'static str) -> Result<()> {
-    let Some(pos) = mesh.position_slots() else {
-        return Ok(());
-    };
-    match mesh
-        .vertices()
-        .find(|v| !pos[v.index()].iter().all(|c| c.is_finite()))
-    {
-        Some(v) => Err(Error::NonFiniteResult {
-            algorithm,
-            key: v.into(),
-            position: pos[v.index()],
-        }),
-        None => Ok(()),
     }
 }
 

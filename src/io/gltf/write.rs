@@ -54,33 +54,6 @@ fn numeric(ty: Option<ValueType>) -> bool {
 /// by position.
 const MAX_VERTEX_IDS: usize = 1 << 24;
 
-/// Refuse positions that 32-bit floats cannot hold: one out of their range
-/// (always: glTF positions must be finite), or a nonzero coordinate that
-/// becomes zero or subnormal (unless `allow_lossy`).
-fn check_f32(mesh: &Mesh, allow_lossy: bool) -> Result<(), Error> {
-    for (i, v) in mesh.vertices().enumerate() {
-        let Ok(p) = mesh.position(v) else {
-            continue;
-        };
-        for &x in &p {
-            let y = x as f32;
-            if !y.is_finite() {
-                return Err(unwritable(format!(
-                    "vertex {i}: the position {p:?} is out of the range of 32-bit floats (at most {:e}), which glTF positions are",
-                    f32::MAX
-                )));
-            }
-            if !allow_lossy && x != 0.0 && (y == 0.0 || y.is_subnormal()) {
-                return Err(unwritable(format!(
-                    "vertex {i}: narrowing the position {p:?} to the 32-bit floats of glTF turns {x:e} into {y:e}; \
-                     scale the mesh, or allow it with GltfWriteOptions::allow_lossy_f32"
-                )));
-            }
-        }
-    }
-    Ok(())
-}
-
 /// Each buffer vertex's mesh vertex, numbered in the mesh's vertex order
 /// (`None` past [`MAX_VERTEX_IDS`] vertices).
 fn vertex_ids(mesh: &Mesh, sources: &[crate::keys::VertexKey]) -> Option<Vec<f32>> {
@@ -106,7 +79,12 @@ pub(super) fn write(mesh: &Mesh, options: &GltfWriteOptions) -> Result<Vec<u8>, 
     if mesh.face_count() == 0 {
         return Err(unwritable("the mesh has no faces".into()));
     }
-    check_f32(mesh, options.allow_lossy_f32)?;
+    super::super::check_f32_positions(
+        mesh,
+        "glTF",
+        options.allow_lossy_f32,
+        Some("GltfWriteOptions::allow_lossy_f32"),
+    )?;
     let b = triangle_buffers(mesh)?;
     let faces = face_columns(mesh)?;
     let width: usize = faces.iter().map(|c| c.reader.components()).sum();
