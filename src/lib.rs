@@ -40,6 +40,7 @@ pub mod arbitrary;
 pub mod attr;
 pub mod buffers;
 pub mod build;
+pub mod choice;
 mod circulate;
 pub mod error;
 pub mod geometry;

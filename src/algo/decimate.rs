@@ -124,6 +124,12 @@ pub enum Keep {
     Lock,
 }
 
+crate::choice::choices!(Keep {
+    Free = "free",
+    Slide = "slide",
+    Lock = "lock",
+});
+
 /// A vertex or corner column that takes part in the error, with its weight
 /// (error per unit of value, against distance in mesh units).
 #[derive(Clone, Debug, PartialEq)]

@@ -76,7 +76,7 @@ pub(crate) fn check_finite(mesh: &crate::Mesh, algorithm: &'static str) -> crate
     }
 }
 
-pub use decimate::{decimate, DecimateOptions, DecimateReport};
+pub use decimate::{decimate, DecimateOptions, DecimateReport, Keep};
 pub use fill_hole::{fill_hole, fill_holes, FillHoleOptions, FillHoleReport};
 pub use loop_subdivision::loop_subdivide;
 pub use midpoint::{midpoint_subdivide, MidpointFaces, MidpointOptions};
