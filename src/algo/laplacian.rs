@@ -212,6 +212,11 @@ pub enum LaplaceWeights {
     Uniform,
 }
 
+crate::choice::choices!(LaplaceWeights {
+    Cotan = "cotan",
+    Uniform = "uniform",
+});
+
 /// Options of [`laplacian`].
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct LaplacianOptions {

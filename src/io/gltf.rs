@@ -136,6 +136,11 @@ pub enum GltfEncoding {
     Binary,
 }
 
+crate::choice::choices!(GltfEncoding {
+    Json = "json",
+    Binary = "binary",
+});
+
 /// How to write glTF.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct GltfWriteOptions {

@@ -56,6 +56,12 @@ pub enum PlyEncoding {
     BinaryBigEndian,
 }
 
+crate::choice::choices!(PlyEncoding {
+    Ascii = "ascii",
+    BinaryLittleEndian = "binary-little-endian",
+    BinaryBigEndian = "binary-big-endian",
+});
+
 /// Read a PLY mesh, strictly.
 ///
 /// # Errors

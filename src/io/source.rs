@@ -24,6 +24,13 @@ pub enum Format {
     Stl,
 }
 
+crate::choice::choices!(Format {
+    Obj = "obj",
+    Off = "off",
+    Ply = "ply",
+    Stl = "stl",
+});
+
 impl Format {
     /// The format named by a file's extension (case-insensitive), and
     /// whether a trailing `.gz` asks for gzip.

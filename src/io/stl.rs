@@ -44,6 +44,11 @@ pub enum StlEncoding {
     Binary,
 }
 
+crate::choice::choices!(StlEncoding {
+    Ascii = "ascii",
+    Binary = "binary",
+});
+
 /// Read an STL mesh (ascii or binary, detected), strictly.
 ///
 /// # Errors

@@ -16,6 +16,11 @@ pub enum GridFaces {
     Triangles,
 }
 
+crate::choice::choices!(GridFaces {
+    Quads = "quads",
+    Triangles = "triangles",
+});
+
 /// A flat grid of `cols × rows` cells in the `z = 0` plane, with vertex
 /// `(i, j)` at `(i, j, 0)` for `i` in `0..=cols`, `j` in `0..=rows`: open,
 /// one boundary loop, faces counter-clockwise seen from `+z`.
