@@ -1,7 +1,7 @@
 //! Option enums spelled as words.
 //!
 //! Every unit-only option enum (a boundary rule, a subdivision scheme, a
-//! smoothing method) gets its words from one table through [`choices!`]:
+//! smoothing method) gets its words from one table through the crate-internal `choices!` macro:
 //! `Display` writes the word, `FromStr` reads it, and `WORDS` lists them,
 //! so the CLI and Python take the same words as Rust and neither restates
 //! names or defaults.

@@ -29,9 +29,7 @@
 //! [`LinkVec::unlogged_mut`].
 //!
 //! Every method is a one-line `#[inline]` function over the `u32`; the
-//! types compile to the bare arithmetic they replace (instruction counts of
-//! the `ml_bench` workloads before and after the move are in the
-//! CHANGELOG).
+//! types compile to the bare arithmetic they replace.
 
 use std::fmt;
 use std::marker::PhantomData;

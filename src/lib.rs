@@ -17,7 +17,7 @@
 //!   beside each arena ([`attr`]); positions are the vertex column
 //!   [`attr::POSITION`].
 //! - **Checked structure.** [`Mesh::validate`] states every rule in one
-//!   place.
+//!   place; every operator checks first and changes nothing when it refuses.
 //!
 //! ```
 //! use meshloom::Mesh;
@@ -31,6 +31,89 @@
 //! mesh.validate()?;
 //! # Ok::<(), meshloom::Error>(())
 //! ```
+//!
+//! # A map of the crate
+//!
+//! Every public module, by layer. Start at [`Mesh`] and [`view`]; the
+//! editing layer changes a mesh, the attribute layer says what its values do
+//! meanwhile, and the algorithms, the journal and the file formats are built
+//! on those.
+//!
+//! **Core: the mesh, its keys and how to walk it.**
+//!
+//! | module | what it holds |
+//! |---|---|
+//! | [`Mesh`] | the arenas of vertices, half-edges, edges and faces: counts, positions, slots (the type is re-exported at the root) |
+//! | [`keys`] | [`VertexKey`], [`HalfedgeKey`], [`EdgeKey`], [`FaceKey`]: a slot and a generation, so a stale key is an error, never another element |
+//! | [`view`] | borrowed views ([`Mesh::vertex`], [`Mesh::halfedge`], ...): a key checked once, then navigation that cannot fail |
+//! | [`iter`] | the named element iterators ([`iter::Vertices`], [`iter::Faces`], ...), in slot order with exact lengths |
+//! | [`link`] | [`link::RawEdit`]: reflecting low-level link setters, for writing your own operators |
+//! | [`map`] | [`map::SecondaryMap`]: scratch values per element beside a mesh, stale-key safe |
+//! | [`traverse`] | breadth- and depth-first orders, connected components, shortest paths |
+//! | [`validate`] | every structural rule, numbered, as [`Mesh::validate`] checks them |
+//! | [`stats`] | whole-mesh figures: counts, boundary loops, components, Euler characteristic, genus |
+//!
+//! **Editing: changing a mesh without breaking it.**
+//!
+//! | module | what it holds |
+//! |---|---|
+//! | [`ops`] | the operators (split, collapse, flip, remove, fill, triangulate, extrude, cut, compact), each with a side-effect-free `check_*` twin, all or nothing |
+//! | [`build`] | meshes from polygons or flat buffers of any point type, in linear time with typed errors, and polygons back |
+//! | [`repair`] | repair policies for dirty polygon soups (weld, drop degenerate faces, reorient, split non-manifold elements), with a report |
+//! | [`shapes`] | named shapes for docs, tests and benchmarks: tetrahedron, cube, icosphere, grid, torus, ... |
+//!
+//! **Attributes and geometry: values that follow the edits.**
+//!
+//! | module | what it holds |
+//! |---|---|
+//! | [`attr`] | typed columns on vertices, half-edges (corners), edges and faces; the [`attr::Rule`] trait and the stock rules that merge, split and interpolate them inside every operator |
+//! | [`geometry`] | the [`geometry::Point`] trait (your own point types as positions) and measures: lengths, normals, areas, centroids |
+//!
+//! **Algorithms** ([`algo`]: one algorithm per module, each all or nothing,
+//! with a [`Progress`](algo::Progress) callback where it may take long).
+//!
+//! | module | what it does |
+//! |---|---|
+//! | [`algo::normals`] | face, vertex and corner normals (split at creases and hard edges) |
+//! | [`algo::laplacian`] | the cotangent or uniform Laplacian and the mass matrix |
+//! | [`algo::curvature`] | mean, Gaussian and principal curvatures |
+//! | [`algo::smooth`] | explicit, Taubin and implicit smoothing |
+//! | [`algo::fair`] | the smoothest (k-harmonic) surface over a region |
+//! | [`algo::fill_hole`](mod@algo::fill_hole) | Liepa's hole filling: triangulate, refine, fair |
+//! | [`algo::decimate`](mod@algo::decimate) | quadric error decimation and level-of-detail chains |
+//! | [`algo::remesh`](mod@algo::remesh) | isotropic remeshing to a uniform or adaptive edge length |
+//! | [`algo::subdivision`] | what the subdivision schemes share: options, creases, the report |
+//! | [`algo::loop_subdivision`], [`algo::catmull_clark`](mod@algo::catmull_clark), [`algo::sqrt3`], [`algo::midpoint`] | the four subdivision schemes |
+//! | [`algo::progress`] | the progress-and-cancel callback |
+//!
+//! **Journal, files, engines.**
+//!
+//! | module | what it holds |
+//! |---|---|
+//! | [`journal`] | transactions, undo and redo, change tracking: what an editor needs from its mesh kernel |
+//! | [`io`] | the file formats: OBJ, OFF, PLY, STL (and `.gz`), glTF with the `gltf` feature; strict or repairing reads with located errors |
+//! | [`buffers`] | engine buffers: a mesh as flat `f32` triangle arrays split at UV seams and creases, and back |
+//!
+//! **Plumbing.**
+//!
+//! | module | what it holds |
+//! |---|---|
+//! | [`choice`] | option enums spelled as words (`Display`, `FromStr`, `WORDS`), shared by the command line and Python |
+//! | [`error`] | [`Error`], [`BuildError`], [`Refusal`], [`AnyError`] and the validation error: each names what was wrong and where |
+//! | `arbitrary` | `quickcheck::Arbitrary` valid random meshes for your own property tests (feature `quickcheck`) |
+//!
+//! # Cargo features
+//!
+//! | feature | default | what it adds |
+//! |---|---|---|
+//! | `gzip` | yes | reading and writing gzip-compressed files (`.gz`), pure Rust |
+//! | `sparse` | no | implicit smoothing and fairing through faer's sparse Cholesky factorisation (without it they refuse with [`Error::Unsuitable`]; hole filling fairs by conjugate gradients) |
+//! | `serde` | no | `Serialize`/`Deserialize` for meshes, validated on the way in |
+//! | `quickcheck` | no | `Arbitrary` valid random meshes (the `arbitrary` module) |
+//! | `mint`, `glam`, `nalgebra` | no | their points and vectors as positions and attribute values ([`geometry`] lists the versions) |
+//! | `parallel` | no | normals and engine buffers of large meshes on rayon's threads |
+//! | `gltf` | no | reading and writing glTF 2.0 (`.gltf`, `.glb`) |
+//! | `validate-edits` | no | debug builds validate the whole mesh after every edit: for meshloom's own tests and fuzzing, not for applications |
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 

@@ -51,12 +51,47 @@ use crate::layout::Vid;
 use crate::mesh::Mesh;
 
 /// A guard for raw link edits; see the [module docs](self).
+///
+/// While the guard lives the mesh may break its rules; [`RawEdit::finish`]
+/// checks them all. A triangle from nothing:
+///
+/// ```
+/// let mut mesh = meshloom::Mesh::new();
+/// let mut edit = mesh.raw_edit();
+/// let v = [edit.new_vertex(), edit.new_vertex(), edit.new_vertex()];
+/// let e = [edit.new_edge(), edit.new_edge(), edit.new_edge()];
+/// let (face, hole) = (edit.new_face(false), edit.new_face(true));
+/// for i in 0..3 {
+///     let j = (i + 1) % 3;
+///     // Side 0 of edge i runs v[i] -> v[j] in the face, side 1 back in the hole.
+///     let (h, t) = (e[i].halfedge_key(0), e[i].halfedge_key(1));
+///     edit.set_origin(h, v[i])?;
+///     edit.set_origin(t, v[j])?;
+///     edit.set_face(h, face)?;
+///     edit.set_face(t, hole)?;
+///     edit.link(h, e[j].halfedge_key(0))?;
+///     edit.link(e[j].halfedge_key(1), t)?;
+/// }
+/// edit.finish()?;
+/// assert_eq!((mesh.vertex_count(), mesh.face_count(), mesh.hole_count()), (3, 1, 1));
+/// # Ok::<(), meshloom::Error>(())
+/// ```
 pub struct RawEdit<'m> {
     mesh: &'m mut Mesh,
 }
 
 impl Mesh {
     /// Start raw link edits (see [`link`](crate::link)).
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let f = mesh.faces().next().unwrap();
+    /// let mut edit = mesh.raw_edit();
+    /// edit.set_hole(f, true)?; // the face becomes the outside of a boundary loop
+    /// edit.finish()?;
+    /// assert_eq!((mesh.face_count(), mesh.hole_count()), (3, 1));
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn raw_edit(&mut self) -> RawEdit<'_> {
         RawEdit { mesh: self }
     }
@@ -67,6 +102,19 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::StaleKey`].
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let h = mesh.halfedges().next().unwrap();
+    /// let a = mesh.halfedge(h)?.origin().key();
+    /// let mut edit = mesh.raw_edit();
+    /// assert_eq!(edit.origin(h)?, Some(a));
+    /// let e = edit.new_edge();
+    /// assert_eq!(edit.origin(e.halfedge_key(0))?, None); // not linked yet
+    /// edit.remove_edge(e)?;
+    /// edit.finish()?;
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn origin(&self, h: HalfedgeKey) -> Result<Option<VertexKey>> {
         let h = self.mesh.check_halfedge(h)?;
         let o = self.mesh.he[h].origin;
@@ -77,6 +125,19 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::StaleKey`].
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let h = mesh.halfedges().next().unwrap();
+    /// let n = mesh.halfedge(h)?.next().key();
+    /// let mut edit = mesh.raw_edit();
+    /// assert_eq!(edit.next(h)?, Some(n));
+    /// let e = edit.new_edge();
+    /// assert_eq!(edit.next(e.halfedge_key(0))?, None);
+    /// edit.remove_edge(e)?;
+    /// edit.finish()?;
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn next(&self, h: HalfedgeKey) -> Result<Option<HalfedgeKey>> {
         let h = self.mesh.check_halfedge(h)?;
         let n = self.mesh.he[h].next;
@@ -90,6 +151,19 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::StaleKey`].
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let h = mesh.halfedges().next().unwrap();
+    /// let f = mesh.halfedge(h)?.face().key();
+    /// let mut edit = mesh.raw_edit();
+    /// assert_eq!(edit.face(h)?, Some(f));
+    /// let e = edit.new_edge();
+    /// assert_eq!(edit.face(e.halfedge_key(1))?, None);
+    /// edit.remove_edge(e)?;
+    /// edit.finish()?;
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn face(&self, h: HalfedgeKey) -> Result<Option<FaceKey>> {
         let h = self.mesh.check_halfedge(h)?;
         let f = self.mesh.he[h].face;
@@ -104,6 +178,17 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::StaleKey`].
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let v = mesh.vertices().next().unwrap();
+    /// let h = mesh.vertex(v)?.outgoing().nth(1).unwrap();
+    /// let mut edit = mesh.raw_edit();
+    /// edit.set_origin(h, v)?; // the same origin, and v now names h
+    /// edit.finish()?;
+    /// assert_eq!(mesh.vertex(v)?.halfedge().key(), h);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn set_origin(&mut self, h: HalfedgeKey, v: VertexKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let v = self.mesh.check_vertex(v)?;
@@ -117,6 +202,17 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::StaleKey`].
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// let f = mesh.faces().next().unwrap();
+    /// let h = mesh.face(f)?.halfedges().nth(2).unwrap();
+    /// let mut edit = mesh.raw_edit();
+    /// edit.set_face(h, f)?; // the same face, and f now names h
+    /// edit.finish()?;
+    /// assert_eq!(mesh.face(f)?.halfedge().key(), h);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn set_face(&mut self, h: HalfedgeKey, f: FaceKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let f = self.mesh.check_face(f)?;
@@ -129,6 +225,17 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::StaleKey`].
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let h = mesh.halfedges().next().unwrap();
+    /// let n = mesh.halfedge(h)?.next().key();
+    /// let mut edit = mesh.raw_edit();
+    /// edit.link(h, n)?;
+    /// assert_eq!(edit.next(h)?, Some(n));
+    /// edit.finish()?;
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn link(&mut self, a: HalfedgeKey, b: HalfedgeKey) -> Result<()> {
         let a = self.mesh.check_halfedge(a)?;
         let b = self.mesh.check_halfedge(b)?;
@@ -141,6 +248,17 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::StaleKey`].
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::icosahedron();
+    /// let v = mesh.vertices().next().unwrap();
+    /// let third = mesh.vertex(v)?.outgoing().nth(2).unwrap();
+    /// let mut edit = mesh.raw_edit();
+    /// edit.set_vertex_halfedge(v, third)?;
+    /// edit.finish()?;
+    /// assert_eq!(mesh.vertex(v)?.outgoing().next(), Some(third)); // circulation starts there
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn set_vertex_halfedge(&mut self, v: VertexKey, h: HalfedgeKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let v = self.mesh.check_vertex(v)?;
@@ -153,6 +271,17 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::StaleKey`].
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// let f = mesh.faces().next().unwrap();
+    /// let second = mesh.face(f)?.halfedges().nth(1).unwrap();
+    /// let mut edit = mesh.raw_edit();
+    /// edit.set_face_halfedge(f, second)?;
+    /// edit.finish()?;
+    /// assert_eq!(mesh.face(f)?.halfedges().next(), Some(second)); // the face's corners start there
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn set_face_halfedge(&mut self, f: FaceKey, h: HalfedgeKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let f = self.mesh.check_face(f)?;
@@ -164,6 +293,17 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::StaleKey`].
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// let f = mesh.faces().next().unwrap();
+    /// let mut edit = mesh.raw_edit();
+    /// edit.set_hole(f, true)?; // open the box
+    /// edit.finish()?;
+    /// assert!(mesh.face(f)?.is_hole());
+    /// assert_eq!((mesh.face_count(), mesh.hole_count()), (5, 1));
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn set_hole(&mut self, f: FaceKey, hole: bool) -> Result<()> {
         let f = self.mesh.check_face(f)?;
         self.mesh.set_hole::<Recorded>(f, hole);
@@ -171,6 +311,17 @@ impl RawEdit<'_> {
     }
 
     /// A new vertex with no links yet.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let mut edit = mesh.raw_edit();
+    /// let v = edit.new_vertex();
+    /// assert!(edit.validate().is_err()); // a vertex no half-edge leaves
+    /// edit.remove_vertex(v)?;
+    /// edit.finish()?;
+    /// assert_eq!(mesh.vertex_count(), 4);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn new_vertex(&mut self) -> VertexKey {
         let v = self.mesh.alloc_vertex::<Recorded>();
         self.mesh.vkey(v)
@@ -178,12 +329,34 @@ impl RawEdit<'_> {
 
     /// A new edge (two half-edges, [`EdgeKey::halfedge_key`]) with no links
     /// yet.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let mut edit = mesh.raw_edit();
+    /// let e = edit.new_edge();
+    /// assert_eq!(e.halfedge_key(0).twin_key(), e.halfedge_key(1));
+    /// edit.remove_edge(e)?;
+    /// edit.finish()?;
+    /// assert_eq!(mesh.edge_count(), 6);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn new_edge(&mut self) -> EdgeKey {
         let e = self.mesh.alloc_edge::<Recorded>();
         self.mesh.ekey(e)
     }
 
     /// A new face (a hole if `hole`) with no links yet.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let mut edit = mesh.raw_edit();
+    /// let f = edit.new_face(false);
+    /// assert!(edit.validate().is_err()); // a face without half-edges
+    /// edit.remove_face(f)?;
+    /// edit.finish()?;
+    /// assert_eq!(mesh.face_count(), 4);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn new_face(&mut self, hole: bool) -> FaceKey {
         let f = self.mesh.alloc_face::<Recorded>(hole);
         self.mesh.fkey(f)
@@ -193,6 +366,16 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::StaleKey`].
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let v = mesh.vertices().next().unwrap();
+    /// let mut edit = mesh.raw_edit();
+    /// edit.remove_vertex(v)?;
+    /// assert!(edit.validate().is_err()); // half-edges still leave it
+    /// assert!(edit.remove_vertex(v).is_err()); // its key is stale now
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn remove_vertex(&mut self, v: VertexKey) -> Result<()> {
         let v = self.mesh.check_vertex(v)?;
         self.mesh.free_vertex::<Recorded>(v);
@@ -203,6 +386,16 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::StaleKey`].
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let mut edit = mesh.raw_edit();
+    /// let e = edit.new_edge();
+    /// edit.remove_edge(e)?;
+    /// assert!(edit.origin(e.halfedge_key(0)).is_err()); // both half-edges went
+    /// edit.finish()?;
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn remove_edge(&mut self, e: EdgeKey) -> Result<()> {
         let e = self.mesh.check_edge(e)?;
         self.mesh.free_edge::<Recorded>(e);
@@ -213,6 +406,16 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::StaleKey`].
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let mut edit = mesh.raw_edit();
+    /// let hole = edit.new_face(true);
+    /// edit.remove_face(hole)?;
+    /// edit.finish()?;
+    /// assert_eq!(mesh.hole_count(), 0);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn remove_face(&mut self, f: FaceKey) -> Result<()> {
         let f = self.mesh.check_face(f)?;
         self.mesh.free_face::<Recorded>(f);
@@ -223,6 +426,17 @@ impl RawEdit<'_> {
     ///
     /// # Errors
     /// [`Error::Invalid`] with the first broken rule.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let mut edit = mesh.raw_edit();
+    /// assert!(edit.validate().is_ok());
+    /// let v = edit.new_vertex();
+    /// assert!(edit.validate().is_err()); // mid-edit, the rules may break
+    /// edit.remove_vertex(v)?;
+    /// edit.finish()?;
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn validate(&self) -> Result<()> {
         self.mesh.validate().map_err(Error::Invalid)
     }
@@ -236,6 +450,19 @@ impl RawEdit<'_> {
     ///
     /// # Complexity
     /// O(half-edges) for rule 11, plus `validate`.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let mut edit = mesh.raw_edit();
+    /// let v = edit.new_vertex();
+    /// assert!(edit.finish().is_err()); // the stray vertex breaks a rule
+    /// // The mesh stays as the setters left it; a new session mends it.
+    /// let mut edit = mesh.raw_edit();
+    /// edit.remove_vertex(v)?;
+    /// edit.finish()?;
+    /// mesh.validate()?;
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn finish(self) -> Result<()> {
         self.mesh.point_all_at_holes();
         let out = self.validate();

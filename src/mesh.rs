@@ -87,6 +87,12 @@ impl Clone for Mesh {
 
 impl Mesh {
     /// An empty mesh with a position column.
+    ///
+    /// ```
+    /// let mesh = meshloom::Mesh::new();
+    /// assert!(mesh.is_empty() && mesh.has_positions());
+    /// assert_eq!((mesh.vertex_count(), mesh.face_count()), (0, 0));
+    /// ```
     pub fn new() -> Mesh {
         let mut m = Mesh::default();
         m.attrs.position = Some(m.attrs.vertex.push(
@@ -99,53 +105,114 @@ impl Mesh {
     // ----- counts ---------------------------------------------------------
 
     /// Number of vertices.
+    ///
+    /// ```
+    /// use meshloom::shapes::{grid, GridFaces};
+    /// let mesh = grid(3, 2, GridFaces::Quads); // 3 × 2 cells
+    /// assert_eq!(mesh.vertex_count(), 4 * 3);
+    /// ```
     #[inline]
     pub fn vertex_count(&self) -> usize {
         self.v_slots.live()
     }
 
     /// Number of half-edges (twice the edges).
+    ///
+    /// ```
+    /// let mesh = meshloom::shapes::cube();
+    /// assert_eq!(mesh.halfedge_count(), 2 * mesh.edge_count());
+    /// ```
     #[inline]
     pub fn halfedge_count(&self) -> usize {
         Eid::halfedge_slots(self.e_slots.live())
     }
 
     /// Number of edges.
+    ///
+    /// ```
+    /// use meshloom::shapes::{grid, GridFaces};
+    /// let mesh = grid(3, 2, GridFaces::Quads);
+    /// assert_eq!(mesh.edge_count(), 3 * 3 + 2 * 4); // horizontal + vertical
+    /// ```
     #[inline]
     pub fn edge_count(&self) -> usize {
         self.e_slots.live()
     }
 
     /// Number of faces, holes excluded.
+    ///
+    /// ```
+    /// let mesh = meshloom::shapes::disk(6);
+    /// assert_eq!((mesh.face_count(), mesh.hole_count()), (6, 1)); // the hole is not counted
+    /// ```
     #[inline]
     pub fn face_count(&self) -> usize {
         self.f_slots.live() - self.holes
     }
 
     /// Number of hole faces: one per boundary loop.
+    ///
+    /// ```
+    /// use meshloom::shapes::{grid, GridFaces};
+    /// let mut mesh = grid(3, 3, GridFaces::Quads);
+    /// assert_eq!(mesh.hole_count(), 1); // outside the border
+    /// let centre = mesh.faces().nth(4).unwrap();
+    /// mesh.remove_face(centre)?;
+    /// assert_eq!(mesh.hole_count(), 2); // and where the centre cell was
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     #[inline]
     pub fn hole_count(&self) -> usize {
         self.holes
     }
 
     /// Whether the mesh has no elements.
+    ///
+    /// ```
+    /// assert!(meshloom::Mesh::new().is_empty());
+    /// assert!(!meshloom::shapes::tetrahedron().is_empty());
+    /// ```
     pub fn is_empty(&self) -> bool {
         self.e_slots.live() == 0
     }
 
     /// V − E + F over faces that are not holes. For a mesh without boundary
     /// this is 2 − 2·genus per component.
+    ///
+    /// ```
+    /// use meshloom::shapes::{grid, GridFaces};
+    /// assert_eq!(meshloom::shapes::icosphere(2).euler_characteristic(), 2); // a sphere
+    /// assert_eq!(grid(4, 4, GridFaces::Triangles).euler_characteristic(), 1); // a disk
+    /// ```
     pub fn euler_characteristic(&self) -> i64 {
         self.vertex_count() as i64 - self.edge_count() as i64 + self.face_count() as i64
     }
 
     /// Whether the mesh has no boundary (no holes).
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// assert!(mesh.is_closed());
+    /// let f = mesh.faces().next().unwrap();
+    /// mesh.remove_face(f)?;
+    /// assert!(!mesh.is_closed());
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn is_closed(&self) -> bool {
         self.holes == 0
     }
 
     /// Heap bytes held by the connectivity, generations, free lists and
     /// every attribute column (capacities, not lengths).
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::icosphere(3);
+    /// let before = mesh.heap_bytes();
+    /// let t = mesh.add_vertex_attr::<f64>("temperature")?;
+    /// mesh.fill_attr(&t, 20.0)?;
+    /// assert!(mesh.heap_bytes() >= before + 8 * mesh.vertex_count());
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn heap_bytes(&self) -> usize {
         self.v_halfedge.capacity() * std::mem::size_of::<Hid>()
             + self.v_slots.heap_bytes()
@@ -208,8 +275,21 @@ impl Mesh {
     ///
     /// The element iterators borrow the mesh; walking slots instead lets a
     /// loop edit the mesh as it goes without first collecting every key
-    /// (which costs 2 ms and 4 MB for the edges of a 164k-vertex sphere). A
-    /// new element takes a vacant slot or the next one after the last.
+    /// (a vector of 8 bytes a key). A new element takes a vacant slot or
+    /// the next one after the last.
+    ///
+    /// ```
+    /// // Move every vertex while walking the slots.
+    /// let mut mesh = meshloom::shapes::cube();
+    /// for i in 0..mesh.slot_counts()[0] {
+    ///     if let Some(v) = mesh.vertex_at(i) {
+    ///         let p = mesh.position(v)?;
+    ///         mesh.set_position(v, [2.0 * p[0], p[1], p[2]])?;
+    ///     }
+    /// }
+    /// assert_eq!(mesh.vertex_at(mesh.slot_counts()[0]), None); // past the end
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     #[inline]
     pub fn vertex_at(&self, i: usize) -> Option<VertexKey> {
         let (i, g) = self.v_slots.live_at(i)?;
@@ -242,6 +322,18 @@ impl Mesh {
     /// The face (not a hole) living in slot `i`, if any (`i` from 0 to
     /// [`slot_counts`](Mesh::slot_counts)`()[3]`); see
     /// [`vertex_at`](Mesh::vertex_at).
+    ///
+    /// ```
+    /// // Poke every face once: the new faces take slots after the last one.
+    /// let mut mesh = meshloom::shapes::cube();
+    /// for i in 0..mesh.slot_counts()[3] {
+    ///     if let Some(f) = mesh.face_at(i) {
+    ///         mesh.poke_face(f)?;
+    ///     }
+    /// }
+    /// assert_eq!(mesh.face_count(), 6 * 4);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     #[inline]
     pub fn face_at(&self, i: usize) -> Option<FaceKey> {
         let (i, g) = self.f_slots.live_at(i)?;
@@ -252,24 +344,62 @@ impl Mesh {
     // ----- key checks at the door -------------------------------------------
 
     /// Whether the key names a live vertex of this mesh.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::icosahedron();
+    /// let h = mesh.halfedges().next().unwrap();
+    /// let gone = mesh.halfedge(h)?.origin().key();
+    /// mesh.collapse_edge(h)?;
+    /// assert!(!mesh.contains_vertex(gone));
+    /// assert_eq!(mesh.vertices().filter(|&v| mesh.contains_vertex(v)).count(), 11);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     #[inline]
     pub fn contains_vertex(&self, v: VertexKey) -> bool {
         self.v_slots.is_current(v.index, v.generation)
     }
 
     /// Whether the key names a live half-edge of this mesh.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::icosahedron();
+    /// let h = mesh.halfedges().next().unwrap();
+    /// mesh.collapse_edge(h)?;
+    /// assert!(!mesh.contains_halfedge(h) && !mesh.contains_halfedge(h.twin_key()));
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     #[inline]
     pub fn contains_halfedge(&self, h: HalfedgeKey) -> bool {
         self.e_slots.is_current(h.id().edge().raw(), h.generation)
     }
 
     /// Whether the key names a live edge of this mesh.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::icosahedron();
+    /// let e = mesh.edges().next().unwrap();
+    /// assert!(mesh.contains_edge(e));
+    /// mesh.collapse_edge(e.halfedge_key(0))?;
+    /// assert!(!mesh.contains_edge(e));
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     #[inline]
     pub fn contains_edge(&self, e: EdgeKey) -> bool {
         self.e_slots.is_current(e.index, e.generation)
     }
 
     /// Whether the key names a live face or hole of this mesh.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::icosahedron();
+    /// let h = mesh.halfedges().next().unwrap();
+    /// let f = mesh.halfedge(h)?.face().key();
+    /// mesh.collapse_edge(h)?; // the triangle beside h goes
+    /// assert!(!mesh.contains_face(f));
+    /// let disk = meshloom::shapes::disk(6);
+    /// assert!(disk.holes().all(|hole| disk.contains_face(hole))); // holes count
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     #[inline]
     pub fn contains_face(&self, f: FaceKey) -> bool {
         self.f_slots.is_current(f.index, f.generation)
@@ -605,6 +735,13 @@ impl Mesh {
     // ----- positions -----------------------------------------------------------
 
     /// Whether the mesh carries vertex positions.
+    ///
+    /// ```
+    /// assert!(meshloom::shapes::cube().has_positions());
+    /// let topology = meshloom::Mesh::from_faces(4, &[[0u32, 1, 2], [0, 2, 3]])?;
+    /// assert!(!topology.has_positions());
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn has_positions(&self) -> bool {
         self.attrs.positions().is_some()
     }
@@ -614,6 +751,18 @@ impl Mesh {
     /// # Errors
     /// [`Error::StaleKey`] for a removed vertex; [`Error::NoPositions`] for
     /// a topology-only mesh.
+    ///
+    /// ```
+    /// use meshloom::{Error, Mesh};
+    /// let p = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    /// let mesh = Mesh::from_polygons(&p, &[[0u32, 1, 2]])?;
+    /// let v: Vec<_> = mesh.vertices().collect();
+    /// assert_eq!(mesh.position(v[1])?, [1.0, 0.0, 0.0]);
+    /// let topology = Mesh::from_faces(3, &[[0u32, 1, 2]])?;
+    /// let w = topology.vertices().next().unwrap();
+    /// assert!(matches!(topology.position(w), Err(Error::NoPositions)));
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn position(&self, v: VertexKey) -> Result<[f64; 3]> {
         let i = self.check_vertex(v)?;
         self.attrs
@@ -627,6 +776,18 @@ impl Mesh {
     /// # Errors
     /// [`Error::StaleKey`], [`Error::NoPositions`],
     /// [`Error::NonFinitePosition`].
+    ///
+    /// ```
+    /// use meshloom::Error;
+    /// let mut mesh = meshloom::shapes::tetrahedron();
+    /// let v = mesh.vertices().next().unwrap();
+    /// mesh.set_position(v, [0.0, 0.0, 2.0])?;
+    /// assert_eq!(mesh.position(v)?, [0.0, 0.0, 2.0]);
+    /// let refused = mesh.set_position(v, [f64::NAN, 0.0, 0.0]);
+    /// assert!(matches!(refused, Err(Error::NonFinitePosition { .. })));
+    /// assert_eq!(mesh.position(v)?, [0.0, 0.0, 2.0]); // unchanged
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn set_position(&mut self, v: VertexKey, p: [f64; 3]) -> Result<()> {
         let i = self.check_vertex(v)?;
         if !p.iter().all(|c| c.is_finite()) {
@@ -646,6 +807,16 @@ impl Mesh {
     /// vacant slots hold zeros (while a [journal](crate::journal) records,
     /// the last position of the vertex that lived there). For fast
     /// whole-mesh geometry passes.
+    ///
+    /// ```
+    /// let mesh = meshloom::shapes::cube();
+    /// let slots = mesh.position_slots().expect("the cube has positions");
+    /// assert_eq!(slots.len(), mesh.slot_counts()[0]);
+    /// for v in mesh.vertices() {
+    ///     assert_eq!(slots[v.index()], mesh.position(v)?);
+    /// }
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn position_slots(&self) -> Option<&[[f64; 3]]> {
         self.attrs.positions().map(|c| c.raw())
     }
@@ -656,6 +827,16 @@ impl Mesh {
     /// While a [journal](crate::journal) records, this saves the whole
     /// column first (O(slots)), and the writes become one undo step of
     /// their own, holding only the positions that changed.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// let v = mesh.vertices().last().unwrap();
+    /// for p in mesh.position_slots_mut().unwrap() {
+    ///     p[2] *= 3.0; // stretch along z, one pass
+    /// }
+    /// assert_eq!(mesh.position(v)?[2], 3.0);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn position_slots_mut(&mut self) -> Option<&mut [[f64; 3]]> {
         let n = self.v_slots.slot_count();
         self.bulk_positions_mut(0..n)
@@ -663,6 +844,17 @@ impl Mesh {
 
     /// Slots allocated in each arena (live or vacant): the length of the
     /// attribute columns of vertices, half-edges, edges and faces.
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::icosahedron();
+    /// assert_eq!(mesh.slot_counts(), [12, 60, 30, 20]); // vertices, half-edges, edges, faces
+    /// mesh.collapse_edge(mesh.halfedges().next().unwrap())?;
+    /// assert_eq!(mesh.face_count(), 18);
+    /// assert_eq!(mesh.slot_counts(), [12, 60, 30, 20]); // vacant slots stay
+    /// mesh.compact();
+    /// assert_eq!(mesh.slot_counts(), [11, 54, 27, 18]);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
     pub fn slot_counts(&self) -> [usize; 4] {
         [
             self.v_slots.slot_count(),

@@ -6,11 +6,10 @@
 //! twin half-edges that share one generation (so `twin` is arithmetic and
 //! costs no storage), attribute columns that sit beside the arena and are
 //! indexed by the same slot number, and a free list that costs nothing while
-//! no element has been removed (a freshly built mesh has none). Measured with
-//! ml_bench's `build` note: a built triangle mesh with f64 positions holds
-//! 107 heap bytes per vertex on the 250k grid (131 while generations were
-//! stored for an intact arena; pmp-library 120 in the same run), 111 since
-//! the arrays keep about 3 % headroom ([`headroom`](crate::layout::headroom)).
+//! no element has been removed (a freshly built mesh has none). A built
+//! triangle mesh with f64 positions holds about 111 heap bytes per vertex,
+//! generations implied (below) and the arrays' 3 % headroom
+//! ([`headroom`](crate::layout::headroom)) included.
 //!
 //! # Generations
 //!
@@ -50,9 +49,8 @@
 //!
 //! While every live generation equals the base (`pristine`: no slot reused
 //! since the arena was built or compacted), making a key for a neighbour
-//! needs no load from `generations`, which cuts a fifth off one-ring
-//! circulation on a freshly built mesh (2.5 ms to 2.0 ms on the 250k-vertex
-//! grid).
+//! needs no load from `generations`, which saves a load per neighbour in
+//! one-ring circulation on a freshly built mesh.
 //!
 //! Likewise, while no slot was freed since then (`intact`), every slot is
 //! live at the base, so checking a key is a compare with the base and a
@@ -69,8 +67,7 @@
 //! generation has to differ, and stays written out from then on. A built
 //! or compacted mesh thus carries no generation bytes at all: 24 fewer heap
 //! bytes per vertex on a triangle mesh (about V + E + F = 6V slots of 4
-//! bytes), and the build does not write them (measured in the README's
-//! heap-per-vertex line and ml_bench's `build` note).
+//! bytes), and the build does not write them.
 
 /// The largest generation a live slot gets. Freeing it gives the even
 /// `MAX_LIVE_GENERATION + 1`, which is never reissued.

@@ -1,4 +1,8 @@
-"""The Rust README's library example, translated line by line."""
+"""The core API in one walk (two triangles, an interpolated column, a refused
+flip, a stale key), and every Python block of the READMEs, run as written."""
+
+import pathlib
+import re
 
 import pytest
 
@@ -41,3 +45,18 @@ def test_readme_example():
     with pytest.raises(meshloom.StaleKeyError):
         m.position
     mesh.validate()
+
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+
+@pytest.mark.parametrize("readme", ["README.md", "python/README.md"])
+def test_readme_python_blocks_run(readme):
+    # Every ```python block of the README, in order, in one namespace (a
+    # later block may use what an earlier one made).
+    text = (ROOT / readme).read_text(encoding="utf-8")
+    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    assert blocks, f"{readme} has no python block"
+    namespace = {"__name__": "readme"}
+    for i, block in enumerate(blocks):
+        exec(compile(block, f"{readme}, python block {i + 1}", "exec"), namespace)

@@ -24,8 +24,8 @@
 //! edge, then `poke_face` and edge removals, or `split_face` fans): one
 //! pass over the faces and one over the edges write every record once into
 //! arenas allocated at their final size. See
-//! [`subdivision`](crate::algo::subdivision) for keys and cancellation, and for
-//! the figures against the peers.
+//! [`subdivision`](crate::algo::subdivision) for keys and cancellation;
+//! `BENCHMARKS.md` has the figures against the peers.
 //!
 //! **Cost.** O(V + E + F) per level: passes over the faces (face points,
 //! inside edges), the vertices and the edges, plus one per arena that has

@@ -52,10 +52,8 @@
 //! Memory: 40 bytes of quadric, 8 bytes of candidate and one byte of flags
 //! a vertex, and a bit an edge (about 49.5 bytes a vertex on a triangle
 //! mesh); attribute columns add `4 × (1 + 4·dims)` bytes a vertex each.
-//! On the 250k-vertex grid to 10 % of its vertices this ran in a fraction
-//! of pmp-library's time and within a small factor of meshoptimizer's
-//! `simplify` (see `examples/ml_bench.rs` and `bench/`, and the CHANGELOG
-//! for the figures of one run).
+//! `BENCHMARKS.md` times it beside pmp-library, OpenMesh, CGAL and
+//! meshoptimizer's `simplify`.
 //!
 //! **All or nothing.** Without a progress callback
 //! ([`Progress::none`]) the decimator edits the mesh in place: every input

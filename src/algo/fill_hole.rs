@@ -19,11 +19,10 @@
 //!    so far (every term only grows) is skipped before its triangle is
 //!    computed. Cost O(n³) time and `52 n²` bytes for a rim of n edges
 //!    (the tables are kept between the holes of one call); above
-//!    [`FillHoleOptions::max_optimal_rim`] (default 300 edges: about 0.2 s
-//!    and 5 MB; at 1000 edges it took 8 s a hole), or when every
-//!    triangulation needs an existing edge, the hole is cut by ear
-//!    clipping instead ([`Mesh::triangulate`], near O(n log n) on large
-//!    rims: a 100,000-edge rim in well under a second; counted in
+//!    [`FillHoleOptions::max_optimal_rim`] (default 300 edges, under 5 MB
+//!    of tables), or when every triangulation needs an existing edge, the
+//!    hole is cut by ear clipping instead ([`Mesh::triangulate`], near
+//!    O(n log n) on large rims; counted in
 //!    [`FillHoleReport::ear_clipped`]).
 //! 2. *Refine* ([`FillHoleOptions::refine`]; not for rims over
 //!    [`FillHoleOptions::max_refined_rim`], default 2000 edges, whose

@@ -21,12 +21,11 @@
 //!
 //! **Built wholesale**, not through [`Mesh::split_edge`] and
 //! [`Mesh::split_face`]: the operators would relink one element at a time,
-//! with a check, the rules of every column and a debug validation each,
-//! where here one pass over the faces and one over the edges write every
-//! record once into arenas allocated at their final size. See
+//! with a check and the rules of every column each, where here one pass
+//! over the faces and one over the edges write every record once into
+//! arenas allocated at their final size. See
 //! [`subdivision`](crate::algo::subdivision) for what that means for keys
-//! and cancellation. Measured against the peers: see
-//! [`subdivision`](crate::algo::subdivision).
+//! and cancellation; `BENCHMARKS.md` has the figures against the peers.
 //!
 //! **Cost.** O(V + E + F) per level, three passes over the parent (faces,
 //! vertices, edges) plus one per arena that has attribute columns.

@@ -38,10 +38,10 @@
 //! sharp edges, a pass over the corners (elsewhere a corner takes its
 //! vertex's normal), and a walk around each vertex at a sharp edge. With the `parallel` feature, face normals of
 //! meshes of more than 20,000 faces are computed in blocks on rayon's
-//! threads (1.51x on 2 threads, 2M-vertex grid), as is the walk around
-//! vertices at sharp edges; vertex normals stay serial, since summing into
-//! one array per thread measured slower (0.72x), the pass being bound by
-//! memory (`bench/parallel.sh`).
+//! threads, as is the walk around vertices at sharp edges; vertex normals
+//! stay serial: the pass is bound by memory, and summing into one array
+//! per thread was slower on two threads (`bench/parallel.sh`;
+//! `BENCHMARKS.md`).
 //!
 //! ```
 //! use meshloom::algo::normals::{self, CornerNormalOptions, VertexNormalOptions};

@@ -30,16 +30,12 @@
 //! each edge opposite an angle over 170° where that lowers the largest
 //! angle of its two triangles, as pmp-library does.
 //!
-//! **Quality reached** (default options, mean edge length; measured by
-//! `measure_real_meshes` in `tests/remesh.rs`, 2026-11-25): 95 % or more
-//! of the edges within [4/5, 4/3] L on smooth shapes and on most real
-//! meshes (armadillo 100, bunny 100, cow 99.5, elephant 99.9, res2
-//! dragon 96.8, a CGAL mesh with holes 98.9, one with a border 99.7); not
-//! on a mesh of 15 tiny closed components (an ant, 90.5: their short
-//! edges cannot collapse without collapsing the component) nor on
-//! compas' open mesh (88.6); the misses are edges shorter than 4/5 L
-//! whose collapse would make an edge longer than 4/3 L; mean valence
-//! within 0.03 of 6.
+//! **Quality.** With the default options at the mean edge length, 95 % or
+//! more of the edges end within [4/5, 4/3] L on smooth shapes and on most
+//! real meshes (`tests/remesh.rs` holds seven of them to it;
+//! `BENCHMARKS.md` lists the share per mesh). The misses are edges
+//! shorter than 4/5 L whose collapse would make an edge longer than
+//! 4/3 L, or would collapse a tiny closed component.
 //!
 //! **Target length** ([`Sizing`]): uniform (a length, or by default the
 //! input's mean edge length), or adaptive: from the largest absolute
@@ -86,10 +82,9 @@
 //! **Cost.** O(n) per iteration for n vertices plus one closest-point
 //! query per moved vertex (O(log n), a few box tests with the warm start);
 //! memory: the copy of the mesh, the hierarchy (about 100 bytes an input
-//! triangle) and about 60 bytes a vertex of working state. On the
-//! 250k-vertex grid at its mean edge length, see `examples/ml_bench.rs`
-//! (`uniform_remeshing`) and the CHANGELOG for a measured run against
-//! pmp-library and CGAL.
+//! triangle) and about 60 bytes a vertex of working state.
+//! `BENCHMARKS.md` times it beside pmp-library and CGAL
+//! (`uniform_remeshing`).
 //!
 //! ```
 //! use meshloom::algo::remesh::{remesh, RemeshOptions, Sizing};

@@ -118,9 +118,8 @@ impl<'m, K: Element, T> AttrView<'m, K, T> {
     /// the base. Every other state is one call to a shared out-of-line
     /// check. With all the states inline this function, and with it a
     /// user's per-element closure around it, grew too large for LLVM to
-    /// inline the closure into the user's loop: the `normals_classic` row
-    /// of examples/ml_bench.rs went from 9 to 14 ms on ico7 when the
-    /// generations became implied (one more state to tell apart).
+    /// inline the closure into the user's loop (the `normals_classic` row
+    /// of examples/ml_bench.rs shows it).
     #[inline]
     pub fn get(&self, key: K) -> Option<&'m T> {
         let i = key.slot() as usize;

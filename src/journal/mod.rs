@@ -56,50 +56,19 @@
 //!
 //! # Cost
 //!
-//! Measured with `examples/ml_bench.rs`'s `journal` row: every face of the
-//! 250 000-vertex grid poked 1-to-3, then every new vertex collapsed back
-//! through its half-edge (996 004 operators) as one [`Mesh::step`], with
-//! the journal off and on alternating in one process, 5 rounds, the
-//! step's seal included. In the `compare.sh` run of 2026-11-27 12:16 UTC (9
-//! cold processes, each running every workload first) the on/off ratio's
-//! median was 1.19 on the grid (1.12 to 1.31) and 1.14 on the
-//! icosphere(7) (1.10 to 1.16). In instructions (callgrind, the same work
-//! on a 40 000-vertex grid, one round) it is 1.14: the recording in the
-//! operators adds 11 % (233.2 M off, 258.5 M on), the seal 3 % (6.9 M).
-//! The run is net-zero (a poked triangle comes back with its own keys
-//! when its vertex is collapsed, see [`Mesh::poke_face`]), so the undo log
-//! holds only the corners' re-pointed half-edges: 0.8 bytes per operator,
-//! and undoing the whole run takes 0.02 of the time the run took. A run
-//! that leaves a real delta (each vertex collapsed through another spoke,
-//! so a new face replaces every poked one: 7.0 bytes per operator) gave
-//! 1.15 to 1.27 the same hour; undoing it 0.22 to 0.31 of the run. With
-//! the journal off, `flip_back` and `split_collapse_checked` execute as
-//! many instructions as before the journal existed (callgrind, within
-//! 2 %).
-//!
-//! The same day began at 1.70 in that run (1.26 to 1.31 in processes
-//! running fewer workloads; 1.264 in instructions). What closed the gap:
-//! the seal hands out only the slots that changed, passing an unchanged
-//! page in one slice compare (`PageLog::drain_changed`), and reads which
-//! new slots are live sixteen generations at a time (`Slots::live_runs`):
-//! the seal went from 33.7 M to 6.9 M instructions. The page copies come
-//! in blocks of 128 pages, not one buffer of the array's size, which took
-//! fresh, page-faulting memory and pushed the mesh's own growth there too
-//! (1.31 to 1.62 -> 1.17 to 1.21 in a process running every workload).
-//! Earlier that day: a column merge (a collapse merging its survivor)
-//! saves the slot's old value only when the merged value differs from it
-//! ([`Attribute::same_value`](crate::attr::Attribute::same_value)), and
-//! writes to slots the running operator allocated itself record nothing
-//! (`fresh_he_mut` and its siblings in `hooks.rs`). Tried and not kept:
-//! encoding the half-edge records a page at a time through a stack buffer
-//! (more instructions).
+//! Off, the journal costs one test per operator call (above). On, its
+//! cost follows what an edit touches, not the size of the mesh.
 //!
 //! A link write saves its slot's whole page of the link array (32 slots)
 //! on the first write to that page in the open step; later writes to the
-//! page cost one table lookup. The seal walks the copied pages in slot
-//! order and keeps the slots, and of a half-edge the fields, that differ
+//! page cost one table lookup. The page copies come in blocks of 128
+//! pages, never one buffer of the array's size. The seal walks the copied
+//! pages in slot order (an unchanged page is passed over in one slice
+//! compare) and keeps the slots, and of a half-edge the fields, that differ
 //! from the live arrays, so a dense edit costs about a copy of the pages
-//! it touched, and a sparse one at most a page per slot written. While the
+//! it touched, and a sparse one at most a page per slot written. A column
+//! merge saves a slot's old value only when the merged value differs from
+//! it ([`Attribute::same_value`](crate::attr::Attribute::same_value)). While the
 //! step is kept and no change tracking reads the records, the half-edge
 //! records go straight from the copied pages into the undo log, with no
 //! vector of their own; the log reserves a step's room at once (no
@@ -112,6 +81,10 @@
 //! vacant (a dead one keeps its generation, already above every key it
 //! had) and holds them off the free list; redo revives the live ones at
 //! their generations and puts the others back on the free list.
+//!
+//! `BENCHMARKS.md` measures it: the `journal` row of `examples/ml_bench.rs`
+//! pokes every face of a large mesh and collapses every new vertex back,
+//! as one step, with the journal off and on.
 //!
 //! # Bulk writes (the rule for algorithm writers)
 //!

@@ -12,11 +12,8 @@
 //! Why our own: the remesher needs the primitive, the closest point and
 //! its barycentric coordinates, a warm start and a filter (corners of a UV
 //! island look only at the island's triangles); the tree is ~250 lines.
-//! Measured on the kit's 250k-vertex grid (498,002 triangles; the ignored
-//! test `measure_bvh`, release, wall time on a machine at load 7 on 2
-//! cores, so up to ~3× slower than a quiet one): building 0.32–0.39 s; a
-//! query 1.4 µs warm-started (hint = the triangle under the point), 1.5 µs
-//! cold, against 10 ms by brute force over every triangle.
+//! Building is O(n log n); a query is about O(log n) box tests, fewer with
+//! the hint (the ignored test `measure_bvh` times both; `BENCHMARKS.md`).
 
 /// A point or vector.
 pub(crate) type V3 = [f64; 3];

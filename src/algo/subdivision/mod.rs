@@ -13,29 +13,14 @@
 //! never through the operators: one pass over the faces and one over the
 //! edges write every new half-edge record once, in slot order, into arenas
 //! allocated once at their final size. The operators would do the same
-//! relinking one element at a time, each with its own checks, rule calls
-//! and (in debug builds) a full validation. Measured with the peers kit
-//! (`../shared/peers/compare.sh . 3 --large`, one level, thread-CPU medians
-//! with the minimum in brackets; 2026-11-27 14:50 on a 2-core machine,
-//! library at 2c253e1), against the best peer:
+//! relinking one element at a time, each with its own checks and rule
+//! calls. The smooth vertex rules read sums made by a scatter pass in face
+//! or edge order (`scatter_edge_ends`, and Catmull-Clark's face pass)
+//! instead of turning around each vertex, so the passes stream through
+//! memory whatever the order of the vertices. `BENCHMARKS.md` times the
+//! schemes beside pmp-library, OpenMesh and CGAL.
 //!
-//! | workload | mesh | meshloom ms | best peer ms | ratio |
-//! |---|---|---:|---:|---:|
-//! | Loop | 250k grid | 110.0 (104.1) | CGAL 202.9 (199.2) | 0.54 |
-//! | Loop | icosphere(7) | 87.1 (79.8) | pmp 205.8 (198.0) | 0.42 |
-//! | Catmull-Clark | 250k grid | 125.6 (118.2) | CGAL 258.4 (258.1) | 0.49 |
-//! | Catmull-Clark | icosphere(7) | 91.6 (84.4) | CGAL 224.5 (217.0) | 0.41 |
-//! | √3 | 250k grid | 97.6 (90.0) | CGAL 160.6 (158.9) | 0.61 |
-//! | √3 | icosphere(7) | 96.4 (82.4) | CGAL 175.9 (165.5) | 0.55 |
-//!
-//! On the icosphere the smooth vertex rules read sums made by a scatter
-//! pass in face or edge order (`scatter_edge_ends`, and Catmull-Clark's
-//! face pass) instead of turning around each vertex: the run at 12:16 the
-//! same day, before that change, gave 0.54 (Loop) and 0.63 (Catmull-Clark)
-//! there. Instructions for one level of icosphere(7) (callgrind,
-//! 2026-11-24): Loop 324 M (topology 231 M, positions 93 M), √3 300 M.
-//!
-//! Every program produced the same counts. Nothing of the input changes until every level is
+//! Nothing of the input changes until every level is
 //! built: a cancelled or failed run drops its scratch meshes and leaves the
 //! input exactly as it was. The result goes in through `Mesh::replace_with`.
 //!
