@@ -246,12 +246,82 @@ fn refill<'a>(lines: &mut Lines<'a>, tokens: &mut Tokens<'a>) -> Result<(), Erro
 /// Parse OFF bytes into a soup.
 pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
     let mut lines = Lines::new(bytes);
-    let Some(first) = content(&mut lines) else {
+    let header = read_header(&mut lines)?;
+    let (nv, nf) = (header.vertices, header.faces);
+    let mut soup = Soup::new(record);
+    let rest = lines.remaining();
+    soup.polygons
+        .positions
+        .reserve(capped(nv, rest, 2 * header.dim));
+    soup.polygons.offsets.reserve(capped(nf, rest, 4));
+    soup.polygons.indices.reserve(capped(3 * nf, rest, 2));
+    let mut columns = Columns::new();
+    let mut extra: Vec<f64> = Vec::new();
+    read_vertices(&mut lines, &header, &mut soup, &mut columns, &mut extra)?;
+    read_faces(&mut lines, &header, &mut soup, &mut columns, &mut extra)?;
+    columns.finish(&mut soup, nv, nf);
+    Ok(soup)
+}
+
+/// What the header says: the keyword, the numbers per vertex line before
+/// the optional ones, and the counts.
+struct Header {
+    kw: Keyword,
+    dim: usize,
+    vertices: usize,
+    faces: usize,
+}
+
+/// The keyword (or none, when the counts come first) and the counts after
+/// it, checked against the bytes that follow.
+fn read_header(lines: &mut Lines<'_>) -> Result<Header, Error> {
+    let Some(first) = content(lines) else {
         return Err(Error::Empty {
             at: Location::whole(),
         });
     };
     let mut tokens = Tokens::new(first);
+    let kw = read_keyword(&mut tokens, lines)?;
+    // Counts may follow the keyword on its line, or come on later lines.
+    let mut dim = kw.dim;
+    if kw.has_dim_token {
+        refill(lines, &mut tokens)?;
+        let n = next_count(&mut tokens, || lines.here(), "the dimension of nOFF")?;
+        if !(1..=16).contains(&n) {
+            return Err(Error::Header {
+                at: lines.here(),
+                message: format!("dimension {n} is not between 1 and 16"),
+            });
+        }
+        dim = n + usize::from(kw.dim == 4);
+    }
+    refill(lines, &mut tokens)?;
+    let nv = next_count(&mut tokens, || lines.here(), "the vertex count")?;
+    refill(lines, &mut tokens)?;
+    let nf = next_count(&mut tokens, || lines.here(), "the face count")?;
+    // A vertex takes at least `dim` one-digit numbers and separators; a
+    // face at least "1 0\n".
+    let least = (nv as u128) * (2 * dim as u128) + (nf as u128) * 4;
+    if least > lines.remaining() as u128 + 1 {
+        return Err(Error::Header {
+            at: Location::line(lines.line),
+            message: format!(
+                "it announces {nv} vertices and {nf} faces, but only {} bytes follow",
+                lines.remaining()
+            ),
+        });
+    }
+    Ok(Header {
+        kw,
+        dim,
+        vertices: nv,
+        faces: nf,
+    })
+}
+
+/// The keyword at the start of `tokens` (taken off them), or plain `OFF`
+/// when the line starts with a count; binary OFF is refused.
+fn read_keyword(tokens: &mut Tokens<'_>, lines: &Lines<'_>) -> Result<Keyword, Error> {
     let head = tokens.clone().next().unwrap_or_default();
     let kw = match keyword(head) {
         Some(k) => {
@@ -275,54 +345,55 @@ pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
             what: "binary OFF".into(),
         });
     }
-    // Counts may follow the keyword on its line, or come on later lines.
-    let mut dim = kw.dim;
-    let mut tokens: Tokens<'_> = tokens;
-    if kw.has_dim_token {
-        refill(&mut lines, &mut tokens)?;
-        let n = next_count(&mut tokens, || lines.here(), "the dimension of nOFF")?;
-        if !(1..=16).contains(&n) {
-            return Err(Error::Header {
-                at: lines.here(),
-                message: format!("dimension {n} is not between 1 and 16"),
-            });
+    Ok(kw)
+}
+
+/// The attribute columns an OFF file may carry.
+struct Columns {
+    w: Collector<f64>,
+    normal: Collector<[f64; 3]>,
+    vertex_color: Collector<[f64; 4]>,
+    texcoord: Collector<[f64; 2]>,
+    face_color: Collector<[f64; 4]>,
+    face_index: Collector<f64>,
+}
+
+impl Columns {
+    fn new() -> Columns {
+        Columns {
+            w: Collector::new("w"),
+            normal: Collector::new("normal"),
+            vertex_color: Collector::new("color"),
+            texcoord: Collector::new("texcoord"),
+            face_color: Collector::new("color"),
+            face_index: Collector::new("color_index"),
         }
-        dim = n + usize::from(kw.dim == 4);
-    }
-    refill(&mut lines, &mut tokens)?;
-    let nv = next_count(&mut tokens, || lines.here(), "the vertex count")?;
-    refill(&mut lines, &mut tokens)?;
-    let nf = next_count(&mut tokens, || lines.here(), "the face count")?;
-    let header_line = lines.line;
-    // A vertex takes at least `dim` one-digit numbers and separators; a
-    // face at least "1 0\n".
-    let least = (nv as u128) * (2 * dim as u128) + (nf as u128) * 4;
-    if least > lines.remaining() as u128 + 1 {
-        return Err(Error::Header {
-            at: Location::line(header_line),
-            message: format!(
-                "it announces {nv} vertices and {nf} faces, but only {} bytes follow",
-                lines.remaining()
-            ),
-        });
     }
 
-    let mut soup = Soup::new(record);
-    let rest = lines.remaining();
-    soup.polygons.positions.reserve(capped(nv, rest, 2 * dim));
-    soup.polygons.offsets.reserve(capped(nf, rest, 4));
+    /// Hand the columns read to the soup.
+    fn finish(self, soup: &mut Soup, nv: usize, nf: usize) {
+        let a = &mut soup.attrs;
+        a.vertex.extend(self.w.finish(nv, Data::Scalar));
+        a.vertex.extend(self.normal.finish(nv, Data::Vec3));
+        a.vertex.extend(self.vertex_color.finish(nv, Data::Vec4));
+        a.vertex.extend(self.texcoord.finish(nv, Data::Vec2));
+        a.face.extend(self.face_color.finish(nf, Data::Vec4));
+        a.face.extend(self.face_index.finish(nf, Data::Scalar));
+    }
+}
 
-    soup.polygons.indices.reserve(capped(3 * nf, rest, 2));
-
-    let mut w_col = Collector::<f64>::new("w");
-    let mut normal_col = Collector::<[f64; 3]>::new("normal");
-    let mut vcolor_col = Collector::<[f64; 4]>::new("color");
-    let mut texcoord_col = Collector::<[f64; 2]>::new("texcoord");
-    let mut fcolor_col = Collector::<[f64; 4]>::new("color");
-    let mut findex_col = Collector::<f64>::new("color_index");
-    let mut extra: Vec<f64> = Vec::new();
+/// The vertex lines: a position, a fourth coordinate (`w`), then the
+/// normal, colour and texture coordinates the keyword announces.
+fn read_vertices(
+    lines: &mut Lines<'_>,
+    header: &Header,
+    soup: &mut Soup,
+    columns: &mut Columns,
+    extra: &mut Vec<f64>,
+) -> Result<(), Error> {
+    let (kw, dim, nv) = (&header.kw, header.dim, header.vertices);
     for i in 0..nv {
-        let line = content(&mut lines).ok_or_else(|| Error::Truncated {
+        let line = content(lines).ok_or_else(|| Error::Truncated {
             at: lines.end(),
             expected: format!("vertex {} of {nv}", i + 1),
         })?;
@@ -335,38 +406,66 @@ pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
         for k in 3..dim {
             let x = next_f64(&mut t, at, "a vertex coordinate")?;
             if k == 3 {
-                w_col.set(i, x);
+                columns.w.set(i, x);
             }
         }
         soup.polygons.positions.push(p);
         soup.vertex_read_at(lines.line);
         if kw.normals || kw.colors || kw.texcoords {
-            extra.clear();
-            for tok in t {
-                extra.push(parse_f64(tok).ok_or_else(|| Error::syntax(at(), "a number", tok))?);
-            }
-            let mut rest = &extra[..];
-            if kw.normals {
-                let [x, y, z] = take::<3>(&mut rest)
-                    .ok_or_else(|| Error::syntax(at(), "three normal coordinates (NOFF)", line))?;
-                normal_col.set(i, [x, y, z]);
-            }
-            if kw.colors {
-                let n = rest.len().saturating_sub(if kw.texcoords { 2 } else { 0 });
-                if let Some(c) = colour(&rest[..n]) {
-                    vcolor_col.set(i, c);
-                }
-                rest = &rest[n..];
-            }
-            if kw.texcoords {
-                let [s_, t_] = take::<2>(&mut rest)
-                    .ok_or_else(|| Error::syntax(at(), "two texture coordinates (STOFF)", line))?;
-                texcoord_col.set(i, [s_, t_]);
-            }
+            vertex_extras(kw, i, line, t, at, columns, extra)?;
         }
     }
+    Ok(())
+}
+
+/// The rest of vertex `i`'s line `line` (its tokens `t`): normal, colour,
+/// texture coordinates.
+#[inline]
+fn vertex_extras(
+    kw: &Keyword,
+    i: usize,
+    line: &[u8],
+    t: Tokens<'_>,
+    at: impl Fn() -> Location,
+    columns: &mut Columns,
+    extra: &mut Vec<f64>,
+) -> Result<(), Error> {
+    extra.clear();
+    for tok in t {
+        extra.push(parse_f64(tok).ok_or_else(|| Error::syntax(at(), "a number", tok))?);
+    }
+    let mut rest = &extra[..];
+    if kw.normals {
+        let [x, y, z] = take::<3>(&mut rest)
+            .ok_or_else(|| Error::syntax(at(), "three normal coordinates (NOFF)", line))?;
+        columns.normal.set(i, [x, y, z]);
+    }
+    if kw.colors {
+        let n = rest.len().saturating_sub(if kw.texcoords { 2 } else { 0 });
+        if let Some(c) = colour(&rest[..n]) {
+            columns.vertex_color.set(i, c);
+        }
+        rest = &rest[n..];
+    }
+    if kw.texcoords {
+        let [s_, t_] = take::<2>(&mut rest)
+            .ok_or_else(|| Error::syntax(at(), "two texture coordinates (STOFF)", line))?;
+        columns.texcoord.set(i, [s_, t_]);
+    }
+    Ok(())
+}
+
+/// The face lines: `k i1 .. ik` and an optional colour.
+fn read_faces(
+    lines: &mut Lines<'_>,
+    header: &Header,
+    soup: &mut Soup,
+    columns: &mut Columns,
+    extra: &mut Vec<f64>,
+) -> Result<(), Error> {
+    let (nv, nf) = (header.vertices, header.faces);
     for i in 0..nf {
-        let line = content(&mut lines).ok_or_else(|| Error::Truncated {
+        let line = content(lines).ok_or_else(|| Error::Truncated {
             at: lines.end(),
             expected: format!("face {} of {nf}", i + 1),
         })?;
@@ -398,38 +497,45 @@ pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
             }
             soup.polygons.indices.push(index as u32);
         }
-        // An optional colour: a map index, RGB or RGBA, ints or floats.
-        extra.clear();
-        for tok in t.by_ref() {
-            let x = parse_f64(tok).ok_or_else(|| {
-                Error::syntax(at(), "a colour component or the end of the line", tok)
-            })?;
-            extra.push(x);
-        }
-        match extra.len() {
-            0 => {}
-            1 => findex_col.set(i, extra[0]),
-            3 | 4 => {
-                if let Some(c) = colour(&extra) {
-                    fcolor_col.set(i, c);
-                }
-            }
-            _ => {
-                return Err(Error::syntax(
-                    at(),
-                    format!("{k} vertex indices and a colour of 1, 3 or 4 components"),
-                    line,
-                ))
-            }
-        }
+        face_colour(i, k, line, t, at, columns, extra)?;
         soup.end_face(lines.line);
     }
-    let a = &mut soup.attrs;
-    a.vertex.extend(w_col.finish(nv, Data::Scalar));
-    a.vertex.extend(normal_col.finish(nv, Data::Vec3));
-    a.vertex.extend(vcolor_col.finish(nv, Data::Vec4));
-    a.vertex.extend(texcoord_col.finish(nv, Data::Vec2));
-    a.face.extend(fcolor_col.finish(nf, Data::Vec4));
-    a.face.extend(findex_col.finish(nf, Data::Scalar));
-    Ok(soup)
+    Ok(())
+}
+
+/// The rest of face `i`'s line (`k` corners): an optional colour, a map
+/// index, RGB or RGBA, ints or floats.
+#[inline]
+fn face_colour(
+    i: usize,
+    k: usize,
+    line: &[u8],
+    t: Tokens<'_>,
+    at: impl Fn() -> Location,
+    columns: &mut Columns,
+    extra: &mut Vec<f64>,
+) -> Result<(), Error> {
+    extra.clear();
+    for tok in t {
+        let x = parse_f64(tok)
+            .ok_or_else(|| Error::syntax(at(), "a colour component or the end of the line", tok))?;
+        extra.push(x);
+    }
+    match extra.len() {
+        0 => {}
+        1 => columns.face_index.set(i, extra[0]),
+        3 | 4 => {
+            if let Some(c) = colour(extra) {
+                columns.face_color.set(i, c);
+            }
+        }
+        _ => {
+            return Err(Error::syntax(
+                at(),
+                format!("{k} vertex indices and a colour of 1, 3 or 4 components"),
+                line,
+            ))
+        }
+    }
+    Ok(())
 }

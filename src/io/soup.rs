@@ -87,6 +87,44 @@ impl Soup {
 
     /// Repair by `options`, build, attach the attributes.
     pub(crate) fn finish(mut self, options: &ReadOptions) -> Result<(Mesh, RepairReport), Error> {
+        self.check_readable(options)?;
+        let faces_read = self.polygons.face_count();
+        let (mut report, prov) = self.repair(options)?;
+        report.warnings = std::mem::take(&mut self.nonstandard)
+            .into_iter()
+            .map(|(at, what)| format!("{at}: {what}; skipped as a comment"))
+            .collect();
+        if self.polygons.face_count() == 0 {
+            return Err(Error::NothingLeft {
+                at: Location::whole(),
+                faces: faces_read,
+                why: report.to_string().replace('\n', "; "),
+            });
+        }
+        // Keys of the input's elements are needed only to attach attributes.
+        let with_keys = !self.attrs.is_empty();
+        let built = self.build(with_keys, &prov)?;
+        let mut mesh = built.mesh;
+        if mesh.face_count() == 0 {
+            return Err(Error::Empty {
+                at: Location::whole(),
+            });
+        }
+        if with_keys {
+            self.attrs.attach(
+                &mut mesh,
+                &built.vertices,
+                &built.faces,
+                &self.polygons.offsets,
+                &prov,
+            )?;
+        }
+        Ok((mesh, report))
+    }
+
+    /// Refuse a soup with no faces, too many corners, or (unless repairing)
+    /// a line its format does not allow.
+    fn check_readable(&self, options: &ReadOptions) -> Result<(), Error> {
         if self.polygons.face_count() == 0 {
             return Err(Error::Empty {
                 at: Location::whole(),
@@ -106,35 +144,22 @@ impl Soup {
                 });
             }
         }
-        let faces_read = self.polygons.face_count();
-        let (mut report, prov) = if options.repair.any() {
-            let classes = self.attrs.weld_classes(self.polygons.positions.len());
-            match repair_with(&mut self.polygons, &options.repair, &classes) {
-                Ok(done) => done,
-                Err(MeshError::Build(e)) => return Err(self.build_error(e, &Provenance::default())),
-                Err(other) => {
-                    return Err(Error::Header {
-                        at: Location::whole(),
-                        message: other.to_string(),
-                    })
-                }
-            }
-        } else {
-            (RepairReport::default(), Provenance::default())
-        };
-        report.warnings = std::mem::take(&mut self.nonstandard)
-            .into_iter()
-            .map(|(at, what)| format!("{at}: {what}; skipped as a comment"))
-            .collect();
-        if self.polygons.face_count() == 0 {
-            return Err(Error::NothingLeft {
-                at: Location::whole(),
-                faces: faces_read,
-                why: report.to_string().replace('\n', "; "),
-            });
+        Ok(())
+    }
+
+    /// Run the repairs `options` ask for (none: an empty report).
+    fn repair(&mut self, options: &ReadOptions) -> Result<(RepairReport, Provenance), Error> {
+        if !options.repair.any() {
+            return Ok((RepairReport::default(), Provenance::default()));
         }
-        // Keys of the input's elements are needed only to attach attributes.
-        let with_keys = !self.attrs.is_empty();
+        let classes = self.attrs.weld_classes(self.polygons.positions.len());
+        repair_with(&mut self.polygons, &options.repair, &classes)
+            .map_err(|e| self.mesh_error(e, &Provenance::default()))
+    }
+
+    /// The mesh, with the keys of the input's elements when `with_keys`;
+    /// refused where a position no face uses would be dropped.
+    fn build(&self, with_keys: bool, prov: &Provenance) -> Result<Built, Error> {
         let built = if with_keys {
             Mesh::build_buffers(&self.polygons)
         } else {
@@ -152,16 +177,7 @@ impl Soup {
                 }
             })
         };
-        let built = match built {
-            Ok(b) => b,
-            Err(MeshError::Build(e)) => return Err(self.build_error(e, &prov)),
-            Err(other) => {
-                return Err(Error::Header {
-                    at: Location::whole(),
-                    message: other.to_string(),
-                })
-            }
-        };
+        let built = built.map_err(|e| self.mesh_error(e, prov))?;
         if built.unreferenced > 0 {
             let mut used = vec![false; self.polygons.positions.len()];
             for &i in &self.polygons.indices {
@@ -174,22 +190,18 @@ impl Soup {
                 first: source(&prov.vertex_source, first),
             });
         }
-        let mut mesh = built.mesh;
-        if mesh.face_count() == 0 {
-            return Err(Error::Empty {
+        Ok(built)
+    }
+
+    /// A repair or build error, as the reader reports it.
+    fn mesh_error(&self, e: MeshError, prov: &Provenance) -> Error {
+        match e {
+            MeshError::Build(e) => self.build_error(e, prov),
+            other => Error::Header {
                 at: Location::whole(),
-            });
+                message: other.to_string(),
+            },
         }
-        if with_keys {
-            self.attrs.attach(
-                &mut mesh,
-                &built.vertices,
-                &built.faces,
-                &self.polygons.offsets,
-                &prov,
-            )?;
-        }
-        Ok((mesh, report))
     }
 
     /// A builder error, its face and vertex numbers mapped back to the file.

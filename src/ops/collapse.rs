@@ -8,6 +8,9 @@ use crate::layout::{Fid, Hid, Vid};
 use crate::mesh::Mesh;
 use crate::store::ErasedColumn;
 
+/// The operator's name in its refusals.
+const OP: &str = "collapse_edge";
+
 /// The corners around one end of a collapsing edge, in ring order from the
 /// corner beside the edge on one side (index 0) to the one on the other
 /// side (index 1) and on around, with whether each lies in a hole.
@@ -111,12 +114,24 @@ impl Rule11 {
     };
 }
 
+/// The ring of `a`, the collapsing edge's origin, as the link condition
+/// reads it: its neighbours other than `b` and the apexes of the triangles
+/// that disappear (the first 16 in place, all of them in `large` past
+/// that), its degree, and its last two outgoing half-edges.
+struct RingOfA {
+    small: [Vid; 16],
+    large: Vec<Vid>,
+    others: usize,
+    degree: usize,
+    last: Hid,
+    before_last: Hid,
+}
+
 impl Mesh {
     // Inlined into both callers so that the commit reuses what the plan
     // read.
     #[inline(always)]
     fn plan_collapse(&self, hk: HalfedgeKey) -> Result<CollapsePlan> {
-        const OP: &str = "collapse_edge";
         let h = self.check_halfedge(hk)?;
         let t = h.twin();
         let (rh, rt) = (self.he[h], self.he[t]);
@@ -138,11 +153,54 @@ impl Mesh {
         // other than b and those apexes; when there are none (a poked
         // centre, a valence-3 vertex) b's ring need not be walked at all.
         let is_apex = |w: Vid| (left_goes && w == c) || (right_goes && w == d);
-        let mut small = [Vid::NONE; 16];
-        let mut large = Vec::new();
-        let mut others = 0;
-        let (mut degree, mut last_a) = (0usize, h);
-        let mut before_last_a;
+        let mut ring = self.ring_of_a(h, b, is_apex);
+        let pt = if ring.others == 0 {
+            if right_goes {
+                right_prev
+            } else {
+                self.prev_fast(t)
+            }
+        } else {
+            self.check_common_neighbours(hk, t, &mut ring)?
+        };
+        let rule11 = if self.holes > 0 {
+            let apexes = [(left_goes, c), (right_goes, d)];
+            self.check_collapse_boundary(hk, h, f_left, f_right, apexes)?
+        } else {
+            Rule11::NOTHING
+        };
+        self.check_no_face_holds_both(hk, a, b, f_left, f_right)?;
+        Ok(CollapsePlan {
+            h,
+            a,
+            b,
+            f_left,
+            f_right,
+            nh,
+            nt,
+            ph: ring.last.twin(),
+            // The half-edge before twin(ph) = last once h is gone: the
+            // twin of the one before it in a's ring, unless that is h.
+            before_tph: (ring.degree >= 3).then_some(ring.before_last.twin()),
+            pt,
+            left_goes,
+            right_goes,
+            rule11,
+        })
+    }
+
+    /// Walk the ring of `a = origin(h)` from `h`: its neighbours other than
+    /// `b` and the apexes, its degree and its last two half-edges.
+    #[inline(always)]
+    fn ring_of_a(&self, h: Hid, b: Vid, is_apex: impl Fn(Vid) -> bool) -> RingOfA {
+        let mut ring = RingOfA {
+            small: [Vid::NONE; 16],
+            large: Vec::new(),
+            others: 0,
+            degree: 0,
+            last: h,
+            before_last: h,
+        };
         let mut o = h;
         // Bounded: a ring has fewer than 2E half-edges. (A countdown at the
         // end of the body: `for _ in 0..len` here measured 10% slower.)
@@ -151,68 +209,75 @@ impl Mesh {
             let twin = self.he[o.twin()];
             let w = twin.origin;
             if w != b && !is_apex(w) {
-                if others < small.len() {
-                    small[others] = w;
+                if ring.others < ring.small.len() {
+                    ring.small[ring.others] = w;
                 } else {
-                    if large.is_empty() {
-                        large.extend_from_slice(&small);
+                    if ring.large.is_empty() {
+                        ring.large.extend_from_slice(&ring.small);
                     }
-                    large.push(w);
+                    ring.large.push(w);
                 }
-                others += 1;
+                ring.others += 1;
             }
-            degree += 1;
-            (before_last_a, last_a) = (last_a, o);
+            ring.degree += 1;
+            (ring.before_last, ring.last) = (ring.last, o);
             o = twin.next;
             budget -= 1;
             if o == h || budget == 0 {
                 break;
             }
         }
-        let pt = if others == 0 {
-            if right_goes {
-                right_prev
-            } else {
-                self.prev_fast(t)
-            }
+        ring
+    }
+
+    /// Link condition, `b`'s side: walk the ring of `b = origin(t)` and
+    /// refuse a neighbour `a`'s ring holds too. Returns the twin of the
+    /// last half-edge of `b`'s ring (the one before `t`).
+    #[inline(always)]
+    fn check_common_neighbours(&self, hk: HalfedgeKey, t: Hid, ring: &mut RingOfA) -> Result<Hid> {
+        let others = ring.others;
+        let around_a: &[Vid] = if others <= ring.small.len() {
+            &ring.small[..others]
         } else {
-            let around_a: &[Vid] = if others <= small.len() {
-                &small[..others]
+            ring.large.sort_unstable();
+            &ring.large
+        };
+        let mut last_b;
+        let mut o = t;
+        let mut budget = self.he.len();
+        loop {
+            let twin = self.he[o.twin()];
+            let w = twin.origin;
+            let common = if others > ring.small.len() {
+                around_a.binary_search(&w).is_ok()
             } else {
-                large.sort_unstable();
-                &large
+                around_a.contains(&w)
             };
-            let mut last_b;
-            let mut o = t;
-            let mut budget = self.he.len();
-            loop {
-                let twin = self.he[o.twin()];
-                let w = twin.origin;
-                let common = if others > small.len() {
-                    around_a.binary_search(&w).is_ok()
-                } else {
-                    around_a.contains(&w)
-                };
-                if common {
-                    return Err(refuse(OP, hk, Refusal::LinkCondition));
-                }
-                last_b = o;
-                o = twin.next;
-                budget -= 1;
-                if o == t || budget == 0 {
-                    break;
-                }
+            if common {
+                return Err(refuse(OP, hk, Refusal::LinkCondition));
             }
-            last_b.twin()
-        };
-        let rule11 = if self.holes > 0 {
-            let apexes = [(left_goes, c), (right_goes, d)];
-            self.check_collapse_boundary(hk, h, f_left, f_right, apexes)?
-        } else {
-            Rule11::NOTHING
-        };
-        // No other face may hold both a and b. Triangles around a cannot
-        // (their third corner would be a common neighbour).
+            last_b = o;
+            o = twin.next;
+            budget -= 1;
+            if o == t || budget == 0 {
+                break;
+            }
+        }
+        Ok(last_b.twin())
+    }
+
+    /// No face other than the two beside the edge may hold both `a` and
+    /// `b`. Triangles around `a` cannot (their third corner would be a
+    /// common neighbour).
+    #[inline(always)]
+    fn check_no_face_holds_both(
+        &self,
+        hk: HalfedgeKey,
+        a: Vid,
+        b: Vid,
+        f_left: Fid,
+        f_right: Fid,
+    ) -> Result<()> {
         for o in self.outgoing(a) {
             let f = self.face_of(o);
             if f == f_left || f == f_right {
@@ -227,23 +292,7 @@ impl Mesh {
                 return Err(refuse(OP, hk, Refusal::NonManifold));
             }
         }
-        Ok(CollapsePlan {
-            h,
-            a,
-            b,
-            f_left,
-            f_right,
-            nh,
-            nt,
-            ph: last_a.twin(),
-            // The half-edge before twin(ph) = last_a once h is gone: the
-            // twin of the one before it in a's ring, unless that is h.
-            before_tph: (degree >= 3).then_some(before_last_a.twin()),
-            pt,
-            left_goes,
-            right_goes,
-            rule11,
-        })
+        Ok(())
     }
 
     /// The checks that only a mesh with holes needs.
@@ -255,7 +304,6 @@ impl Mesh {
         f_right: Fid,
         apexes: [(bool, Vid); 2],
     ) -> Result<Rule11> {
-        const OP: &str = "collapse_edge";
         let t = h.twin();
         let (hole_left, hole_right) = (self.is_hole(f_left), self.is_hole(f_right));
         // An interior edge between two boundary vertices would pinch.
@@ -355,11 +403,7 @@ impl Mesh {
     /// As [`collapse_edge_at`](Mesh::collapse_edge_at).
     pub fn check_collapse_edge_at(&self, h: HalfedgeKey, t: f64) -> Result<()> {
         if !(0.0..=1.0).contains(&t) {
-            return Err(refuse(
-                "collapse_edge",
-                h,
-                Refusal::Parameter("t must lie in 0..=1"),
-            ));
+            return Err(refuse(OP, h, Refusal::Parameter("t must lie in 0..=1")));
         }
         self.check_collapse_edge(h)
     }
@@ -386,11 +430,7 @@ impl Mesh {
         t: f64,
     ) -> Result<VertexKey> {
         if !(0.0..=1.0).contains(&t) {
-            return Err(refuse(
-                "collapse_edge",
-                hk,
-                Refusal::Parameter("t must lie in 0..=1"),
-            ));
+            return Err(refuse(OP, hk, Refusal::Parameter("t must lie in 0..=1")));
         }
         let plan = self.plan_collapse(hk)?;
         let b = self.commit_collapse::<J>(plan, t, None);

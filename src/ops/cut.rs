@@ -195,22 +195,41 @@ impl Mesh {
 
     /// [`cut_path`](Mesh::cut_path)'s body, in journaling mode `J`.
     fn cut_path_with<J: Journaling>(&mut self, path: &[VertexKey]) -> Result<Vec<FaceKey>> {
-        let CutPlan {
-            hs,
-            closed,
-            hole_out,
-            wedges,
-        } = self.plan_cut(path)?;
+        let plan = self.plan_cut(path)?;
+        let mut cut = self.read_cut(plan);
+        // Vertices: v_i and their right-side copies.
+        for (i, _) in &cut.plan.wedges {
+            cut.copy[*i] = self.alloc_vertex::<J>();
+        }
+        if cut.plan.closed {
+            let k = cut.plan.hs.len();
+            cut.copy[k] = cut.copy[0];
+        }
+        cut.new_edges = (0..cut.plan.hs.len())
+            .map(|_| self.alloc_edge::<J>())
+            .collect();
+        self.link_cut_right::<J>(&cut);
+        self.link_cut_boundary::<J>(&cut);
+        self.move_cut_wedges::<J>(&cut);
+        let (made, spare) = self.label_cut_holes::<J>(&cut);
+        self.cut_attributes(&cut, &made, &spare);
+        self.end_op::<J>();
+        Ok(made.into_iter().map(|h| self.fkey(h)).collect())
+    }
+
+    /// What the cut reads before it changes anything: the twins of the path
+    /// half-edges and their neighbours, the holes at its ends, its vertices.
+    fn read_cut(&self, plan: CutPlan) -> Cut {
+        let hs = &plan.hs;
         let k = hs.len();
         let ts: Vec<Hid> = hs.iter().map(|&h| h.twin()).collect();
-        let index_of_t: HashMap<Hid, usize> = ts.iter().enumerate().map(|(i, &t)| (t, i)).collect();
-        let prevs: Vec<Hid> = ts.iter().map(|&t| self.prev(t)).collect();
-        let nexts: Vec<Hid> = ts.iter().map(|&t| self.next(t)).collect();
-        let rights: Vec<Fid> = ts.iter().map(|&t| self.face_of(t)).collect();
+        let index_of_t = ts.iter().enumerate().map(|(i, &t)| (t, i)).collect();
+        let prevs = ts.iter().map(|&t| self.prev(t)).collect();
+        let nexts = ts.iter().map(|&t| self.next(t)).collect();
+        let rights = ts.iter().map(|&t| self.face_of(t)).collect();
         // The hole half-edges entering the boundary ends, and their holes.
-        let hole_in = hole_out.map(|o| o.map(|o| self.prev(o)));
-        let old_holes = hole_out.map(|o| o.map(|o| self.face_of(o)));
-        // Vertices: v_i and their right-side copies.
+        let hole_in = plan.hole_out.map(|o| o.map(|o| self.prev(o)));
+        let old_holes = plan.hole_out.map(|o| o.map(|o| self.face_of(o)));
         let vs: Vec<Vid> = (0..=k)
             .map(|i| {
                 if i < k {
@@ -220,121 +239,185 @@ impl Mesh {
                 }
             })
             .collect();
-        let mut copy: Vec<Vid> = vs.clone();
-        for (i, _) in &wedges {
-            copy[*i] = self.alloc_vertex::<J>();
+        Cut {
+            copy: vs.clone(),
+            vs,
+            ts,
+            index_of_t,
+            prevs,
+            nexts,
+            rights,
+            hole_in,
+            old_holes,
+            new_edges: Vec::new(),
+            plan,
         }
-        if closed {
-            copy[k] = copy[0];
-        }
-        let new_edges: Vec<Eid> = (0..k).map(|_| self.alloc_edge::<J>()).collect();
-        // g_i = v'_i+1 -> v'_i takes t_i's place in its right face; gt_i is
-        // its twin, on the new boundary.
-        let g = |i: usize| new_edges[i].halfedge(0);
-        let gt = |i: usize| new_edges[i].halfedge(1);
-        let map = |x: Hid| index_of_t.get(&x).map_or(x, |&j| g(j));
+    }
+
+    /// `g_i = v'_i+1 -> v'_i` takes `t_i`'s place in its right face.
+    fn link_cut_right<J: Journaling>(&mut self, cut: &Cut) {
+        let k = cut.ts.len();
         for i in 0..k {
-            *self.he_mut::<J>(g(i)) = HalfedgeRecord {
-                origin: copy[i + 1],
-                next: map(nexts[i]),
-                face: rights[i],
+            *self.he_mut::<J>(cut.g(i)) = HalfedgeRecord {
+                origin: cut.copy[i + 1],
+                next: cut.map(cut.nexts[i]),
+                face: cut.rights[i],
             };
         }
         for i in 0..k {
-            let p = map(prevs[i]);
-            self.set_next::<J>(p, g(i));
-            if self.face_halfedge(rights[i]) == ts[i] {
-                self.set_face_link::<J>(rights[i], g(i));
+            let p = cut.map(cut.prevs[i]);
+            self.set_next::<J>(p, cut.g(i));
+            if self.face_halfedge(cut.rights[i]) == cut.ts[i] {
+                self.set_face_link::<J>(cut.rights[i], cut.g(i));
             }
         }
-        // The new boundary: t_i run backwards along the left side, gt_i
-        // forwards along the right side; at a boundary end they join the
-        // hole that was there.
+    }
+
+    /// The new boundary: `t_i` run backwards along the left side, `gt_i`
+    /// (the twin of `g_i`) forwards along the right side; at a boundary end
+    /// they join the hole that was there.
+    fn link_cut_boundary<J: Journaling>(&mut self, cut: &Cut) {
+        let (ts, closed, hole_out) = (&cut.ts, cut.plan.closed, cut.plan.hole_out);
+        let k = ts.len();
         for i in 0..k {
             let next_t = if i > 0 {
                 ts[i - 1]
             } else if closed {
                 ts[k - 1]
             } else {
-                hole_out[0].unwrap_or(gt(0))
+                hole_out[0].unwrap_or(cut.gt(0))
             };
             self.he_mut::<J>(ts[i]).next = next_t;
             let next_gt = if i + 1 < k {
-                gt(i + 1)
+                cut.gt(i + 1)
             } else if closed {
-                gt(0)
+                cut.gt(0)
             } else {
                 hole_out[1].unwrap_or(ts[k - 1])
             };
             // The face is set when the new loops are labelled.
-            *self.he_mut::<J>(gt(i)) = HalfedgeRecord {
-                origin: copy[i],
+            *self.he_mut::<J>(cut.gt(i)) = HalfedgeRecord {
+                origin: cut.copy[i],
                 next: next_gt,
                 face: Fid::NONE,
             };
         }
-        if let Some(hi) = hole_in[0] {
-            self.set_next::<J>(hi, gt(0));
+        if let Some(hi) = cut.hole_in[0] {
+            self.set_next::<J>(hi, cut.gt(0));
         }
-        if let Some(hi) = hole_in[1] {
+        if let Some(hi) = cut.hole_in[1] {
             self.set_next::<J>(hi, ts[k - 1]);
         }
-        for (i, wedge) in &wedges {
+    }
+
+    /// The half-edges right of the path leave the copies; every path
+    /// vertex and copy names a half-edge it still has.
+    fn move_cut_wedges<J: Journaling>(&mut self, cut: &Cut) {
+        let k = cut.ts.len();
+        for (i, wedge) in &cut.plan.wedges {
             for &o in wedge {
-                self.he_mut::<J>(o).origin = copy[*i];
+                self.he_mut::<J>(o).origin = cut.copy[*i];
             }
-            let out = if *i < k { gt(*i) } else { wedge[0] };
-            *self.v_halfedge_mut::<J>(copy[*i]) = out;
+            let out = if *i < k { cut.gt(*i) } else { wedge[0] };
+            *self.v_halfedge_mut::<J>(cut.copy[*i]) = out;
         }
         for i in 0..k {
-            *self.v_halfedge_mut::<J>(vs[i]) = hs[i];
+            *self.v_halfedge_mut::<J>(cut.vs[i]) = cut.plan.hs[i];
         }
-        if !closed {
-            *self.v_halfedge_mut::<J>(vs[k]) = ts[k - 1];
+        if !cut.plan.closed {
+            *self.v_halfedge_mut::<J>(cut.vs[k]) = cut.ts[k - 1];
         }
-        // Hole faces: the loop through t_0, then the one through gt_0 if it
-        // is another loop. Old holes are reused, one left over is freed.
-        let mut spare: Vec<Fid> = old_holes.iter().flatten().copied().collect();
+    }
+
+    /// Hole faces: the loop through `t_0`, then the one through `gt_0` if it
+    /// is another loop. Old holes are reused, one left over is freed.
+    /// Returns the holes made and the old ones.
+    fn label_cut_holes<J: Journaling>(&mut self, cut: &Cut) -> (Vec<Fid>, Vec<Fid>) {
+        let mut spare: Vec<Fid> = cut.old_holes.iter().flatten().copied().collect();
         spare.dedup();
         let mut made = Vec::new();
         let first = spare
             .first()
             .copied()
             .unwrap_or_else(|| self.alloc_face::<J>(true));
-        self.he_mut::<J>(ts[0]).face = Fid::NONE;
-        self.relabel_loop::<J>(ts[0], first);
+        self.he_mut::<J>(cut.ts[0]).face = Fid::NONE;
+        self.relabel_loop::<J>(cut.ts[0], first);
         made.push(first);
-        if self.face_of(gt(0)) != first {
+        if self.face_of(cut.gt(0)) != first {
             let second = if spare.len() > 1 {
                 spare[1]
             } else {
                 self.alloc_face::<J>(true)
             };
-            self.relabel_loop::<J>(gt(0), second);
+            self.relabel_loop::<J>(cut.gt(0), second);
             made.push(second);
         } else if spare.len() > 1 {
             self.free_face::<J>(spare[1]);
         }
-        // Attributes.
-        for (i, _) in &wedges {
+        (made, spare)
+    }
+
+    /// Attributes: copies interpolate their vertex, each path edge splits
+    /// into its two copies, right-side corners keep their values, new holes
+    /// interpolate nothing.
+    fn cut_attributes(&mut self, cut: &Cut, made: &[Fid], spare: &[Fid]) {
+        for (i, _) in &cut.plan.wedges {
             self.attrs
                 .vertex
-                .interpolate(copy[*i].index(), &[(vs[*i].index(), 1.0)]);
+                .interpolate(cut.copy[*i].index(), &[(cut.vs[*i].index(), 1.0)]);
         }
-        for i in 0..k {
-            let e = hs[i].edge().index();
+        for i in 0..cut.ts.len() {
+            let e = cut.plan.hs[i].edge().index();
             self.attrs
                 .edge
-                .split(e, &[(e, 0.5), (new_edges[i].index(), 0.5)]);
-            self.attrs.halfedge.copy(ts[i].index(), g(i).index());
-            self.attrs.halfedge.interpolate(gt(i).index(), &[]);
+                .split(e, &[(e, 0.5), (cut.new_edges[i].index(), 0.5)]);
+            self.attrs
+                .halfedge
+                .copy(cut.ts[i].index(), cut.g(i).index());
+            self.attrs.halfedge.interpolate(cut.gt(i).index(), &[]);
         }
-        for &h in &made {
+        for &h in made {
             if !spare.contains(&h) {
                 self.attrs.face.interpolate(h.index(), &[]);
             }
         }
-        self.end_op::<J>();
-        Ok(made.into_iter().map(|h| self.fkey(h)).collect())
+    }
+}
+
+/// A planned cut with what it read before editing and the elements it adds.
+struct Cut {
+    plan: CutPlan,
+    /// The twins `t_i` of the path half-edges, and where each is in `ts`.
+    ts: Vec<Hid>,
+    index_of_t: HashMap<Hid, usize>,
+    /// The half-edges before and after each `t_i`, and its face.
+    prevs: Vec<Hid>,
+    nexts: Vec<Hid>,
+    rights: Vec<Fid>,
+    /// The hole half-edges entering the boundary ends, and their holes.
+    hole_in: [Option<Hid>; 2],
+    old_holes: [Option<Fid>; 2],
+    /// The path vertices `v_i`, and their right-side copies (the vertex
+    /// itself where it does not split).
+    vs: Vec<Vid>,
+    copy: Vec<Vid>,
+    /// One new edge per path edge.
+    new_edges: Vec<Eid>,
+}
+
+impl Cut {
+    /// `g_i = v'_i+1 -> v'_i`, on the right side.
+    fn g(&self, i: usize) -> Hid {
+        self.new_edges[i].halfedge(0)
+    }
+
+    /// `g_i`'s twin, on the new boundary.
+    fn gt(&self, i: usize) -> Hid {
+        self.new_edges[i].halfedge(1)
+    }
+
+    /// `x`, or `g_i` where `x` is `t_i` (which `g_i` replaces).
+    fn map(&self, x: Hid) -> Hid {
+        self.index_of_t.get(&x).map_or(x, |&j| self.g(j))
     }
 }

@@ -1,7 +1,7 @@
 //! `triangulate` and `triangulate_all`: ear clipping with positions, a fan
 //! without.
 
-use super::ear_clip::{clip_ears, QUEUED_FROM};
+use super::ear_clip::{clip_ears, newell_normal, QUEUED_FROM};
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::journal::{journaled, Journaling};
@@ -83,126 +83,21 @@ impl Mesh {
         let corner = |i: u32| self.origin(sides[i as usize]);
         let joined =
             |i: u32, j: u32| avoid_edges && self.find_halfedge_raw(corner(i), corner(j)).is_some();
-        match self.position_slots() {
-            Some(p) if n == 4 => {
-                // The diagonal from the reflex corner (if any) is the only
-                // valid one; for a convex quad take the shorter.
-                let q: [[f64; 2]; 4] = {
-                    let pts: Vec<[f64; 3]> = (0..4).map(|i| p[corner(i).index()]).collect();
-                    let proj = projector(&pts);
-                    [proj(pts[0]), proj(pts[1]), proj(pts[2]), proj(pts[3])]
-                };
-                let turn = |i: usize| cross(q[(i + 3) % 4], q[i], q[(i + 1) % 4]);
-                let reflex_13 = turn(1) < 0.0 || turn(3) < 0.0;
-                let reflex_02 = turn(0) < 0.0 || turn(2) < 0.0;
-                let d02 = dist2(p[corner(0).index()], p[corner(2).index()]);
-                let d13 = dist2(p[corner(1).index()], p[corner(3).index()]);
-                let mut prefer_02 = if reflex_02 != reflex_13 {
-                    reflex_02
-                } else {
-                    d02 <= d13
-                };
-                if prefer_02 && joined(0, 2) || !prefer_02 && joined(1, 3) {
-                    prefer_02 = !prefer_02;
-                }
-                if prefer_02 && joined(0, 2) || !prefer_02 && joined(1, 3) {
-                    return Err(refuse(OP, fk, Refusal::EdgeExists));
-                }
-                // Ear at 1 cuts 2 -> 0; ear at 0 cuts 1 -> 3.
-                ears.push(if prefer_02 {
-                    Ear {
-                        pl: 3,
-                        l: 0,
-                        m: 1,
-                        r: 2,
-                    }
-                } else {
-                    Ear {
-                        pl: 2,
-                        l: 3,
-                        m: 0,
-                        r: 1,
-                    }
-                });
-                Ok(())
-            }
+        let planned = match self.position_slots() {
             Some(p) => {
                 let pts: Vec<[f64; 3]> = (0..n as u32).map(|i| p[corner(i).index()]).collect();
-                let proj = projector(&pts);
-                let q: Vec<[f64; 2]> = pts.iter().map(|&x| proj(x)).collect();
-                let mut rest: Vec<u32> = if n >= QUEUED_FROM {
-                    // Large faces and holes: the queued clipper, near
-                    // O(n log n); the scan below takes what it leaves.
-                    let key: Vec<u32> = (0..n as u32).collect();
-                    let clipped = clip_ears(&q, &key, joined);
-                    ears.extend(
-                        clipped
-                            .ears
-                            .iter()
-                            .map(|&[pl, l, m, r]| Ear { pl, l, m, r }),
-                    );
-                    clipped.rest
+                if n == 4 {
+                    quad_ear(&pts, joined).map(|ear| ears.push(ear)).is_some()
                 } else {
-                    (0..n as u32).collect()
-                };
-                while rest.len() > 3 {
-                    let k = rest.len();
-                    let at = |i: usize| rest[i % k];
-                    let is_ear = |i: usize, strict: bool| {
-                        let (l, m, r) = (at(i + k - 1), at(i), at(i + 1));
-                        let turn = cross(q[l as usize], q[m as usize], q[r as usize]);
-                        if strict && turn <= 0.0 || !strict && turn < 0.0 {
-                            return false;
-                        }
-                        if joined(l, r) {
-                            return false;
-                        }
-                        !strict
-                            || !rest.iter().any(|&o| {
-                                o != l
-                                    && o != m
-                                    && o != r
-                                    && inside(
-                                        q[o as usize],
-                                        q[l as usize],
-                                        q[m as usize],
-                                        q[r as usize],
-                                    )
-                            })
-                    };
-                    let found = (0..k)
-                        .find(|&i| is_ear(i, true))
-                        .or_else(|| (0..k).find(|&i| is_ear(i, false)))
-                        .or_else(|| (0..k).find(|&i| !joined(at(i + k - 1), at(i + 1))));
-                    let Some(i) = found else {
-                        return Err(refuse(OP, fk, Refusal::EdgeExists));
-                    };
-                    ears.push(Ear {
-                        pl: at(i + k - 2),
-                        l: at(i + k - 1),
-                        m: at(i),
-                        r: at(i + 1),
-                    });
-                    rest.remove(i % k);
+                    clip_polygon(&pts, joined, ears)
                 }
-                Ok(())
             }
-            None => {
-                // A fan from the first corner whose diagonals are all new.
-                let apex = (0..n as u32)
-                    .find(|&k| (2..n as u32 - 1).all(|j| !joined(k, (k + j) % n as u32)))
-                    .ok_or_else(|| refuse(OP, fk, Refusal::EdgeExists))?;
-                let at = |j: u32| (apex + j) % n as u32;
-                for j in 1..n as u32 - 2 {
-                    ears.push(Ear {
-                        pl: at(n as u32 - 1),
-                        l: apex,
-                        m: at(j),
-                        r: at(j + 1),
-                    });
-                }
-                Ok(())
-            }
+            None => fan(n as u32, joined, ears),
+        };
+        if planned {
+            Ok(())
+        } else {
+            Err(refuse(OP, fk, Refusal::EdgeExists))
         }
     }
 
@@ -385,16 +280,145 @@ impl Mesh {
     }
 }
 
+/// The ear that cuts a quad with corners `pts`: the diagonal from the
+/// reflex corner (if any) is the only valid one; for a convex quad take the
+/// shorter. `None` when the diagonal it needs (and, for a convex quad, the
+/// other one too) is `joined` already.
+fn quad_ear(pts: &[[f64; 3]], joined: impl Fn(u32, u32) -> bool) -> Option<Ear> {
+    let proj = projector(pts);
+    let q = [proj(pts[0]), proj(pts[1]), proj(pts[2]), proj(pts[3])];
+    let turn = |i: usize| cross(q[(i + 3) % 4], q[i], q[(i + 1) % 4]);
+    let reflex_13 = turn(1) < 0.0 || turn(3) < 0.0;
+    let reflex_02 = turn(0) < 0.0 || turn(2) < 0.0;
+    let d02 = dist2(pts[0], pts[2]);
+    let d13 = dist2(pts[1], pts[3]);
+    let mut prefer_02 = if reflex_02 != reflex_13 {
+        reflex_02
+    } else {
+        d02 <= d13
+    };
+    if prefer_02 && joined(0, 2) || !prefer_02 && joined(1, 3) {
+        prefer_02 = !prefer_02;
+    }
+    if prefer_02 && joined(0, 2) || !prefer_02 && joined(1, 3) {
+        return None;
+    }
+    // Ear at 1 cuts 2 -> 0; ear at 0 cuts 1 -> 3.
+    Some(if prefer_02 {
+        Ear {
+            pl: 3,
+            l: 0,
+            m: 1,
+            r: 2,
+        }
+    } else {
+        Ear {
+            pl: 2,
+            l: 3,
+            m: 0,
+            r: 1,
+        }
+    })
+}
+
+/// The ears that cut the polygon with corners `pts` (more than four), by
+/// ear clipping in its plane; `false` when every way left needs a diagonal
+/// that is `joined` already.
+fn clip_polygon(
+    pts: &[[f64; 3]],
+    joined: impl Fn(u32, u32) -> bool + Copy,
+    ears: &mut Vec<Ear>,
+) -> bool {
+    let n = pts.len();
+    let proj = projector(pts);
+    let q: Vec<[f64; 2]> = pts.iter().map(|&x| proj(x)).collect();
+    let rest: Vec<u32> = if n >= QUEUED_FROM {
+        // Large faces and holes: the queued clipper, near O(n log n); the
+        // scan takes what it leaves.
+        let key: Vec<u32> = (0..n as u32).collect();
+        let clipped = clip_ears(&q, &key, joined);
+        ears.extend(
+            clipped
+                .ears
+                .iter()
+                .map(|&[pl, l, m, r]| Ear { pl, l, m, r }),
+        );
+        clipped.rest
+    } else {
+        (0..n as u32).collect()
+    };
+    scan_ears(&q, rest, joined, ears)
+}
+
+/// Cut the corners `rest` of the projected polygon `q` down to a triangle,
+/// each time the first strict ear, else the first weak one, else the first
+/// corner whose diagonal is new; `false` when no diagonal is.
+fn scan_ears(
+    q: &[[f64; 2]],
+    mut rest: Vec<u32>,
+    joined: impl Fn(u32, u32) -> bool,
+    ears: &mut Vec<Ear>,
+) -> bool {
+    while rest.len() > 3 {
+        let k = rest.len();
+        let at = |i: usize| rest[i % k];
+        let is_ear = |i: usize, strict: bool| {
+            let (l, m, r) = (at(i + k - 1), at(i), at(i + 1));
+            let turn = cross(q[l as usize], q[m as usize], q[r as usize]);
+            if strict && turn <= 0.0 || !strict && turn < 0.0 {
+                return false;
+            }
+            if joined(l, r) {
+                return false;
+            }
+            !strict
+                || !rest.iter().any(|&o| {
+                    o != l
+                        && o != m
+                        && o != r
+                        && inside(q[o as usize], q[l as usize], q[m as usize], q[r as usize])
+                })
+        };
+        let found = (0..k)
+            .find(|&i| is_ear(i, true))
+            .or_else(|| (0..k).find(|&i| is_ear(i, false)))
+            .or_else(|| (0..k).find(|&i| !joined(at(i + k - 1), at(i + 1))));
+        let Some(i) = found else {
+            return false;
+        };
+        ears.push(Ear {
+            pl: at(i + k - 2),
+            l: at(i + k - 1),
+            m: at(i),
+            r: at(i + 1),
+        });
+        rest.remove(i % k);
+    }
+    true
+}
+
+/// Without positions: a fan of the `n` corners from the first corner whose
+/// diagonals are all new; `false` when there is none.
+fn fan(n: u32, joined: impl Fn(u32, u32) -> bool, ears: &mut Vec<Ear>) -> bool {
+    let Some(apex) = (0..n).find(|&k| (2..n - 1).all(|j| !joined(k, (k + j) % n))) else {
+        return false;
+    };
+    let at = |j: u32| (apex + j) % n;
+    for j in 1..n - 2 {
+        ears.push(Ear {
+            pl: at(n - 1),
+            l: apex,
+            m: at(j),
+            r: at(j + 1),
+        });
+    }
+    true
+}
+
 /// A map from 3D points to the plane of their Newell normal, keeping the
 /// polygon's orientation counter-clockwise.
 fn projector(pts: &[[f64; 3]]) -> impl Fn([f64; 3]) -> [f64; 2] {
-    let mut n = [0.0f64; 3];
-    for i in 0..pts.len() {
-        let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
-        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-    }
+    let n = newell_normal(pts);
     let k = if n[0].abs() >= n[1].abs() && n[0].abs() >= n[2].abs() {
         0
     } else if n[1].abs() >= n[2].abs() {

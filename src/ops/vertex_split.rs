@@ -4,7 +4,7 @@ use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::journal::{journaled, Journaling};
 use crate::keys::HalfedgeKey;
-use crate::layout::{HalfedgeRecord, Hid};
+use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, Vid};
 use crate::mesh::Mesh;
 
 struct VertexSplitPlan {
@@ -112,52 +112,84 @@ impl Mesh {
         hck: HalfedgeKey,
         hdk: HalfedgeKey,
     ) -> Result<HalfedgeKey> {
-        let VertexSplitPlan { hc, hd, moved, pd } = self.plan_split_vertex(hck, hdk)?;
-        let b = self.origin(hc);
-        let c = self.dest(hc);
-        let d = self.dest(hd);
-        let tdb = hd.twin(); // d -> b
-        let f_c = self.face_of(hc);
-        let f_d = self.face_of(tdb);
-        let after_hc = self.next(hc);
-        // Rule 11: only a boundary b can leave holes at b or at a.
-        let b_on_boundary = self.holes > 0 && self.on_boundary(b);
+        let plan = self.plan_split_vertex(hck, hdk)?;
+        let s = self.read_split(plan);
         let a = self.alloc_vertex::<J>();
         let (e_ab, e_ac, e_ad) = (
             self.alloc_edge::<J>(),
             self.alloc_edge::<J>(),
             self.alloc_edge::<J>(),
         );
-        let [h, t] = e_ab.halfedges(); // a -> b, b -> a
-        let [ac, ca] = e_ac.halfedges();
-        let [ad, da] = e_ad.halfedges();
-        let left = self.alloc_face::<J>(false);
-        let right = self.alloc_face::<J>(false);
+        let new = NewElements {
+            a,
+            edges: [e_ab, e_ac, e_ad],
+            left: self.alloc_face::<J>(false),
+            right: self.alloc_face::<J>(false),
+        };
+        self.move_split_wedge::<J>(&s, &new);
+        self.link_split_triangles::<J>(&s, &new);
+        self.point_split_vertices::<J>(&s, &new);
+        self.split_vertex_attributes(&s, &new);
+        self.end_op::<J>();
+        Ok(self.hkey(new.h()))
+    }
+
+    /// What the split reads before it changes anything.
+    fn read_split(&self, plan: VertexSplitPlan) -> VertexSplit {
+        let (hc, hd) = (plan.hc, plan.hd);
+        let b = self.origin(hc);
+        let tdb = hd.twin(); // d -> b
+        VertexSplit {
+            b,
+            c: self.dest(hc),
+            d: self.dest(hd),
+            tdb,
+            f_c: self.face_of(hc),
+            f_d: self.face_of(tdb),
+            after_hc: self.next(hc),
+            // Rule 11: only a boundary b can leave holes at b or at a.
+            b_on_boundary: self.holes > 0 && self.on_boundary(b),
+            plan,
+        }
+    }
+
+    /// The moved half-edges leave `a`; in the faces beside the wedge `ac`
+    /// takes `hc`'s place and `da` takes `d -> b`'s.
+    fn move_split_wedge<J: Journaling>(&mut self, s: &VertexSplit, new: &NewElements) {
+        let [ac, _] = new.edges[1].halfedges();
+        let [_, da] = new.edges[2].halfedges();
+        let moved = &s.plan.moved;
         let prev_c = moved.last().map_or(da, |&o| o.twin());
         let next_d = moved.first().copied().unwrap_or(ac);
-        for &o in &moved {
-            self.he_mut::<J>(o).origin = a;
+        for &o in moved {
+            self.he_mut::<J>(o).origin = new.a;
         }
-        // The faces beside the wedge: ac takes hc's place, da takes d -> b's.
         *self.he_mut::<J>(ac) = HalfedgeRecord {
-            origin: a,
-            next: after_hc,
-            face: f_c,
+            origin: new.a,
+            next: s.after_hc,
+            face: s.f_c,
         };
         *self.he_mut::<J>(da) = HalfedgeRecord {
-            origin: d,
+            origin: s.d,
             next: next_d,
-            face: f_d,
+            face: s.f_d,
         };
         self.set_next::<J>(prev_c, ac);
-        self.set_next::<J>(pd, da);
-        if self.face_halfedge(f_c) == hc {
-            self.set_face_link::<J>(f_c, ac);
+        self.set_next::<J>(s.plan.pd, da);
+        if self.face_halfedge(s.f_c) == s.plan.hc {
+            self.set_face_link::<J>(s.f_c, ac);
         }
-        if self.face_halfedge(f_d) == tdb {
-            self.set_face_link::<J>(f_d, da);
+        if self.face_halfedge(s.f_d) == s.tdb {
+            self.set_face_link::<J>(s.f_d, da);
         }
-        // Triangles (a, b, c) and (b, a, d).
+    }
+
+    /// Triangles `(a, b, c)` and `(b, a, d)`.
+    fn link_split_triangles<J: Journaling>(&mut self, s: &VertexSplit, new: &NewElements) {
+        let (a, hc, tdb, left, right) = (new.a, s.plan.hc, s.tdb, new.left, new.right);
+        let [h, t] = new.edges[0].halfedges(); // a -> b, b -> a
+        let [_, ca] = new.edges[1].halfedges();
+        let [ad, _] = new.edges[2].halfedges();
         *self.he_mut::<J>(h) = HalfedgeRecord {
             origin: a,
             next: hc,
@@ -166,12 +198,12 @@ impl Mesh {
         self.he_mut::<J>(hc).next = ca;
         self.he_mut::<J>(hc).face = left;
         *self.he_mut::<J>(ca) = HalfedgeRecord {
-            origin: c,
+            origin: s.c,
             next: h,
             face: left,
         };
         *self.he_mut::<J>(t) = HalfedgeRecord {
-            origin: b,
+            origin: s.b,
             next: ad,
             face: right,
         };
@@ -184,32 +216,73 @@ impl Mesh {
         self.he_mut::<J>(tdb).face = right;
         self.set_face_link::<J>(left, h);
         self.set_face_link::<J>(right, t);
-        *self.v_halfedge_mut::<J>(a) = h;
-        *self.v_halfedge_mut::<J>(b) = hc;
+    }
+
+    /// The half-edges `a`, `b` and `d` name afterwards (rule 11 at a
+    /// boundary `b`).
+    fn point_split_vertices<J: Journaling>(&mut self, s: &VertexSplit, new: &NewElements) {
+        let [_, da] = new.edges[2].halfedges();
+        *self.v_halfedge_mut::<J>(new.a) = new.h();
+        *self.v_halfedge_mut::<J>(s.b) = s.plan.hc;
         // da took d -> b's place in f_d (a hole, maybe): d keeps a half-edge
         // in that face.
-        if self.v_halfedge[d] == tdb {
-            *self.v_halfedge_mut::<J>(d) = da;
+        if self.v_halfedge[s.d] == s.tdb {
+            *self.v_halfedge_mut::<J>(s.d) = da;
         }
-        if b_on_boundary {
-            self.point_at_hole::<J>(a);
-            self.point_at_hole::<J>(b);
+        if s.b_on_boundary {
+            self.point_at_hole::<J>(new.a);
+            self.point_at_hole::<J>(s.b);
         }
-        // Attributes.
+    }
+
+    /// Attributes: `a = interpolate(b: 1)`, `ac` and `da` copy the corners
+    /// they replace, everything else new interpolates nothing.
+    fn split_vertex_attributes(&mut self, s: &VertexSplit, new: &NewElements) {
+        let [h, t] = new.edges[0].halfedges();
+        let [ac, ca] = new.edges[1].halfedges();
+        let [ad, da] = new.edges[2].halfedges();
         self.attrs
             .vertex
-            .interpolate(a.index(), &[(b.index(), 1.0)]);
-        for e in [e_ab, e_ac, e_ad] {
+            .interpolate(new.a.index(), &[(s.b.index(), 1.0)]);
+        for e in new.edges {
             self.attrs.edge.interpolate(e.index(), &[]);
         }
-        self.attrs.halfedge.copy(hc.index(), ac.index());
-        self.attrs.halfedge.copy(tdb.index(), da.index());
+        self.attrs.halfedge.copy(s.plan.hc.index(), ac.index());
+        self.attrs.halfedge.copy(s.tdb.index(), da.index());
         for x in [h, ca, t, ad] {
             self.attrs.halfedge.interpolate(x.index(), &[]);
         }
-        self.attrs.face.interpolate(left.index(), &[]);
-        self.attrs.face.interpolate(right.index(), &[]);
-        self.end_op::<J>();
-        Ok(self.hkey(h))
+        self.attrs.face.interpolate(new.left.index(), &[]);
+        self.attrs.face.interpolate(new.right.index(), &[]);
+    }
+}
+
+/// A planned vertex split with what it read before editing: `hc = b → c`,
+/// `hd = b → d`, `tdb = d → b`, the faces of `hc` and `tdb`.
+struct VertexSplit {
+    plan: VertexSplitPlan,
+    b: Vid,
+    c: Vid,
+    d: Vid,
+    tdb: Hid,
+    f_c: Fid,
+    f_d: Fid,
+    after_hc: Hid,
+    b_on_boundary: bool,
+}
+
+/// The new vertex `a`, edges `ab`, `ac`, `ad` and triangles `(a, b, c)`
+/// (left) and `(b, a, d)` (right).
+struct NewElements {
+    a: Vid,
+    edges: [Eid; 3],
+    left: Fid,
+    right: Fid,
+}
+
+impl NewElements {
+    /// `h = a → b`.
+    fn h(&self) -> Hid {
+        self.edges[0].halfedge(0)
     }
 }

@@ -5,7 +5,7 @@ use super::halves::{next_corner, next_line, parse_halves, plain_index, PARALLEL_
 use crate::io::attrs::{Data, SoupColumn};
 use crate::io::error::{Error, Location};
 use crate::io::soup::Soup;
-use crate::io::text::{is_space, parse_f64, parse_f64_at, parse_i64, Lines, Tokens};
+use crate::io::text::{is_space, parse_f64, parse_f64_at, parse_i64, Tokens};
 
 /// Resolve a 1-based or negative OBJ index against `count` elements.
 #[inline]
@@ -39,65 +39,24 @@ pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
 
 /// Parse OBJ bytes into a soup, one statement after the other.
 pub(super) fn parse_serial(bytes: &[u8], record: bool) -> Result<Soup, Error> {
-    let mut soup = Soup::new(record);
-    let mut refs = CornerRefs::default();
-    let mut lines = Lines::new(bytes);
-    let mut groups = Names::new("group");
-    let mut objects = Names::new("object");
-    let mut materials = Names::new("material");
-    // Reserve by the input's size only: about 30 bytes per statement.
-    soup.polygons.positions.reserve(bytes.len() / 48);
-    soup.polygons.indices.reserve(bytes.len() / 8);
-    soup.polygons.offsets.reserve(bytes.len() / 24);
+    let mut read = Statements::new(record, bytes.len());
     let n = bytes.len();
     let mut pos = 0;
+    let mut line_no = 0u64;
     while pos < n {
-        lines.line += 1;
+        line_no += 1;
         // The hot statements, `v x y z` and `f` with plain indices, are
         // parsed in place in one pass; everything else goes by tokens.
-        let line_no = lines.line;
-        let at = || Location::line(line_no);
         let head = &bytes[pos..n.min(pos + 2)];
         if head.len() == 2
             && (head[1] == b' ' || head[1] == b'\t')
             && (head[0] == b'v' || head[0] == b'f')
         {
-            let mut i = pos + 2;
-            if head[0] == b'v' {
-                let mut p = [0.0; 3];
-                for c in &mut p {
-                    while i < n && is_space(bytes[i]) {
-                        i += 1;
-                    }
-                    *c = parse_f64_at(bytes, &mut i).ok_or_else(|| {
-                        Error::syntax(at(), "a vertex coordinate", token_at(bytes, i))
-                    })?;
-                }
-                soup.polygons.positions.push(p);
-                soup.vertex_read_at(line_no);
+            let i = if head[0] == b'v' {
+                read.vertex_in_place(bytes, pos + 2, line_no)?
             } else {
-                let start = soup.polygons.indices.len();
-                while let Some(st) = next_corner(bytes, i) {
-                    // A plain index, parsed in place.
-                    let plain = plain_index(bytes, st).filter(|&(v, _)| {
-                        v as usize <= soup.polygons.positions.len()
-                            && refs.texcoord_of.is_empty()
-                            && refs.normal_of.is_empty()
-                    });
-                    if let Some((v, end)) = plain {
-                        i = end;
-                        soup.polygons.indices.push(v - 1);
-                        continue;
-                    }
-                    let tok = token_at(bytes, st);
-                    i = st + tok.len();
-                    face_corner(tok, &mut soup, &mut refs, at)?;
-                }
-                if soup.polygons.indices.len() == start {
-                    return Err(Error::syntax(at(), "vertex indices after f", b""));
-                }
-                soup.end_face(line_no);
-            }
+                read.face_in_place(bytes, pos + 2, line_no)?
+            };
             // The rest of the line (a `w`, vertex colours, a comment).
             pos = next_line(bytes, i);
             continue;
@@ -109,28 +68,118 @@ pub(super) fn parse_serial(bytes: &[u8], record: bool) -> Result<Soup, Error> {
         let line = &bytes[pos..end];
         let line = line.strip_suffix(b"\r").unwrap_or(line);
         pos = end + 1;
+        read.statement(line, line_no)?;
+    }
+    Ok(read.finish())
+}
+
+/// What the statements build: the polygons, the corners' references and
+/// the names of groups, objects and materials per face.
+struct Statements {
+    soup: Soup,
+    refs: CornerRefs,
+    groups: Names,
+    objects: Names,
+    materials: Names,
+}
+
+impl Statements {
+    /// Ready for `len` bytes of statements.
+    fn new(record: bool, len: usize) -> Statements {
+        let mut soup = Soup::new(record);
+        // Reserve by the input's size only: about 30 bytes per statement.
+        soup.polygons.positions.reserve(len / 48);
+        soup.polygons.indices.reserve(len / 8);
+        soup.polygons.offsets.reserve(len / 24);
+        Statements {
+            soup,
+            refs: CornerRefs::default(),
+            groups: Names::new("group"),
+            objects: Names::new("object"),
+            materials: Names::new("material"),
+        }
+    }
+
+    /// A `v x y z` statement from `bytes[i..]` (after `v `), parsed in
+    /// place; returns where the coordinates end.
+    #[inline]
+    fn vertex_in_place(
+        &mut self,
+        bytes: &[u8],
+        mut i: usize,
+        line_no: u64,
+    ) -> Result<usize, Error> {
+        let n = bytes.len();
+        let mut p = [0.0; 3];
+        for c in &mut p {
+            while i < n && is_space(bytes[i]) {
+                i += 1;
+            }
+            *c = parse_f64_at(bytes, &mut i).ok_or_else(|| {
+                Error::syntax(
+                    Location::line(line_no),
+                    "a vertex coordinate",
+                    token_at(bytes, i),
+                )
+            })?;
+        }
+        self.soup.polygons.positions.push(p);
+        self.soup.vertex_read_at(line_no);
+        Ok(i)
+    }
+
+    /// An `f` statement from `bytes[i..]` (after `f `), plain indices
+    /// parsed in place; returns where its corners end.
+    #[inline]
+    fn face_in_place(&mut self, bytes: &[u8], mut i: usize, line_no: u64) -> Result<usize, Error> {
+        let at = || Location::line(line_no);
+        let (soup, refs) = (&mut self.soup, &mut self.refs);
+        let start = soup.polygons.indices.len();
+        while let Some(st) = next_corner(bytes, i) {
+            // A plain index, parsed in place.
+            let plain = plain_index(bytes, st).filter(|&(v, _)| {
+                v as usize <= soup.polygons.positions.len()
+                    && refs.texcoord_of.is_empty()
+                    && refs.normal_of.is_empty()
+            });
+            if let Some((v, end)) = plain {
+                i = end;
+                soup.polygons.indices.push(v - 1);
+                continue;
+            }
+            let tok = token_at(bytes, st);
+            i = st + tok.len();
+            face_corner(tok, soup, refs, at)?;
+        }
+        if soup.polygons.indices.len() == start {
+            return Err(Error::syntax(at(), "vertex indices after f", b""));
+        }
+        soup.end_face(line_no);
+        Ok(i)
+    }
+
+    /// Any statement, by its tokens: `line` is the line without its end.
+    fn statement(&mut self, line: &[u8], line_no: u64) -> Result<(), Error> {
+        let at = || Location::line(line_no);
         let mut t = Tokens::new(line);
-        let Some(key) = t.next() else { continue };
+        let Some(key) = t.next() else {
+            return Ok(());
+        };
         match key {
             b"v" => {
-                let mut p = [0.0; 3];
-                for c in &mut p {
-                    let tok = t.next().unwrap_or_default();
-                    *c = parse_f64(tok)
-                        .ok_or_else(|| Error::syntax(at(), "a vertex coordinate", tok))?;
-                }
-                soup.polygons.positions.push(p);
-                soup.vertex_read_at(line_no);
+                let p = numbers::<3>(&mut t, at, "a vertex coordinate")?;
+                self.soup.polygons.positions.push(p);
+                self.soup.vertex_read_at(line_no);
             }
             b"f" => {
-                let start = soup.polygons.indices.len();
+                let start = self.soup.polygons.indices.len();
                 for corner in t {
-                    face_corner(corner, &mut soup, &mut refs, at)?;
+                    face_corner(corner, &mut self.soup, &mut self.refs, at)?;
                 }
-                if soup.polygons.indices.len() == start {
+                if self.soup.polygons.indices.len() == start {
                     return Err(Error::syntax(at(), "vertex indices after f", b""));
                 }
-                soup.end_face(line_no);
+                self.soup.end_face(line_no);
             }
             b"vt" => {
                 let tok = t.next().unwrap_or_default();
@@ -141,56 +190,73 @@ pub(super) fn parse_serial(bytes: &[u8], record: bool) -> Result<Soup, Error> {
                         .ok_or_else(|| Error::syntax(at(), "a texture coordinate", tok))?,
                     None => 0.0,
                 };
-                refs.texcoords.push([u, v]);
+                self.refs.texcoords.push([u, v]);
             }
             b"vn" => {
-                let mut n = [0.0; 3];
-                for c in &mut n {
-                    let tok = t.next().unwrap_or_default();
-                    *c = parse_f64(tok)
-                        .ok_or_else(|| Error::syntax(at(), "a normal coordinate", tok))?;
-                }
-                refs.normals.push(n);
+                let n = numbers::<3>(&mut t, at, "a normal coordinate")?;
+                self.refs.normals.push(n);
             }
             b"g" | b"o" | b"usemtl" => {
                 let rest = line.trim_ascii();
                 let name = rest[key.len()..].trim_ascii();
                 let name = String::from_utf8_lossy(name).into_owned();
-                let face = soup.face_count();
+                let face = self.soup.face_count();
                 match key {
-                    b"g" => groups.name(face, name),
-                    b"o" => objects.name(face, name),
-                    _ => materials.name(face, name),
+                    b"g" => self.groups.name(face, name),
+                    b"o" => self.objects.name(face, name),
+                    _ => self.materials.name(face, name),
                 }
             }
             _ => {}
         }
+        Ok(())
     }
-    let nf = soup.face_count();
-    let nc = soup.polygons.indices.len();
-    let a = &mut soup.attrs;
-    a.face.extend(objects.finish(nf));
-    a.face.extend(groups.finish(nf));
-    a.face.extend(materials.finish(nf));
-    if !refs.texcoord_of.is_empty() {
-        a.corner.push(corner_column(
-            "texcoord",
-            &refs.texcoord_of,
-            &refs.texcoords,
-            nc,
-            Data::Vec2,
-        ));
+
+    /// The soup, with the name and corner columns.
+    fn finish(self) -> Soup {
+        let mut soup = self.soup;
+        let refs = self.refs;
+        let nf = soup.face_count();
+        let nc = soup.polygons.indices.len();
+        let a = &mut soup.attrs;
+        a.face.extend(self.objects.finish(nf));
+        a.face.extend(self.groups.finish(nf));
+        a.face.extend(self.materials.finish(nf));
+        if !refs.texcoord_of.is_empty() {
+            a.corner.push(corner_column(
+                "texcoord",
+                &refs.texcoord_of,
+                &refs.texcoords,
+                nc,
+                Data::Vec2,
+            ));
+        }
+        if !refs.normal_of.is_empty() {
+            a.corner.push(corner_column(
+                "normal",
+                &refs.normal_of,
+                &refs.normals,
+                nc,
+                Data::Vec3,
+            ));
+        }
+        soup
     }
-    if !refs.normal_of.is_empty() {
-        a.corner.push(corner_column(
-            "normal",
-            &refs.normal_of,
-            &refs.normals,
-            nc,
-            Data::Vec3,
-        ));
+}
+
+/// `N` numbers, the next tokens; a missing one is an empty token.
+#[inline]
+fn numbers<const N: usize>(
+    t: &mut Tokens<'_>,
+    at: impl Fn() -> Location,
+    what: &str,
+) -> Result<[f64; N], Error> {
+    let mut p = [0.0; N];
+    for c in &mut p {
+        let tok = t.next().unwrap_or_default();
+        *c = parse_f64(tok).ok_or_else(|| Error::syntax(at(), what, tok))?;
     }
-    Ok(soup)
+    Ok(p)
 }
 
 /// A corner column from per-corner references into `values`.

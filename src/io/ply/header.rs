@@ -193,21 +193,7 @@ pub(super) fn header_error(line: u64, message: impl Into<String>) -> Error {
 
 pub(crate) fn parse_header(bytes: &[u8]) -> Result<Header, Error> {
     let mut lines = Lines::new(bytes);
-    match lines.next() {
-        Some(l) if l.trim_ascii() == b"ply" => {}
-        Some(l) => {
-            return Err(Error::syntax(
-                Location::line(1),
-                "the magic line \"ply\"",
-                l,
-            ))
-        }
-        None => {
-            return Err(Error::Empty {
-                at: Location::whole(),
-            })
-        }
-    }
+    check_magic(&mut lines)?;
     let mut encoding = None;
     let mut elements: Vec<Element> = Vec::new();
     let mut nonstandard = Vec::new();
@@ -222,78 +208,16 @@ pub(crate) fn parse_header(bytes: &[u8]) -> Result<Header, Error> {
         let mut t = Tokens::new(line);
         match t.next().unwrap_or_default() {
             b"" | b"comment" | b"obj_info" => {}
-            b"format" => {
-                encoding = Some(match t.next().unwrap_or_default() {
-                    b"ascii" => PlyEncoding::Ascii,
-                    b"binary_little_endian" => PlyEncoding::BinaryLittleEndian,
-                    b"binary_big_endian" => PlyEncoding::BinaryBigEndian,
-                    other => {
-                        return Err(Error::syntax(
-                            Location::line(n),
-                            "ascii, binary_little_endian or binary_big_endian",
-                            other,
-                        ))
-                    }
-                });
-            }
+            b"format" => encoding = Some(parse_format(&mut t, n)?),
             b"element" => {
-                let name = t.next().unwrap_or_default();
-                let tok = t.next().unwrap_or_default();
-                let count = crate::io::text::parse_i64(tok)
-                    .and_then(|c| usize::try_from(c).ok())
-                    .ok_or_else(|| Error::syntax(Location::line(n), "an element count", tok))?;
-                let name = String::from_utf8_lossy(name).into_owned();
-                if name.is_empty() {
-                    return Err(Error::syntax(Location::line(n), "an element name", b""));
-                }
-                if let Some(first) = elements
-                    .iter()
-                    .find(|e| e.name == name && KNOWN.contains(&name.as_str()))
-                {
-                    return Err(header_error(
-                        n,
-                        format!(
-                            "a second {name} element (the first is on line {}); a PLY file has one",
-                            first.line
-                        ),
-                    ));
-                }
-                elements.push(Element {
-                    name,
-                    count,
-                    props: Vec::new(),
-                    line: n,
-                });
+                let element = parse_element(&mut t, n, &elements)?;
+                elements.push(element);
             }
             b"property" => {
                 let Some(element) = elements.last_mut() else {
                     return Err(header_error(n, "a property before any element"));
                 };
-                let ty = t.next().unwrap_or_default();
-                let prop = if ty == b"list" {
-                    let (c, i) = (t.next().unwrap_or_default(), t.next().unwrap_or_default());
-                    let count = Scalar::parse(c).filter(|s| s.is_integer()).ok_or_else(|| {
-                        Error::syntax(Location::line(n), "an integer list count type", c)
-                    })?;
-                    let item = Scalar::parse(i)
-                        .ok_or_else(|| Error::syntax(Location::line(n), "a list item type", i))?;
-                    (count, item, t.next()).2.map(|name| Property {
-                        name: String::from_utf8_lossy(name).into_owned(),
-                        item,
-                        count: Some(count),
-                    })
-                } else {
-                    let item = Scalar::parse(ty)
-                        .ok_or_else(|| Error::syntax(Location::line(n), "a property type", ty))?;
-                    t.next().map(|name| Property {
-                        name: String::from_utf8_lossy(name).into_owned(),
-                        item,
-                        count: None,
-                    })
-                };
-                let prop =
-                    prop.ok_or_else(|| Error::syntax(Location::line(n), "a property name", b""))?;
-                element.props.push(prop);
+                element.props.push(parse_property(&mut t, n)?);
             }
             b"end_header" => break,
             _ if encoding.is_some() && line.is_ascii() => {
@@ -320,4 +244,93 @@ pub(crate) fn parse_header(bytes: &[u8]) -> Result<Header, Error> {
         body_line: lines.line,
         nonstandard,
     })
+}
+
+/// The first line: `ply`.
+fn check_magic(lines: &mut Lines<'_>) -> Result<(), Error> {
+    match lines.next() {
+        Some(l) if l.trim_ascii() == b"ply" => Ok(()),
+        Some(l) => Err(Error::syntax(
+            Location::line(1),
+            "the magic line \"ply\"",
+            l,
+        )),
+        None => Err(Error::Empty {
+            at: Location::whole(),
+        }),
+    }
+}
+
+/// The rest of a `format` line (line `n`): the encoding.
+fn parse_format(t: &mut Tokens<'_>, n: u64) -> Result<PlyEncoding, Error> {
+    Ok(match t.next().unwrap_or_default() {
+        b"ascii" => PlyEncoding::Ascii,
+        b"binary_little_endian" => PlyEncoding::BinaryLittleEndian,
+        b"binary_big_endian" => PlyEncoding::BinaryBigEndian,
+        other => {
+            return Err(Error::syntax(
+                Location::line(n),
+                "ascii, binary_little_endian or binary_big_endian",
+                other,
+            ))
+        }
+    })
+}
+
+/// The rest of an `element` line (line `n`), after `elements`.
+fn parse_element(t: &mut Tokens<'_>, n: u64, elements: &[Element]) -> Result<Element, Error> {
+    let name = t.next().unwrap_or_default();
+    let tok = t.next().unwrap_or_default();
+    let count = crate::io::text::parse_i64(tok)
+        .and_then(|c| usize::try_from(c).ok())
+        .ok_or_else(|| Error::syntax(Location::line(n), "an element count", tok))?;
+    let name = String::from_utf8_lossy(name).into_owned();
+    if name.is_empty() {
+        return Err(Error::syntax(Location::line(n), "an element name", b""));
+    }
+    if let Some(first) = elements
+        .iter()
+        .find(|e| e.name == name && KNOWN.contains(&name.as_str()))
+    {
+        return Err(header_error(
+            n,
+            format!(
+                "a second {name} element (the first is on line {}); a PLY file has one",
+                first.line
+            ),
+        ));
+    }
+    Ok(Element {
+        name,
+        count,
+        props: Vec::new(),
+        line: n,
+    })
+}
+
+/// The rest of a `property` line (line `n`): a scalar or a list.
+fn parse_property(t: &mut Tokens<'_>, n: u64) -> Result<Property, Error> {
+    let ty = t.next().unwrap_or_default();
+    let prop = if ty == b"list" {
+        let (c, i) = (t.next().unwrap_or_default(), t.next().unwrap_or_default());
+        let count = Scalar::parse(c)
+            .filter(|s| s.is_integer())
+            .ok_or_else(|| Error::syntax(Location::line(n), "an integer list count type", c))?;
+        let item = Scalar::parse(i)
+            .ok_or_else(|| Error::syntax(Location::line(n), "a list item type", i))?;
+        t.next().map(|name| Property {
+            name: String::from_utf8_lossy(name).into_owned(),
+            item,
+            count: Some(count),
+        })
+    } else {
+        let item = Scalar::parse(ty)
+            .ok_or_else(|| Error::syntax(Location::line(n), "a property type", ty))?;
+        t.next().map(|name| Property {
+            name: String::from_utf8_lossy(name).into_owned(),
+            item,
+            count: None,
+        })
+    };
+    prop.ok_or_else(|| Error::syntax(Location::line(n), "a property name", b""))
 }
