@@ -52,14 +52,13 @@
 
 use std::f64::consts::PI;
 
-use super::laplacian::{
-    add_scaled, as_triangle, cross, dot, live_faces, norm, polygon, positions, sub, triangle, V3,
-};
+use super::laplacian::{as_triangle, live_faces, polygon, positions, triangle};
 use crate::attr::{Interpolate, VertexAttr};
 use crate::error::{Error, Result};
 use crate::keys::VertexKey;
 use crate::layout::Vid;
 use crate::mesh::Mesh;
+use crate::vec3::{add, add_scaled, angle, cross, dot, norm, sub, V3};
 
 /// The name of the vertex column of mean curvature.
 pub const MEAN_CURVATURE: &str = "mean_curvature";
@@ -174,7 +173,7 @@ pub fn curvature(mesh: &Mesh, options: &CurvatureOptions) -> Result<Curvatures> 
             let v = vs[k].index();
             area[v] += parea[k];
             let (u, w) = (sub(ps[(k + 1) % n], ps[k]), sub(ps[(k + n - 1) % n], ps[k]));
-            let theta = norm(cross(u, w)).atan2(dot(u, w));
+            let theta = angle(u, w);
             angles[v] += theta;
             if len > 0.0 && len.is_finite() {
                 add_scaled(&mut normal[v], newell, theta / len);
@@ -238,11 +237,6 @@ pub fn curvature(mesh: &Mesh, options: &CurvatureOptions) -> Result<Curvatures> 
         }
     }
     Ok(out)
-}
-
-#[inline(always)]
-fn add(a: V3, b: V3) -> V3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
 #[inline]

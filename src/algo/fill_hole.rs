@@ -106,13 +106,14 @@
 
 use std::collections::{BTreeSet, HashMap, HashSet};
 
-use super::laplacian::{cross, dot, norm, sub, LaplaceWeights, V3};
+use super::laplacian::LaplaceWeights;
 use super::progress::Progress;
 use crate::error::{Error, Refusal, Result};
 use crate::keys::{FaceKey, HalfedgeKey, VertexKey};
 use crate::layout::{Eid, Fid, Hid, Vid};
 use crate::mesh::Mesh;
 use crate::ops::refuse;
+use crate::vec3::{add, cross, dot, norm, normalize_or_zero, sub, V3};
 
 const ALGORITHM: &str = "fill_hole";
 const ALGORITHM_ALL: &str = "fill_holes";
@@ -698,15 +699,6 @@ impl Tables {
     }
 }
 
-fn unit(v: V3) -> V3 {
-    let l = norm(v);
-    if l > 0.0 && l.is_finite() {
-        [v[0] / l, v[1] / l, v[2] / l]
-    } else {
-        [0.0; 3]
-    }
-}
-
 /// The diagonals of the least-weight triangulation of the rim, as pairs of
 /// rim indices `(i, k)` with the split corner `m` (`(i, m, k)` a triangle),
 /// in the order to cut them; `None` when every triangulation needs an edge
@@ -732,7 +724,7 @@ fn optimal_triangulation(
     outer.clear();
     outer.extend(
         rim.iter()
-            .map(|&h| unit(mesh.loop_normal(h.twin()).unwrap_or([0.0; 3]))),
+            .map(|&h| normalize_or_zero(mesh.loop_normal(h.twin()).unwrap_or([0.0; 3]))),
     );
     let blocked = existing_diagonals(mesh, rim);
     let at = |i: usize, k: usize| i * n + k;
@@ -780,7 +772,7 @@ fn optimal_triangulation(
                 if bound.cannot_beat(best) {
                     continue;
                 }
-                let tri = unit(c);
+                let tri = normalize_or_zero(c);
                 let n_left = if m == i + 1 {
                     outer[i]
                 } else {
@@ -1046,7 +1038,7 @@ fn flip_keeps_shape(mesh: &Mesh, [a, b, c, d]: [Vid; 4]) -> bool {
     let [pa, pb, pc, pd] = [a, b, c, d].map(|v| point(mesh, v));
     let n1 = cross(sub(pb, pa), sub(pc, pa));
     let n2 = cross(sub(pa, pb), sub(pd, pb));
-    let old = [n1[0] + n2[0], n1[1] + n2[1], n1[2] + n2[2]];
+    let old = add(n1, n2);
     let m1 = cross(sub(pa, pc), sub(pd, pc));
     let m2 = cross(sub(pb, pd), sub(pc, pd));
     dot(m1, old) > 0.0 && dot(m2, old) > 0.0 && dot(m1, m2) > 0.0
@@ -1060,7 +1052,7 @@ fn relax(mesh: &mut Mesh, work: &Work) -> Result<()> {
             let mut count = 0.0;
             for g in mesh.outgoing(v) {
                 let q = point(mesh, mesh.dest(g));
-                sum = [sum[0] + q[0], sum[1] + q[1], sum[2] + q[2]];
+                sum = add(sum, q);
                 count += 1.0;
             }
             if count > 0.0 {

@@ -119,7 +119,8 @@ use crate::layout::{Eid, Fid, Hid, Vid};
 // crate-private doors run unrecorded; the run is one unit through replace_with.
 use crate::journal::Unrecorded;
 use crate::mesh::Mesh;
-use bvh::{dot, sub, Bvh, Segment, Triangle, V3};
+use crate::vec3::{cross, dist2, dot, sub, V3};
+use bvh::{Bvh, Segment, Triangle};
 
 use super::progress::Progress;
 
@@ -732,21 +733,6 @@ fn triangle_normal(mesh: &Mesh, pos: &[V3], h: Hid) -> V3 {
     let b = pos[mesh.origin(n).index()];
     let c = pos[mesh.origin(mesh.next(n)).index()];
     cross(sub(b, a), sub(c, a))
-}
-
-#[inline(always)]
-fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-#[inline(always)]
-fn dist2(a: V3, b: V3) -> f64 {
-    let d = sub(a, b);
-    dot(d, d)
 }
 
 /// The mean length of the live edges.
