@@ -780,11 +780,14 @@ impl Engine {
                 }
                 let (a, b) = (mesh.he[c.h].origin, mesh.he[c.h.twin()].origin);
                 let hk = mesh.hkey(c.h);
-                if crate::journal::journaled!(mesh.collapse_unvalidated(c.h, c.t, Some(c.p)))
-                    .is_err()
-                {
-                    report.refused.topology += 1;
-                    continue;
+                match crate::journal::journaled!(mesh.collapse_unvalidated(c.h, c.t, Some(c.p))) {
+                    Ok(_) => {}
+                    // A column's rule failed: so does the decimation.
+                    Err(e @ Error::Rule { .. }) => return Err(e),
+                    Err(_) => {
+                        report.refused.topology += 1;
+                        continue;
+                    }
                 }
                 let qa = self.quadrics[a.index()];
                 self.quadrics[b.index()].add_assign(&qa);

@@ -327,6 +327,15 @@ pub struct RemeshReport {
 pub fn remesh(
     mesh: &mut Mesh,
     options: &RemeshOptions,
+    progress: Progress<'_>,
+) -> Result<RemeshReport> {
+    mesh.as_one_step("Remesh", |mesh| remesh_run(mesh, options, progress))
+}
+
+/// [`remesh`] itself, inside its step.
+fn remesh_run(
+    mesh: &mut Mesh,
+    options: &RemeshOptions,
     mut progress: Progress<'_>,
 ) -> Result<RemeshReport> {
     let setup = Setup::new(mesh, options)?;

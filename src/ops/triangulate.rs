@@ -4,7 +4,7 @@
 use super::ear_clip::{self, clip_ears, inside, QUEUED_FROM};
 use super::refuse;
 use crate::error::{Refusal, Result};
-use crate::journal::{journaled, Journaling};
+use crate::journal::{journaled, Journaling, Recorded};
 use crate::keys::FaceKey;
 use crate::layout::{Fid, Hid};
 use crate::mesh::Mesh;
@@ -295,7 +295,9 @@ impl Mesh {
     /// [`triangulate`](Mesh::triangulate)).
     ///
     /// Returns the faces that could not be cut (every way needed an existing
-    /// edge); they are left as they were. χ is unchanged.
+    /// edge); they are left as they were. χ is unchanged. When a column's
+    /// [rule fails](crate::attr::Rule::FALLIBLE), no face is cut: all are
+    /// returned.
     ///
     /// # Complexity
     /// O(Σ cost of `triangulate` per face).
@@ -307,7 +309,16 @@ impl Mesh {
     /// assert_eq!(mesh.face_count(), 12);
     /// ```
     pub fn triangulate_all(&mut self) -> Vec<FaceKey> {
-        journaled!(self.triangulate_all_with())
+        if self.attrs.may_fail() {
+            let all = self
+                .faces()
+                .filter(|&f| self.face_degree(f.id()) > 3)
+                .collect();
+            return self
+                .transaction(|m| Ok(m.triangulate_all_with::<Recorded>()))
+                .unwrap_or(all);
+        }
+        journaled!(unguarded self.triangulate_all_with())
     }
 
     /// [`triangulate_all`](Mesh::triangulate_all)'s body, in journaling mode `J`.
