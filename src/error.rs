@@ -1,6 +1,7 @@
 //! Error types. Every error names what was wrong and where.
 
 use std::fmt;
+use std::sync::Arc;
 
 use crate::keys::{AnyKey, ElementKind};
 
@@ -125,6 +126,19 @@ pub enum Error {
     /// setters) breaks a structural rule.
     #[error(transparent)]
     Invalid(#[from] ValidationError),
+    /// Occurs when a column's rule failed (a
+    /// [fallible rule](crate::attr::Rule::FALLIBLE) returned an error): the
+    /// operator, algorithm or transaction that ran it changed nothing.
+    #[error("the rule of the {kind} attribute {column:?} failed: {error}; the mesh is unchanged")]
+    Rule {
+        /// The arena of the column.
+        kind: ElementKind,
+        /// The column's name.
+        column: String,
+        /// What the rule said.
+        #[source]
+        error: RuleError,
+    },
 }
 
 /// Why an operator refused. The mesh is left exactly as it was.
@@ -313,6 +327,80 @@ impl fmt::Display for ValidationError {
 }
 
 impl std::error::Error for ValidationError {}
+
+/// Why a [fallible rule](crate::attr::Rule::FALLIBLE) gave no value: a
+/// message, and the error that caused it, if any, kept whole so that the
+/// caller of the failed edit can take it back out of [`Error::Rule`]
+/// (a language binding re-raises its own exception this way).
+///
+/// ```
+/// use meshloom::error::RuleError;
+/// let e = RuleError::from_source(std::fmt::Error);
+/// assert_eq!(e.message(), "an error occurred when formatting an argument");
+/// assert!(e.cause().unwrap().downcast_ref::<std::fmt::Error>().is_some());
+/// assert_eq!(RuleError::new("no labels to merge").to_string(), "no labels to merge");
+/// ```
+#[derive(Clone, Debug)]
+pub struct RuleError {
+    message: String,
+    cause: Option<Arc<dyn std::error::Error + Send + Sync + 'static>>,
+}
+
+impl RuleError {
+    /// An error that says `message`.
+    pub fn new(message: impl Into<String>) -> RuleError {
+        RuleError {
+            message: message.into(),
+            cause: None,
+        }
+    }
+
+    /// An error caused by `cause`, saying what it says.
+    pub fn from_source(cause: impl std::error::Error + Send + Sync + 'static) -> RuleError {
+        RuleError {
+            message: cause.to_string(),
+            cause: Some(Arc::new(cause)),
+        }
+    }
+
+    /// What the rule said.
+    pub fn message(&self) -> &str {
+        &self.message
+    }
+
+    /// The error that caused it, if it was made by
+    /// [`from_source`](RuleError::from_source): downcast it to get it back.
+    pub fn cause(&self) -> Option<&(dyn std::error::Error + Send + Sync + 'static)> {
+        self.cause.as_deref()
+    }
+}
+
+impl PartialEq for RuleError {
+    /// The same message and the same cause (the very same error object, or
+    /// none).
+    fn eq(&self, other: &Self) -> bool {
+        self.message == other.message
+            && match (&self.cause, &other.cause) {
+                (None, None) => true,
+                (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+                _ => false,
+            }
+    }
+}
+
+impl fmt::Display for RuleError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for RuleError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        self.cause
+            .as_deref()
+            .map(|e| e as &(dyn std::error::Error + 'static))
+    }
+}
 
 /// The result type of meshloom's fallible operations.
 pub type Result<T, E = Error> = std::result::Result<T, E>;

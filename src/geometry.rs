@@ -60,6 +60,7 @@ use crate::error::{Error, Result};
 use crate::keys::{EdgeKey, FaceKey, VertexKey};
 use crate::layout::Vid;
 use crate::mesh::Mesh;
+use crate::vec3::{newell_edge, norm, normalize_or_zero, sub};
 
 /// A 3D point type that geometry code can read and write as `[f64; 3]`.
 ///
@@ -255,16 +256,6 @@ mod nalgebra_points {
     nalgebra_point!(nalgebra::Vector3<f64>, f64, F64);
 }
 
-#[inline]
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-#[inline]
-fn norm(a: [f64; 3]) -> f64 {
-    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
-}
-
 impl Mesh {
     /// The coordinates of vertex slot `v` in a point column.
     fn point_in<P: Point + Attribute, R: Rule<P>>(
@@ -289,9 +280,7 @@ impl Mesh {
         for he in self.face_loop(fs) {
             let a = self.point_in(h, self.origin(he))?;
             let b = self.point_in(h, self.dest(he))?;
-            n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-            n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-            n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+            newell_edge(&mut n, a, b);
         }
         Ok(n)
     }
@@ -323,9 +312,7 @@ impl Mesh {
         h: &Attr<VertexKey, P, R>,
         f: FaceKey,
     ) -> Result<[f64; 3]> {
-        let n = self.newell_in(h, f)?;
-        let l = norm(n);
-        Ok(if l > 0.0 { n.map(|c| c / l) } else { [0.0; 3] })
+        Ok(normalize_or_zero(self.newell_in(h, f)?))
     }
 
     /// The area of face `f` (exact for planar polygons) in the point column

@@ -145,6 +145,7 @@ pub mod stats;
 mod store;
 pub mod traverse;
 pub mod validate;
+mod vec3;
 pub mod view;
 
 pub use build::{Built, IndexMaps, Polygons, PolygonsRef, VertexIndex};

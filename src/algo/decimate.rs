@@ -87,9 +87,10 @@ use crate::attr::{EdgeAttr, VertexAttr};
 use crate::error::{Error, Result};
 use crate::layout::{Eid, Hid, Vid};
 use crate::mesh::Mesh;
+use crate::vec3::{self, cross, dot, sub, V3};
 use attributes::AttrError;
 pub use lod::{lod_chain, replay, LodChain, LodLevel, LodOptions};
-use quadric::{cross, dot, sub, Quadric, Q64, V3};
+use quadric::{Quadric, Q64};
 
 use super::progress::Progress;
 
@@ -486,7 +487,7 @@ impl Engine {
 
     #[inline(always)]
     fn unit(&self, p: V3) -> V3 {
-        quadric::scale(sub(p, self.centre), self.inv_scale)
+        vec3::scale(sub(p, self.centre), self.inv_scale)
     }
 
     /// The cost of collapsing into `p` (unit box, squared).
@@ -519,14 +520,14 @@ impl Engine {
         let (h, p, t) = match (ka, kb) {
             (FREE, FREE) => {
                 let best = q.minimiser().map(|x| {
-                    let p = quadric::add(quadric::scale(x, self.scale), self.centre);
+                    let p = vec3::add(vec3::scale(x, self.scale), self.centre);
                     (p, projection(pa, pb, p))
                 });
                 match best {
                     Some((p, t)) if p.iter().all(|c| c.is_finite()) => (h0, p, t),
                     _ => {
                         // Singular: the best of a, b and the midpoint.
-                        let mid = quadric::scale(quadric::add(pa, pb), 0.5);
+                        let mid = vec3::scale(vec3::add(pa, pb), 0.5);
                         let mut out = (h0, pb, 1.0);
                         let mut best = f64::INFINITY;
                         for (p, t) in [(pb, 1.0), (pa, 0.0), (mid, 0.5)] {
@@ -544,7 +545,7 @@ impl Engine {
             (_, FREE) => (h1, pa, 1.0),
             (LINE, LINE) if self.on_line(e) => {
                 let t = q.best_on_segment(self.unit(pa), self.unit(pb));
-                let p = quadric::add(pa, quadric::scale(sub(pb, pa), t));
+                let p = vec3::add(pa, vec3::scale(sub(pb, pa), t));
                 (h0, p, t)
             }
             (LINE, FIXED) if self.on_line(e) => (h0, pb, 1.0),
@@ -777,11 +778,14 @@ impl Engine {
                 }
                 let (a, b) = (mesh.he[c.h].origin, mesh.he[c.h.twin()].origin);
                 let hk = mesh.hkey(c.h);
-                if crate::journal::journaled!(mesh.collapse_unvalidated(c.h, c.t, Some(c.p)))
-                    .is_err()
-                {
-                    report.refused.topology += 1;
-                    continue;
+                match crate::journal::journaled!(mesh.collapse_unvalidated(c.h, c.t, Some(c.p))) {
+                    Ok(_) => {}
+                    // A column's rule failed: so does the decimation.
+                    Err(e @ Error::Rule { .. }) => return Err(e),
+                    Err(_) => {
+                        report.refused.topology += 1;
+                        continue;
+                    }
                 }
                 let qa = self.quadrics[a.index()];
                 self.quadrics[b.index()].add_assign(&qa);

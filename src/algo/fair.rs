@@ -62,8 +62,7 @@ use std::collections::hash_map::Entry;
 use std::collections::{HashMap, HashSet};
 
 use super::laplacian::{
-    laplacian_at, mass_matrix_at, norm, polygon, positions, sub, triangle, LaplaceWeights,
-    LaplacianOptions, V3,
+    laplacian_at, mass_matrix_at, polygon, positions, triangle, LaplaceWeights, LaplacianOptions,
 };
 use super::progress::Progress;
 use super::sparse::{solve_spd, LowerCsc, AVAILABLE};
@@ -72,6 +71,7 @@ use crate::error::{Error, Result};
 use crate::keys::VertexKey;
 use crate::layout::{IdVec, Vid};
 use crate::mesh::Mesh;
+use crate::vec3::{norm, sub, V3};
 
 const ALGORITHM: &str = "fair";
 

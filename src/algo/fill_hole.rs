@@ -105,13 +105,14 @@
 
 use std::collections::{BTreeSet, HashMap, HashSet};
 
-use super::laplacian::{cross, dot, norm, sub, LaplaceWeights, V3};
+use super::laplacian::LaplaceWeights;
 use super::progress::Progress;
 use crate::error::{Error, Refusal, Result};
 use crate::keys::{FaceKey, HalfedgeKey, VertexKey};
 use crate::layout::{Eid, Fid, Hid, Vid};
 use crate::mesh::Mesh;
 use crate::ops::refuse;
+use crate::vec3::{add, cross, dot, norm, normalize_or_zero, sub, V3};
 
 const ALGORITHM: &str = "fill_hole";
 const ALGORITHM_ALL: &str = "fill_holes";
@@ -676,33 +677,144 @@ impl Weight {
     }
 }
 
-/// The dynamic programme's tables, kept between the holes of one call.
+/// The dynamic programme's tables, kept between the holes of one call. Entry
+/// `(i, k)` (at `i * n + k`) is the sub-polygon of rim corners `i..=k`: its
+/// least weight, the corner its last triangle `(i, m, k)` splits it at, and
+/// that triangle's unit normal.
 #[derive(Default)]
 struct Tables {
+    /// The number of rim corners.
+    n: usize,
     weight: Vec<Weight>,
     split: Vec<u32>,
     normal: Vec<V3>,
+    /// The rim corners' positions.
     pos: Vec<V3>,
+    /// The unit normals of the faces across the rim edges.
     outer: Vec<V3>,
 }
 
 impl Tables {
-    fn reset(&mut self, n: usize) {
+    /// Empties the tables for the rim `rim` and reads its corners and the
+    /// faces across it.
+    fn load(&mut self, mesh: &Mesh, rim: &[Hid], p: &[V3]) {
+        let n = rim.len();
+        self.n = n;
         self.weight.clear();
         self.weight.resize(n * n, Weight::NONE);
         self.split.clear();
         self.split.resize(n * n, u32::MAX);
         self.normal.clear();
         self.normal.resize(n * n, [0.0; 3]);
+        self.pos.clear();
+        self.pos
+            .extend(rim.iter().map(|&h| p[mesh.origin(h).index()]));
+        self.outer.clear();
+        self.outer.extend(
+            rim.iter()
+                .map(|&h| normalize_or_zero(mesh.loop_normal(h.twin()).unwrap_or([0.0; 3]))),
+        );
+        // A rim edge is a sub-polygon of two corners: weightless.
+        for i in 0..n - 1 {
+            self.weight[i * n + i + 1] = Weight {
+                angle: 0.0,
+                area: 0.0,
+                len: 0.0,
+            };
+        }
     }
-}
 
-fn unit(v: V3) -> V3 {
-    let l = norm(v);
-    if l > 0.0 && l.is_finite() {
-        [v[0] / l, v[1] / l, v[2] / l]
-    } else {
-        [0.0; 3]
+    /// Fills entry `(i, k)` from the entries of the shorter sub-polygons,
+    /// trying every split corner `m` between them; `closing` when `(i, k)`
+    /// is the whole rim (its diagonal is the rim edge `n − 1 → 0`).
+    #[inline]
+    fn fill(&mut self, i: usize, k: usize, closing: bool) {
+        let n = self.n;
+        let at = |i: usize, k: usize| i * n + k;
+        let Tables {
+            weight,
+            split,
+            normal,
+            pos,
+            outer,
+            ..
+        } = self;
+        let d = sub(pos[k], pos[i]);
+        let diagonal = if closing { 0.0 } else { dot(d, d) };
+        let mut best = Weight::NONE;
+        let (mut best_m, mut best_n) = (u32::MAX, [0.0; 3]);
+        for m in i + 1..k {
+            let (left, right) = (weight[at(i, m)], weight[at(m, k)]);
+            if left.is_none() || right.is_none() {
+                continue;
+            }
+            // Every term only grows from here: skip the triangle when
+            // even this bound loses.
+            let bound = Weight {
+                angle: left.angle.max(right.angle),
+                area: left.area + right.area,
+                len: left.len + right.len + diagonal,
+            };
+            if bound.cannot_beat(best) {
+                continue;
+            }
+            let c = cross(sub(pos[m], pos[i]), d);
+            let area2 = dot(c, c);
+            // The area is known before the angles (a square root and
+            // a division): the bound with it may lose already.
+            let bound = Weight {
+                area: bound.area + area2,
+                ..bound
+            };
+            if bound.cannot_beat(best) {
+                continue;
+            }
+            let tri = normalize_or_zero(c);
+            let n_left = if m == i + 1 {
+                outer[i]
+            } else {
+                normal[at(i, m)]
+            };
+            let n_right = if k == m + 1 {
+                outer[m]
+            } else {
+                normal[at(m, k)]
+            };
+            let mut angle = bound
+                .angle
+                .max(1.0 - dot(tri, n_left))
+                .max(1.0 - dot(tri, n_right));
+            if closing {
+                angle = angle.max(1.0 - dot(tri, outer[n - 1]));
+            }
+            let w = Weight { angle, ..bound };
+            if w.better_than(best) {
+                best = w;
+                best_m = m as u32;
+                best_n = tri;
+            }
+        }
+        weight[at(i, k)] = best;
+        split[at(i, k)] = best_m;
+        normal[at(i, k)] = best_n;
+    }
+
+    /// The triangles `(i, m, k)` of the whole rim's best triangulation, read
+    /// back from the split corners, each before the two it splits off.
+    fn triangles(&self) -> Vec<(u32, u32, u32)> {
+        let n = self.n;
+        let mut out = Vec::with_capacity(n - 2);
+        let mut stack = vec![(0usize, n - 1)];
+        while let Some((i, k)) = stack.pop() {
+            if k < i + 2 {
+                continue;
+            }
+            let m = self.split[i * n + k];
+            out.push((i as u32, m, k as u32));
+            stack.push((i, m as usize));
+            stack.push((m as usize, k));
+        }
+        out
     }
 }
 
@@ -717,31 +829,8 @@ fn optimal_triangulation(
     tables: &mut Tables,
 ) -> Option<Vec<(u32, u32, u32)>> {
     let n = rim.len();
-    tables.reset(n);
-    let Tables {
-        weight,
-        split,
-        normal,
-        pos,
-        outer,
-    } = tables;
-    pos.clear();
-    pos.extend(rim.iter().map(|&h| p[mesh.origin(h).index()]));
-    // The normals of the faces across the rim edges.
-    outer.clear();
-    outer.extend(
-        rim.iter()
-            .map(|&h| unit(mesh.loop_normal(h.twin()).unwrap_or([0.0; 3]))),
-    );
+    tables.load(mesh, rim, p);
     let blocked = existing_diagonals(mesh, rim);
-    let at = |i: usize, k: usize| i * n + k;
-    for i in 0..n - 1 {
-        weight[at(i, i + 1)] = Weight {
-            angle: 0.0,
-            area: 0.0,
-            len: 0.0,
-        };
-    }
     for len in 2..n {
         for i in 0..n - len {
             let k = i + len;
@@ -749,81 +838,14 @@ fn optimal_triangulation(
             if !closing && blocked.contains(&(i as u32, k as u32)) {
                 continue;
             }
-            let d = sub(pos[k], pos[i]);
-            let diagonal = if closing { 0.0 } else { dot(d, d) };
-            let mut best = Weight::NONE;
-            let (mut best_m, mut best_n) = (u32::MAX, [0.0; 3]);
-            for m in i + 1..k {
-                let (left, right) = (weight[at(i, m)], weight[at(m, k)]);
-                if left.is_none() || right.is_none() {
-                    continue;
-                }
-                // Every term only grows from here: skip the triangle when
-                // even this bound loses.
-                let bound = Weight {
-                    angle: left.angle.max(right.angle),
-                    area: left.area + right.area,
-                    len: left.len + right.len + diagonal,
-                };
-                if bound.cannot_beat(best) {
-                    continue;
-                }
-                let c = cross(sub(pos[m], pos[i]), d);
-                let area2 = dot(c, c);
-                // The area is known before the angles (a square root and
-                // a division): the bound with it may lose already.
-                let bound = Weight {
-                    area: bound.area + area2,
-                    ..bound
-                };
-                if bound.cannot_beat(best) {
-                    continue;
-                }
-                let tri = unit(c);
-                let n_left = if m == i + 1 {
-                    outer[i]
-                } else {
-                    normal[at(i, m)]
-                };
-                let n_right = if k == m + 1 {
-                    outer[m]
-                } else {
-                    normal[at(m, k)]
-                };
-                let mut angle = bound
-                    .angle
-                    .max(1.0 - dot(tri, n_left))
-                    .max(1.0 - dot(tri, n_right));
-                if closing {
-                    angle = angle.max(1.0 - dot(tri, outer[n - 1]));
-                }
-                let w = Weight { angle, ..bound };
-                if w.better_than(best) {
-                    best = w;
-                    best_m = m as u32;
-                    best_n = tri;
-                }
-            }
-            weight[at(i, k)] = best;
-            split[at(i, k)] = best_m;
-            normal[at(i, k)] = best_n;
+            tables.fill(i, k, closing);
         }
     }
-    if weight[at(0, n - 1)].is_none() {
+    // Entry (0, n − 1), the whole rim.
+    if tables.weight[n - 1].is_none() {
         return None;
     }
-    let mut out = Vec::with_capacity(n - 2);
-    let mut stack = vec![(0usize, n - 1)];
-    while let Some((i, k)) = stack.pop() {
-        if k < i + 2 {
-            continue;
-        }
-        let m = split[at(i, k)];
-        out.push((i as u32, m, k as u32));
-        stack.push((i, m as usize));
-        stack.push((m as usize, k));
-    }
-    Some(out)
+    Some(tables.triangles())
 }
 
 /// Pairs of rim indices `(i, j)`, `i < j`, not neighbours on the rim, that
@@ -1045,7 +1067,7 @@ fn flip_keeps_shape(mesh: &Mesh, [a, b, c, d]: [Vid; 4]) -> bool {
     let [pa, pb, pc, pd] = [a, b, c, d].map(|v| point(mesh, v));
     let n1 = cross(sub(pb, pa), sub(pc, pa));
     let n2 = cross(sub(pa, pb), sub(pd, pb));
-    let old = [n1[0] + n2[0], n1[1] + n2[1], n1[2] + n2[2]];
+    let old = add(n1, n2);
     let m1 = cross(sub(pa, pc), sub(pd, pc));
     let m2 = cross(sub(pb, pd), sub(pc, pd));
     dot(m1, old) > 0.0 && dot(m2, old) > 0.0 && dot(m1, m2) > 0.0
@@ -1059,7 +1081,7 @@ fn relax(mesh: &mut Mesh, work: &Work) -> Result<()> {
             let mut count = 0.0;
             for g in mesh.outgoing(v) {
                 let q = point(mesh, mesh.dest(g));
-                sum = [sum[0] + q[0], sum[1] + q[1], sum[2] + q[2]];
+                sum = add(sum, q);
                 count += 1.0;
             }
             if count > 0.0 {

@@ -49,39 +49,7 @@
 use crate::error::{Error, Result};
 use crate::layout::{Fid, Hid, IdVec, Vid};
 use crate::mesh::Mesh;
-
-pub(crate) type V3 = [f64; 3];
-
-#[inline(always)]
-pub(crate) fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-#[inline(always)]
-pub(crate) fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-#[inline(always)]
-pub(crate) fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-#[inline(always)]
-pub(crate) fn norm(a: V3) -> f64 {
-    dot(a, a).sqrt()
-}
-
-#[inline(always)]
-pub(crate) fn add_scaled(acc: &mut V3, v: V3, w: f64) {
-    acc[0] += v[0] * w;
-    acc[1] += v[1] * w;
-    acc[2] += v[2] * w;
-}
+use crate::vec3::{add_scaled, cross, dot, norm, sub, V3};
 
 /// A triangle is degenerate when its doubled area is at most this times the
 /// sum of its squared edge lengths.

@@ -73,6 +73,9 @@ use crate::error::{Error, Result};
 use crate::keys::{FaceKey, HalfedgeKey, VertexKey};
 use crate::layout::Fid;
 use crate::mesh::Mesh;
+use crate::vec3::{
+    add_scaled, angle, cross, dot, newell_edge, norm, normalize_or_zero_recip as unit, sub, V3,
+};
 
 /// The name of the columns the `add_*` functions write.
 pub const NORMAL: &str = "normal";
@@ -148,61 +151,6 @@ impl CornerNormalOptions {
     }
 }
 
-// ----- small vector helpers ---------------------------------------------------
-
-type V3 = [f64; 3];
-
-#[inline(always)]
-fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-#[inline(always)]
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-#[inline(always)]
-fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-#[inline(always)]
-fn add_scaled(acc: &mut V3, v: V3, w: f64) {
-    acc[0] += v[0] * w;
-    acc[1] += v[1] * w;
-    acc[2] += v[2] * w;
-}
-
-#[inline(always)]
-fn norm(a: V3) -> f64 {
-    dot(a, a).sqrt()
-}
-
-/// `a / |a|`, or zero when `a` has no finite, non-zero length: one square
-/// root, one division and three multiplications (the reciprocal of the
-/// length times each component, within an ulp or so of three divisions).
-#[inline(always)]
-fn unit(a: V3) -> V3 {
-    let l = norm(a);
-    if l > 0.0 && l.is_finite() {
-        let inv = 1.0 / l;
-        [a[0] * inv, a[1] * inv, a[2] * inv]
-    } else {
-        [0.0; 3]
-    }
-}
-
-/// The angle between `a` and `b`, in `[0, π]` (0 when either is zero).
-#[inline(always)]
-fn angle(a: V3, b: V3) -> f64 {
-    norm(cross(a, b)).atan2(dot(a, b))
-}
-
 /// `(−1)^k / (2k + 1)`: `atan u ≈ u Σ ATAN_SERIES[k] u^2k` for small `u`
 /// (six terms: the first omitted one, `u¹³ / 13`, bounds the error of this
 /// alternating series).
@@ -273,10 +221,7 @@ fn newell(p: &[V3], corners: &[usize]) -> V3 {
     let mut n = [0.0; 3];
     let k = corners.len();
     for i in 0..k {
-        let (a, b) = (p[corners[i]], p[corners[(i + 1) % k]]);
-        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+        newell_edge(&mut n, p[corners[i]], p[corners[(i + 1) % k]]);
     }
     n
 }

@@ -114,7 +114,8 @@ use crate::layout::{Eid, Fid, Hid, Vid};
 // crate-private doors run unrecorded; the run is one unit through replace_with.
 use crate::journal::Unrecorded;
 use crate::mesh::Mesh;
-use bvh::{dot, sub, Bvh, Segment, Triangle, V3};
+use crate::vec3::{cross, dist2, dot, sub, V3};
+use bvh::{Bvh, Segment, Triangle};
 
 use super::progress::Progress;
 
@@ -319,6 +320,15 @@ pub struct RemeshReport {
 /// # Ok::<(), meshloom::Error>(())
 /// ```
 pub fn remesh(
+    mesh: &mut Mesh,
+    options: &RemeshOptions,
+    progress: Progress<'_>,
+) -> Result<RemeshReport> {
+    mesh.as_one_step("Remesh", |mesh| remesh_run(mesh, options, progress))
+}
+
+/// [`remesh`] itself, inside its step.
+fn remesh_run(
     mesh: &mut Mesh,
     options: &RemeshOptions,
     mut progress: Progress<'_>,
@@ -727,21 +737,6 @@ fn triangle_normal(mesh: &Mesh, pos: &[V3], h: Hid) -> V3 {
     let b = pos[mesh.origin(n).index()];
     let c = pos[mesh.origin(mesh.next(n)).index()];
     cross(sub(b, a), sub(c, a))
-}
-
-#[inline(always)]
-fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-#[inline(always)]
-fn dist2(a: V3, b: V3) -> f64 {
-    let d = sub(a, b);
-    dot(d, d)
 }
 
 /// The mean length of the live edges.

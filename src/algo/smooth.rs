@@ -54,8 +54,7 @@
 //! ```
 
 use super::laplacian::{
-    add_scaled, as_triangle, cross, dot, laplacian_at, live_faces, mass_matrix_at, norm, positions,
-    sub, Laplacian, LaplacianOptions, V3,
+    as_triangle, laplacian_at, live_faces, mass_matrix_at, positions, Laplacian, LaplacianOptions,
 };
 use super::progress::Progress;
 use super::sparse::{solve_spd, LowerCsc};
@@ -65,6 +64,7 @@ use crate::error::{Error, Result};
 use crate::keys::ElementKind;
 use crate::layout::Vid;
 use crate::mesh::Mesh;
+use crate::vec3::{add_scaled, cross, dot, norm, sub, V3};
 
 const ALGORITHM: &str = "smooth";
 

@@ -18,7 +18,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 #[cfg(feature = "sparse")]
 use faer::{Mat, Side};
 
-use super::laplacian::V3;
+use crate::vec3::V3;
 
 /// The lower triangle of a symmetric matrix in compressed columns, built
 /// one column at a time with rows in increasing order (diagonal first).

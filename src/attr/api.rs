@@ -13,13 +13,31 @@ use crate::store::rule::Rule;
 use crate::store::rules::Interpolate;
 use crate::store::{Attribute, Column, Columns, Dynamic, Value, ValueType};
 
-/// What [`Mesh::attr_info`] tells about one column.
+/// What [`Mesh::attr_info`] tells about one column: enough to pick the
+/// typed handle ([`Mesh::attr_handle`]) that reads it, without trying each.
+///
+/// ```
+/// use meshloom::attr::{Conserved, Rule};
+/// use meshloom::{ElementKind, VertexKey};
+/// let mut mesh = meshloom::shapes::cube();
+/// mesh.add_attr_with_rule::<VertexKey, f64, Conserved>("mass")?;
+/// let info = mesh.attr_info(ElementKind::Vertex);
+/// assert_eq!((info[0].name.as_str(), info[0].rule), ("position", "Interpolate"));
+/// assert_eq!((info[1].name.as_str(), info[1].type_name, info[1].rule), ("mass", "f64", "Conserved"));
+/// assert_eq!(info[1].rule, <Conserved as Rule<f64>>::name());
+/// # Ok::<(), meshloom::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct AttrInfo {
     /// The column's name.
     pub name: String,
-    /// The Rust value type's name (`f64`, `meshloom::attr::Value`, ...).
+    /// The Rust value type's name (`f64`, `meshloom::attr::Value`, ...:
+    /// [`std::any::type_name`] of it).
     pub type_name: &'static str,
+    /// The name of the column's rule ([`Rule::name`]): `"Interpolate"`,
+    /// `"Conserved"`, `"Contagion"`, `"Incompatible"`, `"KeepFirst"`,
+    /// `"Discard"`, `"Dynamic"` for the stock rules; a custom rule's own.
+    pub rule: &'static str,
     /// The dynamic type its values convert to, if they do (the declared
     /// type of a dynamic column).
     pub value_type: Option<ValueType>,
@@ -274,6 +292,7 @@ impl Mesh {
                 AttrInfo {
                     name: name.clone(),
                     type_name: c.type_name(),
+                    rule: c.rule_name(),
                     value_type: if dynamic {
                         m.value_type
                     } else {

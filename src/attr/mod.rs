@@ -60,6 +60,7 @@ mod infer;
 pub(crate) mod registry;
 mod view;
 
+pub use crate::error::RuleError;
 pub use crate::store::{rule, rules};
 pub use crate::store::{Attribute, Column, POSITION};
 pub use crate::store::{Dynamic, Value, ValueType};

@@ -31,6 +31,7 @@ use super::soup::Soup;
 use super::text::{capped, parse_f64, Lines, Tokens};
 use super::{emit, polygons_of, slurp, ReadOptions};
 use crate::mesh::Mesh;
+use crate::vec3::{cross, normalize_or_zero, sub};
 
 const FORMAT: super::Format = super::Format::Stl;
 use crate::repair::RepairReport;
@@ -86,19 +87,7 @@ pub fn write_stl(mesh: &Mesh, writer: impl Write, encoding: StlEncoding) -> Resu
     let tris = triangle_indices(mesh, &maps);
     let normal = |t: &[u32; 3]| {
         let [a, b, c] = t.map(|i| positions[i as usize].map(f64::from));
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
-        let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        if l > 0.0 && l.is_finite() {
-            n.map(|x| (x / l) as f32)
-        } else {
-            [0.0; 3]
-        }
+        normalize_or_zero(cross(sub(b, a), sub(c, a))).map(|x| x as f32)
     };
     let mut out = Vec::new();
     match encoding {

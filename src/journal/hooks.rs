@@ -45,9 +45,20 @@ impl Journaling for Unrecorded {
 
 /// Run an operator body generic over [`Journaling`] in the mode the mesh
 /// is in: `journaled!(self.body(args..))` calls `self.body::<Recorded>`
-/// while a recorder exists, `self.body::<Unrecorded>` otherwise.
+/// while a recorder exists, `self.body::<Unrecorded>` otherwise; on a mesh
+/// with a column whose rule can fail, as a transaction, so that a rule's
+/// failure refuses the operator (its body returns a `Result`) and leaves
+/// the mesh unchanged. `journaled!(unguarded self.body(args..))` leaves
+/// that to the caller.
 macro_rules! journaled {
     ($m:ident . $body:ident ( $($arg:expr),* $(,)? )) => {
+        if $m.attrs.may_fail() {
+            $m.transaction(|m| m.$body::<$crate::journal::Recorded>($($arg),*))
+        } else {
+            $crate::journal::journaled!(unguarded $m.$body($($arg),*))
+        }
+    };
+    (unguarded $m:ident . $body:ident ( $($arg:expr),* $(,)? )) => {
         if $m.rec.is_some() {
             $m.$body::<$crate::journal::Recorded>($($arg),*)
         } else {

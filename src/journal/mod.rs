@@ -470,6 +470,10 @@ impl Mesh {
     /// swallows rolls back only the inner part. With history on, a
     /// committed transaction is one undo unit.
     ///
+    /// A [rule that can fail](crate::attr::Rule::FALLIBLE) and fails inside
+    /// `f` fails the transaction with [`Error::Rule`](crate::Error::Rule),
+    /// and every transaction around it, even where `f` ignored the error.
+    ///
     /// Built on the undo log: rollback undoes to a mark, so its cost is
     /// the size of what was done, not of the mesh. A committed transaction
     /// that edited drops the redo branch, as any edit does; a failed one
@@ -506,6 +510,16 @@ impl Mesh {
             r.group_started,
         );
         let out = catch_unwind(AssertUnwindSafe(|| f(self)));
+        // A rule that failed fails the transaction, whatever `f` made of
+        // it (read before the rollback, which may drop the columns); the
+        // outermost transaction takes it, so that it fails every one.
+        let out = match out {
+            Ok(r) => {
+                let outermost = self.rec.as_deref().is_some_and(|r| r.tx_depth == 1);
+                Ok(self.attrs.rule_failure(outermost).map_or(r, Err))
+            }
+            panicked => panicked,
+        };
         let failed = !matches!(out, Ok(Ok(_)));
         if failed {
             self.roll_back_to(mark.0);
@@ -691,7 +705,18 @@ impl Mesh {
     /// `name` while a journal records; with none, just run it (nothing
     /// else: the check is one test). The run's edits share one open step
     /// (see [`end_edit`](Mesh::end_edit)), so each slot is saved once.
-    pub(crate) fn as_one_step<R>(&mut self, name: &str, f: impl FnOnce(&mut Mesh) -> R) -> R {
+    ///
+    /// On a mesh with a column whose rule can fail, it runs as a
+    /// [`step`](Mesh::step), all or nothing (see
+    /// [`Rule::FALLIBLE`](crate::attr::Rule::FALLIBLE)).
+    pub(crate) fn as_one_step<R>(
+        &mut self,
+        name: &str,
+        f: impl FnOnce(&mut Mesh) -> Result<R>,
+    ) -> Result<R> {
+        if self.attrs.may_fail() {
+            return self.step(name, f);
+        }
         if self.rec.is_none() {
             return f(self);
         }

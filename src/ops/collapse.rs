@@ -7,6 +7,7 @@ use crate::keys::{HalfedgeKey, VertexKey};
 use crate::layout::{Fid, Hid, Vid};
 use crate::mesh::Mesh;
 use crate::store::ErasedColumn;
+use crate::vec3::{norm2, sub};
 
 /// The operator's name in its refusals.
 const OP: &str = "collapse_edge";
@@ -522,8 +523,8 @@ impl Mesh {
         }
         let p = self.position_slots().ok_or(crate::Error::NoPositions)?;
         let (a, b) = (p[self.origin(h).index()], p[self.dest(h).index()]);
-        let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let d = sub(b, a);
+        let len2 = norm2(d);
         if len2 <= 0.0 || !len2.is_finite() {
             return Ok(1.0);
         }

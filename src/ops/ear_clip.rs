@@ -17,19 +17,6 @@ use std::collections::BinaryHeap;
 /// exhaustive scan, whose order of ears they have always had.
 pub(crate) const QUEUED_FROM: usize = 64;
 
-/// The Newell normal of the polygon with corners `pts` (twice its vector
-/// area): the plane both clippers project a polygon to before cutting it.
-pub(crate) fn newell_normal(pts: &[[f64; 3]]) -> [f64; 3] {
-    let mut n = [0.0f64; 3];
-    for i in 0..pts.len() {
-        let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
-        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-    }
-    n
-}
-
 /// The ears cut and what is left.
 pub(crate) struct Clipped {
     /// `[pl, l, m, r]`: the ear `l, m, r` and the corner before `l` when it
@@ -282,14 +269,14 @@ impl Grid {
 
 /// Twice the signed area of `a, b, c` (positive counter-clockwise).
 #[inline]
-fn turn(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+pub(super) fn turn(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
 }
 
 /// Whether `p` lies in triangle `a, b, c` (counter-clockwise) or on its
 /// sides.
 #[inline]
-fn inside(p: [f64; 2], a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
+pub(super) fn inside(p: [f64; 2], a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
     turn(a, b, p) >= 0.0 && turn(b, c, p) >= 0.0 && turn(c, a, p) >= 0.0
 }
 

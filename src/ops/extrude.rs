@@ -6,6 +6,7 @@ use crate::journal::{journaled, Journaling};
 use crate::keys::FaceKey;
 use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, Vid};
 use crate::mesh::Mesh;
+use crate::vec3::normalize;
 
 impl Mesh {
     /// The unit normal to move along (`None` without positions).
@@ -24,13 +25,7 @@ impl Mesh {
         }
         let normal = match self.loop_normal(self.face_halfedge(f)) {
             None => None,
-            Some(n) => {
-                let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-                if !(l > 0.0 && l.is_finite()) {
-                    return Err(refuse(OP, fk, Refusal::ZeroArea));
-                }
-                Some([n[0] / l, n[1] / l, n[2] / l])
-            }
+            Some(n) => Some(normalize(n).ok_or_else(|| refuse(OP, fk, Refusal::ZeroArea))?),
         };
         Ok((f, normal))
     }

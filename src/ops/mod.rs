@@ -119,6 +119,7 @@ use crate::journal::Journaling;
 use crate::keys::AnyKey;
 use crate::layout::{Eid, Fid, HalfedgeRecord, Hid};
 use crate::mesh::Mesh;
+use crate::vec3::{newell_edge, norm};
 
 /// A refusal error.
 #[inline]
@@ -173,17 +174,14 @@ impl Mesh {
         for h in crate::circulate::FaceHalfedges::from_halfedge(self, start) {
             let a = p[self.origin(h).index()];
             let b = p[self.dest(h).index()];
-            n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-            n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-            n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+            newell_edge(&mut n, a, b);
         }
         Some(n)
     }
 
     /// Area of the `next` cycle through `start`, if positions exist.
     pub(crate) fn loop_area(&self, start: Hid) -> Option<f64> {
-        self.loop_normal(start)
-            .map(|n| 0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt())
+        self.loop_normal(start).map(|n| 0.5 * norm(n))
     }
 
     /// Split face `src`'s attribute values over `pieces` (faces, `src` among

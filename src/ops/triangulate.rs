@@ -1,13 +1,14 @@
 //! `triangulate` and `triangulate_all`: ear clipping with positions, a fan
 //! without.
 
-use super::ear_clip::{clip_ears, newell_normal, QUEUED_FROM};
+use super::ear_clip::{self, clip_ears, inside, QUEUED_FROM};
 use super::refuse;
 use crate::error::{Refusal, Result};
-use crate::journal::{journaled, Journaling};
+use crate::journal::{journaled, Journaling, Recorded};
 use crate::keys::FaceKey;
 use crate::layout::{Fid, Hid};
 use crate::mesh::Mesh;
+use crate::vec3::{dist2, newell};
 
 /// One ear: corners `l, m, r` (indices into the face's corner list) and the
 /// corner before `l` in what remains; the diagonal `r → l` is cut.
@@ -189,7 +190,9 @@ impl Mesh {
     /// [`triangulate`](Mesh::triangulate)).
     ///
     /// Returns the faces that could not be cut (every way needed an existing
-    /// edge); they are left as they were. χ is unchanged.
+    /// edge); they are left as they were. χ is unchanged. When a column's
+    /// [rule fails](crate::attr::Rule::FALLIBLE), no face is cut: all are
+    /// returned.
     ///
     /// # Complexity
     /// O(Σ cost of `triangulate` per face).
@@ -201,7 +204,16 @@ impl Mesh {
     /// assert_eq!(mesh.face_count(), 12);
     /// ```
     pub fn triangulate_all(&mut self) -> Vec<FaceKey> {
-        journaled!(self.triangulate_all_with())
+        if self.attrs.may_fail() {
+            let all = self
+                .faces()
+                .filter(|&f| self.face_degree(f.id()) > 3)
+                .collect();
+            return self
+                .transaction(|m| Ok(m.triangulate_all_with::<Recorded>()))
+                .unwrap_or(all);
+        }
+        journaled!(unguarded self.triangulate_all_with())
     }
 
     /// [`triangulate_all`](Mesh::triangulate_all)'s body, in journaling mode `J`.
@@ -287,7 +299,7 @@ impl Mesh {
 fn quad_ear(pts: &[[f64; 3]], joined: impl Fn(u32, u32) -> bool) -> Option<Ear> {
     let proj = projector(pts);
     let q = [proj(pts[0]), proj(pts[1]), proj(pts[2]), proj(pts[3])];
-    let turn = |i: usize| cross(q[(i + 3) % 4], q[i], q[(i + 1) % 4]);
+    let turn = |i: usize| ear_clip::turn(q[(i + 3) % 4], q[i], q[(i + 1) % 4]);
     let reflex_13 = turn(1) < 0.0 || turn(3) < 0.0;
     let reflex_02 = turn(0) < 0.0 || turn(2) < 0.0;
     let d02 = dist2(pts[0], pts[2]);
@@ -364,7 +376,7 @@ fn scan_ears(
         let at = |i: usize| rest[i % k];
         let is_ear = |i: usize, strict: bool| {
             let (l, m, r) = (at(i + k - 1), at(i), at(i + 1));
-            let turn = cross(q[l as usize], q[m as usize], q[r as usize]);
+            let turn = ear_clip::turn(q[l as usize], q[m as usize], q[r as usize]);
             if strict && turn <= 0.0 || !strict && turn < 0.0 {
                 return false;
             }
@@ -418,7 +430,7 @@ fn fan(n: u32, joined: impl Fn(u32, u32) -> bool, ears: &mut Vec<Ear>) -> bool {
 /// A map from 3D points to the plane of their Newell normal, keeping the
 /// polygon's orientation counter-clockwise.
 fn projector(pts: &[[f64; 3]]) -> impl Fn([f64; 3]) -> [f64; 2] {
-    let n = newell_normal(pts);
+    let n = newell(pts);
     let k = if n[0].abs() >= n[1].abs() && n[0].abs() >= n[2].abs() {
         0
     } else if n[1].abs() >= n[2].abs() {
@@ -435,21 +447,4 @@ fn projector(pts: &[[f64; 3]]) -> impl Fn([f64; 3]) -> [f64; 2] {
             [p[u], p[v]]
         }
     }
-}
-
-#[inline]
-fn cross(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-}
-
-#[inline]
-fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
-}
-
-/// Whether `p` lies in triangle `a, b, c` (counter-clockwise) or on its
-/// sides.
-#[inline]
-fn inside(p: [f64; 2], a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
-    cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0
 }

@@ -15,7 +15,8 @@
 
 use std::collections::HashMap;
 
-use crate::ops::ear_clip::{clip_ears, newell_normal};
+use crate::ops::ear_clip::clip_ears;
+use crate::vec3::newell;
 
 /// The simple faces covering the face with corners `corners` (corner
 /// indices; `vertex[c]` is corner `c`'s vertex, with no run of one vertex
@@ -111,7 +112,7 @@ fn triangulate(face: &[u32], vertex: &[u32], positions: &[[f64; 3]]) -> Option<V
 /// The points in the plane of their Newell normal, turning
 /// counter-clockwise; `None` for a face with no area.
 fn project(pts: &[[f64; 3]]) -> Option<Vec<[f64; 2]>> {
-    let n = newell_normal(pts);
+    let n = newell(pts);
     let k = (0..3).max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))?;
     if n[k] == 0.0 || !n[k].is_finite() {
         return None;

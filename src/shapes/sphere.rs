@@ -3,6 +3,7 @@
 use std::f64::consts::PI;
 
 use super::{icosahedron_buffers, mesh_of, Buffers, MAX_SEGMENTS, MAX_SUBDIVISIONS};
+use crate::vec3::{add, normalize_or_zero};
 use crate::{Mesh, Polygons};
 
 /// A unit sphere made by splitting each triangle of the
@@ -51,9 +52,8 @@ pub fn icosphere_polygons(subdivisions: u32) -> Polygons {
                 return m;
             }
             let (p, q) = (positions[a as usize], positions[b as usize]);
-            let mid = [p[0] + q[0], p[1] + q[1], p[2] + q[2]];
-            let len = (mid[0] * mid[0] + mid[1] * mid[1] + mid[2] * mid[2]).sqrt();
-            positions.push([mid[0] / len, mid[1] / len, mid[2] / len]);
+            // Never zero: an edge's ends are not antipodal.
+            positions.push(normalize_or_zero(add(p, q)));
             let m = (positions.len() - 1) as u32;
             cache[lo as usize].push((hi, m));
             m

@@ -2,14 +2,43 @@
 
 use std::any::Any;
 use std::marker::PhantomData;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use super::attribute::Attribute;
 use super::plan::{ColumnPlan, Source};
 use super::rule::Rule;
 use super::value::Value;
+use crate::error::RuleError;
 
-/// A rule's merge or interpolate, as a function.
-type RuleFn<T> = fn(&[(Option<&T>, f64)]) -> Option<T>;
+/// A rule's merge or interpolate, as a function (`U`: `Option<T>`, or a
+/// fallible rule's `Result`).
+type RuleFn<T, U = Option<T>> = fn(&[(Option<&T>, f64)]) -> U;
+
+/// What a [fallible](Rule::FALLIBLE) rule's `try_` function gives.
+type Tried<T> = Result<Option<T>, RuleError>;
+
+/// Failures are numbered in the order they happen (in the whole process),
+/// so the edit around several failed columns reports the first.
+static NEXT_FAILURE: AtomicU64 = AtomicU64::new(0);
+
+/// A fallible rule's failure, kept by its column until the edit around it
+/// takes it ([`ErasedColumn::take_failure`]).
+#[derive(Clone, Debug)]
+pub(crate) struct Failure {
+    /// When it happened, in the order of [`NEXT_FAILURE`].
+    pub(crate) seq: u64,
+    /// What the rule said.
+    pub(crate) error: RuleError,
+}
+
+impl Failure {
+    fn new(error: RuleError) -> Box<Failure> {
+        Box::new(Failure {
+            seq: NEXT_FAILURE.fetch_add(1, Ordering::Relaxed),
+            error,
+        })
+    }
+}
 
 /// The values of one attribute for every slot of one arena.
 ///
@@ -35,6 +64,10 @@ pub struct Column<T, R> {
     /// Old values saved by bulk writers (mutable views, raw slices), sealed
     /// as a step of their own before the next edit's.
     pub(crate) bulk: Vec<Saved<T>>,
+    /// A [fallible](Rule::FALLIBLE) rule's first failure in the running
+    /// edit; while it is kept, the rule is not called again (results are
+    /// absent: the edit is rolled back).
+    failure: Option<Box<Failure>>,
     rule: PhantomData<fn() -> R>,
 }
 
@@ -63,6 +96,7 @@ impl<T: Clone, R> Clone for Column<T, R> {
             absent: self.absent,
             saved: Vec::new(),
             bulk: Vec::new(),
+            failure: None,
             rule: PhantomData,
         }
     }
@@ -77,6 +111,7 @@ impl<T: Default + Clone, R> Column<T, R> {
             absent: len,
             saved: Vec::new(),
             bulk: Vec::new(),
+            failure: None,
             rule: PhantomData,
         }
     }
@@ -89,6 +124,7 @@ impl<T: Default + Clone, R> Column<T, R> {
             absent: 0,
             saved: Vec::new(),
             bulk: Vec::new(),
+            failure: None,
             rule: PhantomData,
         }
     }
@@ -223,7 +259,7 @@ impl<T: Default + Clone, R> Column<T, R> {
     /// eight contributors (every operator but the merges of whole rings)
     /// need no allocation.
     #[inline(always)]
-    fn with_inputs(&self, inputs: &[(usize, f64)], rule: RuleFn<T>) -> Option<T> {
+    fn with_inputs<U>(&self, inputs: &[(usize, f64)], rule: RuleFn<T, U>) -> U {
         const SMALL: usize = 8;
         if inputs.len() <= SMALL {
             let mut args: [(Option<&T>, f64); SMALL] = [(None, 0.0); SMALL];
@@ -241,7 +277,7 @@ impl<T: Default + Clone, R> Column<T, R> {
     /// As [`with_inputs`](Self::with_inputs), for `(u32 slot, weight)`
     /// pairs (a [`ColumnPlan`]'s entries).
     #[inline]
-    fn with_u32_inputs(&self, inputs: &[(u32, f64)], rule: RuleFn<T>) -> Option<T> {
+    fn with_u32_inputs<U>(&self, inputs: &[(u32, f64)], rule: RuleFn<T, U>) -> U {
         const SMALL: usize = 16;
         if inputs.len() <= SMALL {
             let mut args: [(Option<&T>, f64); SMALL] = [(None, 0.0); SMALL];
@@ -256,6 +292,20 @@ impl<T: Default + Clone, R> Column<T, R> {
                 .collect();
             rule(&args)
         }
+    }
+
+    /// A [fallible](Rule::FALLIBLE) rule's result: what `run` gives, or
+    /// absent when it fails (the failure kept, the first only) or when an
+    /// earlier failure is kept (`run` is not called).
+    #[cold]
+    fn tried(&mut self, run: impl FnOnce(&Self) -> Tried<T>) -> Option<T> {
+        if self.failure.is_some() {
+            return None;
+        }
+        run(self).unwrap_or_else(|e| {
+            self.failure = Some(Failure::new(e));
+            None
+        })
     }
 
     /// The presence bits (`None`: every slot has a value).
@@ -398,6 +448,14 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     /// Whether the rule's interpolation is a weighted mean
     /// ([`Rule::LINEAR`]).
     fn interpolates_linearly(&self) -> bool;
+    /// Whether the rule can fail ([`Rule::FALLIBLE`]).
+    fn may_fail(&self) -> bool;
+    /// The rule's name ([`Rule::name`]).
+    fn rule_name(&self) -> &'static str;
+    /// The failure of the rule kept since the running edit began, if any.
+    fn failure(&self) -> Option<&Failure>;
+    /// Take the kept failure: the rule runs again.
+    fn take_failure(&mut self) -> Option<Box<Failure>>;
     /// Set slot `dst` to the rule's `interpolate` of `inputs` (slot,
     /// weight) read from `src`, a column of the same type and rule (of
     /// another mesh); `false`, changing nothing, when `src` is not.
@@ -446,6 +504,46 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     fn as_any_mut(&mut self) -> &mut dyn Any;
 }
 
+impl<T: Attribute, R: Rule<T>> Column<T, R> {
+    /// [`ErasedColumn::rebuilt`]'s value of one new slot for a
+    /// [fallible](Rule::FALLIBLE) rule: absent once `failure` holds one (the
+    /// first failure is kept there).
+    #[cold]
+    fn rebuilt_tried(
+        &self,
+        source: Source,
+        entries: &[(u32, f64)],
+        failure: &mut Option<Box<Failure>>,
+    ) -> Option<T> {
+        if failure.is_some() {
+            return None;
+        }
+        let value = match source {
+            Source::Copy(from) => Ok(self.get(from as usize).cloned()),
+            Source::Split(at) => {
+                let (from, share) = entries[at as usize];
+                R::try_split(self.get(from as usize), share)
+            }
+            Source::Interpolate { start, len } => {
+                let inputs = &entries[start as usize..(start + len) as usize];
+                self.with_u32_inputs(inputs, R::try_interpolate)
+            }
+            Source::FlipPiece(at) => (|| {
+                let (a, sa) = entries[at as usize];
+                let (b, sb) = entries[at as usize + 1];
+                let pa = R::try_split(self.get(a as usize), sa)?;
+                let pb = R::try_split(self.get(b as usize), sb)?;
+                let merged = R::try_merge(&[(pa.as_ref(), 0.5), (pb.as_ref(), 0.5)])?;
+                R::try_split(merged.as_ref(), 0.5)
+            })(),
+        };
+        value.unwrap_or_else(|e| {
+            *failure = Some(Failure::new(e));
+            None
+        })
+    }
+}
+
 impl<T, R> ErasedColumn for Column<T, R>
 where
     T: Attribute,
@@ -483,12 +581,20 @@ where
     }
 
     fn merge(&mut self, dst: usize, inputs: &[(usize, f64)]) {
-        let result = self.with_inputs(inputs, R::merge);
+        let result = if R::FALLIBLE {
+            self.tried(|c| c.with_inputs(inputs, R::try_merge))
+        } else {
+            self.with_inputs(inputs, R::merge)
+        };
         self.set(dst, result);
     }
 
     fn merge_saving(&mut self, dst: usize, inputs: &[(usize, f64)]) -> bool {
-        let result = self.with_inputs(inputs, R::merge);
+        let result = if R::FALLIBLE {
+            self.tried(|c| c.with_inputs(inputs, R::try_merge))
+        } else {
+            self.with_inputs(inputs, R::merge)
+        };
         // The seal drops a saved value that the slot holds again (see
         // `unchanged`): a write of the same value needs no saving at all.
         let same = self.holds(dst, result.as_ref());
@@ -500,14 +606,22 @@ where
     }
 
     fn interpolate(&mut self, dst: usize, inputs: &[(usize, f64)]) {
-        let result = self.with_inputs(inputs, R::interpolate);
+        let result = if R::FALLIBLE {
+            self.tried(|c| c.with_inputs(inputs, R::try_interpolate))
+        } else {
+            self.with_inputs(inputs, R::interpolate)
+        };
         self.set(dst, result);
     }
 
     fn split(&mut self, src: usize, pieces: &[(usize, f64)]) {
         let source = self.get(src).cloned();
         for &(dst, share) in pieces {
-            let v = R::split(source.as_ref(), share);
+            let v = if R::FALLIBLE {
+                self.tried(|_| R::try_split(source.as_ref(), share))
+            } else {
+                R::split(source.as_ref(), share)
+            };
             self.set(dst, v);
         }
     }
@@ -555,24 +669,30 @@ where
         let mut bits = vec![0u64; n.div_ceil(64)];
         let mut absent = 0usize;
         let entries = &plan.entries;
+        // A failure kept already stays with the column that replaces this.
+        let mut failure = self.failure.clone();
         for (i, source) in plan.sources.iter().enumerate() {
-            let value = match *source {
-                Source::Copy(from) => self.get(from as usize).cloned(),
-                Source::Split(at) => {
-                    let (from, share) = entries[at as usize];
-                    R::split(self.get(from as usize), share)
-                }
-                Source::Interpolate { start, len } => {
-                    let inputs = &entries[start as usize..(start + len) as usize];
-                    self.with_u32_inputs(inputs, R::interpolate)
-                }
-                Source::FlipPiece(at) => {
-                    let (a, sa) = entries[at as usize];
-                    let (b, sb) = entries[at as usize + 1];
-                    let pa = R::split(self.get(a as usize), sa);
-                    let pb = R::split(self.get(b as usize), sb);
-                    let merged = R::merge(&[(pa.as_ref(), 0.5), (pb.as_ref(), 0.5)]);
-                    R::split(merged.as_ref(), 0.5)
+            let value = if R::FALLIBLE {
+                self.rebuilt_tried(*source, entries, &mut failure)
+            } else {
+                match *source {
+                    Source::Copy(from) => self.get(from as usize).cloned(),
+                    Source::Split(at) => {
+                        let (from, share) = entries[at as usize];
+                        R::split(self.get(from as usize), share)
+                    }
+                    Source::Interpolate { start, len } => {
+                        let inputs = &entries[start as usize..(start + len) as usize];
+                        self.with_u32_inputs(inputs, R::interpolate)
+                    }
+                    Source::FlipPiece(at) => {
+                        let (a, sa) = entries[at as usize];
+                        let (b, sb) = entries[at as usize + 1];
+                        let pa = R::split(self.get(a as usize), sa);
+                        let pb = R::split(self.get(b as usize), sb);
+                        let merged = R::merge(&[(pa.as_ref(), 0.5), (pb.as_ref(), 0.5)]);
+                        R::split(merged.as_ref(), 0.5)
+                    }
                 }
             };
             match value {
@@ -590,6 +710,7 @@ where
             values,
             present: (absent > 0).then_some(bits),
             absent,
+            failure,
             rule: PhantomData,
             saved: Vec::new(),
             bulk: Vec::new(),
@@ -598,6 +719,22 @@ where
 
     fn interpolates_linearly(&self) -> bool {
         R::LINEAR
+    }
+
+    fn may_fail(&self) -> bool {
+        R::FALLIBLE
+    }
+
+    fn rule_name(&self) -> &'static str {
+        R::name()
+    }
+
+    fn failure(&self) -> Option<&Failure> {
+        self.failure.as_deref()
+    }
+
+    fn take_failure(&mut self) -> Option<Box<Failure>> {
+        self.failure.take()
     }
 
     fn interpolate_from(
@@ -609,7 +746,11 @@ where
         let Some(src) = src.as_any().downcast_ref::<Self>() else {
             return false;
         };
-        let result = src.with_inputs(inputs, R::interpolate);
+        let result = if R::FALLIBLE {
+            self.tried(|_| src.with_inputs(inputs, R::try_interpolate))
+        } else {
+            src.with_inputs(inputs, R::interpolate)
+        };
         self.set(dst, result);
         true
     }

@@ -32,6 +32,7 @@ pub use value::{Dynamic, Value, ValueType};
 use rules::Interpolate;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use crate::error::Error;
 use crate::keys::ElementKind;
 
 /// Column ids are unique in the process, so a handle never names a column
@@ -45,6 +46,8 @@ pub(crate) struct ColumnMeta {
     pub(crate) id: u64,
     /// The declared type of a dynamic column.
     pub(crate) value_type: Option<ValueType>,
+    /// Whether the column's rule can fail ([`Rule::FALLIBLE`](rule::Rule::FALLIBLE)).
+    pub(crate) fallible: bool,
 }
 
 /// The name of the position column.
@@ -107,10 +110,12 @@ impl Columns {
         col: Box<dyn ErasedColumn>,
         value_type: Option<ValueType>,
     ) -> usize {
+        let fallible = col.may_fail();
         self.cols.push((name.to_owned(), col));
         self.meta.push(ColumnMeta {
             id: NEXT_COLUMN_ID.fetch_add(1, Ordering::Relaxed),
             value_type,
+            fallible,
         });
         self.cols.len() - 1
     }
@@ -293,6 +298,24 @@ impl Columns {
         }
     }
 
+    /// Whether a column's rule can fail.
+    #[inline]
+    fn may_fail(&self) -> bool {
+        self.meta.iter().any(|m| m.fallible)
+    }
+
+    /// The earliest rule failure kept by a column: its order, column
+    /// index and the failure.
+    fn first_failure(&self) -> Option<(u64, usize)> {
+        self.cols
+            .iter()
+            .zip(&self.meta)
+            .enumerate()
+            .filter(|(_, (_, m))| m.fallible)
+            .filter_map(|(i, ((_, c), _))| Some((c.failure()?.seq, i)))
+            .min()
+    }
+
     /// Heap bytes of every column.
     pub(crate) fn heap_bytes(&self) -> usize {
         self.cols.iter().map(|(_, c)| c.heap_bytes()).sum::<usize>()
@@ -333,6 +356,50 @@ impl AttrStore {
             ElementKind::Edge => &mut self.edge,
             ElementKind::Face => &mut self.face,
         }
+    }
+
+    /// Whether a column's rule can fail ([`Rule::FALLIBLE`](rule::Rule::FALLIBLE)):
+    /// then every edit runs all or nothing, as a transaction.
+    #[inline]
+    pub(crate) fn may_fail(&self) -> bool {
+        self.vertex.may_fail()
+            || self.halfedge.may_fail()
+            || self.edge.may_fail()
+            || self.face.may_fail()
+    }
+
+    /// The first rule failure the columns kept, as the error of the edit
+    /// that ran it. With `take`, every column's kept failure is taken (their
+    /// rules run again); otherwise they stay, for the edits around.
+    pub(crate) fn rule_failure(&mut self, take: bool) -> Option<Error> {
+        if !self.may_fail() {
+            return None;
+        }
+        let kinds = [
+            ElementKind::Vertex,
+            ElementKind::Halfedge,
+            ElementKind::Edge,
+            ElementKind::Face,
+        ];
+        let (_, kind, col) = kinds
+            .iter()
+            .zip(self.all_mut())
+            .filter_map(|(&kind, set)| set.first_failure().map(|(seq, i)| (seq, kind, i)))
+            .min_by_key(|&(seq, ..)| seq)?;
+        let (column, c) = &self.columns(kind).cols[col];
+        let error = Error::Rule {
+            kind,
+            column: column.clone(),
+            error: c.failure()?.error.clone(),
+        };
+        if take {
+            for set in self.all_mut() {
+                for (_, c) in &mut set.cols {
+                    c.take_failure();
+                }
+            }
+        }
+        Some(error)
     }
 
     /// Heap bytes of every column.

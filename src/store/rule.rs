@@ -2,6 +2,7 @@
 //! The stock rules live in [`rules`](super::rules).
 
 pub use super::rules::Interpolate;
+use crate::error::RuleError;
 
 /// What happens to an attribute value when elements merge or split.
 ///
@@ -17,6 +18,66 @@ pub use super::rules::Interpolate;
 /// Implement this on a zero-sized type to write a new rule, then name it in
 /// [`Attribute::Rule`](crate::attr::Attribute) or pass it when adding a
 /// column.
+///
+/// # Rules that can fail
+///
+/// A rule that may have no sensible answer (it calls out to a script, or
+/// the values contradict each other) sets [`FALLIBLE`](Rule::FALLIBLE) and
+/// implements the `try_` functions it can fail in
+/// ([`try_merge`](Rule::try_merge), [`try_interpolate`](Rule::try_interpolate),
+/// [`try_split`](Rule::try_split); each defaults to its plain twin). When
+/// one returns an error, the edit that ran it fails with
+/// [`Error::Rule`](crate::Error::Rule) (naming the column, and carrying the
+/// [`RuleError`]) and leaves the mesh as it was: an operator refuses, an
+/// algorithm or a [transaction](crate::Mesh::transaction) rolls back whole.
+/// For that, every edit of a mesh with such a column runs as a
+/// transaction (its cost is the size of the edit); the rule is not called
+/// again on that column until the edit has failed. Columns whose rules
+/// cannot fail pay nothing.
+///
+/// ```
+/// use meshloom::attr::{Rule, RuleError};
+/// use meshloom::{Error, VertexKey};
+///
+/// /// Labels that refuse to merge two different labels.
+/// struct Strict;
+/// impl Rule<u32> for Strict {
+///     const FALLIBLE: bool = true;
+///     fn merge(inputs: &[(Option<&u32>, f64)]) -> Option<u32> {
+///         Self::try_merge(inputs).ok().flatten()
+///     }
+///     fn try_merge(inputs: &[(Option<&u32>, f64)]) -> Result<Option<u32>, RuleError> {
+///         let mut labels = inputs.iter().filter_map(|(v, _)| *v);
+///         let first = labels.next().copied();
+///         match labels.find(|&&l| Some(l) != first) {
+///             Some(other) => Err(RuleError::new(format!("labels {first:?} and {other} meet"))),
+///             None => Ok(first),
+///         }
+///     }
+///     fn split(source: Option<&u32>, _share: f64) -> Option<u32> {
+///         source.copied()
+///     }
+/// }
+///
+/// let mut mesh = meshloom::shapes::tetrahedron();
+/// let label = mesh.add_attr_with_rule::<VertexKey, u32, Strict>("label")?;
+/// let vs: Vec<_> = mesh.vertices().collect();
+/// for (i, &v) in vs.iter().enumerate() {
+///     mesh.set_attr(&label, v, i as u32)?;
+/// }
+/// let h = mesh.halfedges().next().unwrap();
+/// let before = mesh.clone();
+/// match mesh.collapse_edge(h) {
+///     Err(Error::Rule { column, error, .. }) => {
+///         assert_eq!(column, "label");
+///         assert!(error.message().contains("meet"));
+///     }
+///     other => panic!("{other:?}"),
+/// }
+/// assert_eq!(mesh.vertex_count(), before.vertex_count());
+/// assert!(vs.iter().all(|&v| mesh.contains_vertex(v)));
+/// # Ok::<(), meshloom::Error>(())
+/// ```
 pub trait Rule<T>: 'static {
     /// Whether [`merge`](Rule::merge) and [`interpolate`](Rule::interpolate)
     /// are the weighted mean of the present values: an affine combination,
@@ -28,6 +89,22 @@ pub trait Rule<T>: 'static {
     /// asked for linear "varying" data) and gives the others their rule's
     /// `interpolate` over the linear contributors, as the operators do.
     const LINEAR: bool = false;
+
+    /// Whether the rule can fail: the columns then call the `try_`
+    /// functions instead of the plain ones (see "Rules that can fail"
+    /// above). The stock rules cannot.
+    const FALLIBLE: bool = false;
+
+    /// The rule's name, as [`Mesh::attr_info`](crate::Mesh::attr_info)
+    /// reports it: the stock rules say `"Interpolate"`, `"Conserved"`,
+    /// `"Contagion"`, `"Incompatible"`, `"KeepFirst"`, `"Discard"` and
+    /// `"Dynamic"`; by default, the type's name without its module path
+    /// and generic arguments.
+    fn name() -> &'static str {
+        let full = std::any::type_name::<Self>();
+        let head = full.split('<').next().unwrap_or(full);
+        head.rsplit("::").next().unwrap_or(head)
+    }
 
     /// Several elements become one (collapse: two vertices, and two edges
     /// where a triangle disappears; remove edge or merge faces: two faces;
@@ -58,6 +135,35 @@ pub trait Rule<T>: 'static {
     fn infer(neighbours: &[(Option<&T>, f64)]) -> Option<T> {
         let _ = neighbours;
         None
+    }
+
+    /// [`merge`](Rule::merge) of a [fallible](Rule::FALLIBLE) rule, which
+    /// may refuse. Defaults to `merge`.
+    ///
+    /// # Errors
+    /// Whatever the rule refuses; the edit then fails with
+    /// [`Error::Rule`](crate::Error::Rule).
+    fn try_merge(inputs: &[(Option<&T>, f64)]) -> Result<Option<T>, RuleError> {
+        Ok(Self::merge(inputs))
+    }
+
+    /// [`interpolate`](Rule::interpolate) of a [fallible](Rule::FALLIBLE)
+    /// rule. Defaults to `interpolate` (so a fallible rule whose
+    /// interpolation merges overrides both `try_merge` and this).
+    ///
+    /// # Errors
+    /// As [`try_merge`](Rule::try_merge).
+    fn try_interpolate(inputs: &[(Option<&T>, f64)]) -> Result<Option<T>, RuleError> {
+        Ok(Self::interpolate(inputs))
+    }
+
+    /// [`split`](Rule::split) of a [fallible](Rule::FALLIBLE) rule.
+    /// Defaults to `split`.
+    ///
+    /// # Errors
+    /// As [`try_merge`](Rule::try_merge).
+    fn try_split(source: Option<&T>, share: f64) -> Result<Option<T>, RuleError> {
+        Ok(Self::split(source, share))
     }
 }
 

@@ -37,6 +37,10 @@ pub struct Interpolate;
 impl<T: Linear> Rule<T> for Interpolate {
     const LINEAR: bool = true;
 
+    fn name() -> &'static str {
+        "Interpolate"
+    }
+
     // Inlined into the column's merge and interpolate: left to the
     // compiler's heuristics it was not, after an unrelated change moved it
     // to another codegen unit (+8% instructions in `ErasedColumn::merge`).
@@ -92,6 +96,10 @@ impl<T: Linear> Rule<T> for Interpolate {
 pub struct Conserved;
 
 impl<T: Linear> Rule<T> for Conserved {
+    fn name() -> &'static str {
+        "Conserved"
+    }
+
     fn merge(inputs: &[(Option<&T>, f64)]) -> Option<T> {
         let mut out: Option<T> = None;
         for v in inputs.iter().filter_map(|(v, _)| *v) {
@@ -126,6 +134,10 @@ impl<T: Linear> Rule<T> for Conserved {
 pub struct Contagion;
 
 impl<T: Clone + PartialOrd> Rule<T> for Contagion {
+    fn name() -> &'static str {
+        "Contagion"
+    }
+
     fn merge(inputs: &[(Option<&T>, f64)]) -> Option<T> {
         let mut best: Option<&T> = None;
         for v in inputs.iter().filter_map(|(v, _)| *v) {
@@ -159,6 +171,10 @@ impl<T: Clone + PartialOrd> Rule<T> for Contagion {
 pub struct Incompatible;
 
 impl<T: Clone + PartialEq> Rule<T> for Incompatible {
+    fn name() -> &'static str {
+        "Incompatible"
+    }
+
     fn merge(inputs: &[(Option<&T>, f64)]) -> Option<T> {
         let first = inputs.first()?.0?;
         if inputs.iter().all(|(v, _)| *v == Some(first)) {
@@ -186,6 +202,10 @@ impl<T: Clone + PartialEq> Rule<T> for Incompatible {
 pub struct KeepFirst;
 
 impl<T: Clone> Rule<T> for KeepFirst {
+    fn name() -> &'static str {
+        "KeepFirst"
+    }
+
     fn merge(inputs: &[(Option<&T>, f64)]) -> Option<T> {
         inputs.first().and_then(|(v, _)| *v).cloned()
     }
@@ -208,6 +228,10 @@ impl<T: Clone> Rule<T> for KeepFirst {
 pub struct Discard;
 
 impl<T> Rule<T> for Discard {
+    fn name() -> &'static str {
+        "Discard"
+    }
+
     fn merge(_inputs: &[(Option<&T>, f64)]) -> Option<T> {
         None
     }

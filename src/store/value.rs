@@ -209,6 +209,10 @@ impl Rule<Value> for Dynamic {
     /// other values are kept only where every contributor agrees.
     const LINEAR: bool = true;
 
+    fn name() -> &'static str {
+        "Dynamic"
+    }
+
     fn merge(inputs: &[(Option<&Value>, f64)]) -> Option<Value> {
         let present: Vec<(&Value, f64)> = inputs
             .iter()

@@ -14,13 +14,14 @@
 //! seam, where each side interpolates its own values, so this only
 //! overestimates its cost.
 
-use super::quadric::{dot, sub, Quadric, Q64, V3};
+use super::quadric::{Quadric, Q64};
 use super::{AttributeWeight, ALGORITHM};
 use crate::attr::Value;
 use crate::error::{Error, Result};
 use crate::keys::ElementKind;
 use crate::layout::{Hid, Vid};
 use crate::mesh::Mesh;
+use crate::vec3::{cross, dot, sub, V3};
 
 /// One column in the error.
 struct Column {
@@ -204,7 +205,7 @@ impl AttrError {
             let e2 = sub(p[2], p[0]);
             let (g11, g12, g22) = (dot(e1, e1), dot(e1, e2), dot(e2, e2));
             let det = g11 * g22 - g12 * g12;
-            let n = super::quadric::cross(e1, e2);
+            let n = cross(e1, e2);
             let area = 0.5 * dot(n, n).sqrt();
             if det.is_nan() || det <= 1e-30 || area.is_nan() || area <= 0.0 {
                 continue;

@@ -3,12 +3,13 @@
 //! decimator can return (but cancellation) comes from here.
 
 use super::attributes::AttrError;
-use super::quadric::{add, cross, dot, scale, sub, Quadric, Q64, V3};
+use super::quadric::{Quadric, Q64};
 use super::{DecimateOptions, Engine, Keep, ALGORITHM, FIXED, FREE, LINE};
 use crate::error::{Error, Result};
 use crate::keys::{AnyKey, ElementKind};
 use crate::layout::{Eid, Hid, Vid};
 use crate::mesh::Mesh;
+use crate::vec3::{add, cross, dot, scale, sub, V3};
 
 /// How much a plane across a kept line weighs, against the faces' own
 /// (per squared edge length, as a face's plane weighs its area).

@@ -15,23 +15,7 @@
 //! Building is O(n log n); a query is about O(log n) box tests, fewer with
 //! the hint (the ignored test `measure_bvh` times both; `BENCHMARKS.md`).
 
-/// A point or vector.
-pub(crate) type V3 = [f64; 3];
-
-#[inline(always)]
-pub(crate) fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-#[inline(always)]
-pub(crate) fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-#[inline(always)]
-fn axpy(a: V3, s: f64, d: V3) -> V3 {
-    [a[0] + s * d[0], a[1] + s * d[1], a[2] + s * d[2]]
-}
+use crate::vec3::{axpy, dot, sub, V3};
 
 /// What the tree holds: something with a box and a closest point.
 pub(crate) trait Primitive {

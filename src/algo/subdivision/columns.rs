@@ -10,6 +10,7 @@ use crate::layout::{Eid, Hid, Vid};
 use crate::mesh::Mesh;
 use crate::store::plan::ColumnPlan;
 use crate::store::{AttrStore, Column, Columns, ErasedColumn};
+use crate::vec3::{cross, norm, sub};
 
 /// The plans of one level, built on first use.
 pub(crate) trait ColumnPlans {
@@ -327,18 +328,7 @@ fn quad_shares(mesh: &Mesh, positions: Option<&[[f64; 3]]>, ring: &[Hid], out: &
         let (m_prev, m_next) = (mid(vp, vi), mid(vi, vn));
         // The quad (v_i, m_i, c, m_{i-1}): half the cross product of its
         // diagonals.
-        let d1 = [c[0] - vi[0], c[1] - vi[1], c[2] - vi[2]];
-        let d2 = [
-            m_prev[0] - m_next[0],
-            m_prev[1] - m_next[1],
-            m_prev[2] - m_next[2],
-        ];
-        let x = [
-            d1[1] * d2[2] - d1[2] * d2[1],
-            d1[2] * d2[0] - d1[0] * d2[2],
-            d1[0] * d2[1] - d1[1] * d2[0],
-        ];
-        let a = 0.5 * (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+        let a = 0.5 * norm(cross(sub(c, vi), sub(m_prev, m_next)));
         total += a;
         areas.push(a);
     }

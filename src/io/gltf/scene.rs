@@ -9,6 +9,7 @@ use gltf::mesh::{Mode, Semantic};
 use super::super::error::{Error, Location};
 use super::read::{header, read_accessor, unsupported, Buffer, Values};
 use super::{GltfOptions, VERTEX_ID};
+use crate::vec3::normalize;
 
 type M4 = [[f64; 4]; 4];
 const IDENTITY: M4 = [
@@ -44,12 +45,7 @@ impl Xf {
         let (n, s) = (&self.normals, self.det.signum());
         let t: [f64; 3] =
             std::array::from_fn(|r| s * (n[r][0] * v[0] + n[r][1] * v[1] + n[r][2] * v[2]));
-        let l = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
-        if l > 0.0 {
-            t.map(|c| c / l)
-        } else {
-            t
-        }
+        normalize(t).unwrap_or(t)
     }
 }
 
