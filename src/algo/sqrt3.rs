@@ -82,8 +82,8 @@ use crate::algo::progress::Progress;
 use crate::algo::subdivision::creases::{Features, PlanSink, PointSink, Rule, Sink};
 use crate::algo::subdivision::refine::{fresh_slots, valence_two_error, CutRule, Ranks, Topology};
 use crate::algo::subdivision::{
-    check_columns, finish_columns, run_levels, scatter_edge_ends, unsuitable, ColumnPlans, Growth,
-    LevelReport, Levels, Stage, SubdivisionOptions, SubdivisionReport,
+    finish_columns, scatter_edge_ends, subdivide, unsuitable, ColumnPlans, Growth, LevelReport,
+    Scheme, Stage, Subdivider, SubdivisionOptions, SubdivisionReport,
 };
 use crate::error::{Error, Result};
 use crate::layout::{with_headroom, Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};
@@ -94,14 +94,12 @@ const ALGORITHM: &str = "sqrt3_subdivide";
 
 /// Apply `options.levels` levels of √3 subdivision to a triangle mesh
 /// (the boundary is kept at odd levels and trisected at even ones, see the
-/// module doc).
+/// module doc): [`subdivide`] with [`Scheme::Sqrt3`].
 ///
 /// # Errors
 /// [`Error::Unsuitable`] for a face that is not a triangle, an interior
-/// vertex of valence 2, or a crease column in the options;
-/// [`Error::AttributeMissing`] / [`Error::AttributeType`] for a column
-/// named in the options; [`Error::NonFinitePosition`]; [`Error::Cancelled`].
-/// On any error the mesh is exactly as it was.
+/// vertex of valence 2, or a crease column in the options; the other
+/// errors of [`subdivide`]. On any error the mesh is exactly as it was.
 ///
 /// ```
 /// use meshloom::algo::{sqrt3_subdivide, Progress, SubdivisionOptions};
@@ -119,42 +117,28 @@ pub fn sqrt3_subdivide(
     options: &SubdivisionOptions,
     progress: Progress<'_>,
 ) -> Result<SubdivisionReport> {
-    mesh.as_one_step("Sqrt(3) subdivision", |mesh| {
-        sqrt3_subdivide_run(mesh, options, progress)
-    })
+    subdivide(mesh, Scheme::Sqrt3, options, progress)
 }
 
-/// [`sqrt3_subdivide`] itself, outside the journal's step.
-fn sqrt3_subdivide_run(
-    mesh: &mut Mesh,
-    options: &SubdivisionOptions,
-    mut progress: Progress<'_>,
-) -> Result<SubdivisionReport> {
-    check_columns(
-        mesh,
-        ALGORITHM,
-        options.corner_column.as_deref(),
-        None,
-        &options.vertex_data,
-    )?;
-    if options.crease_column.is_some() {
-        return Err(unsuitable(
-            ALGORITHM,
-            None,
-            "√3 flips every old edge away, so it cannot keep creases (use Loop)",
-        ));
+/// √3 subdivision on the driver, with its own level.
+pub(crate) struct Sqrt3;
+
+impl Subdivider for Sqrt3 {
+    const SCHEME: Scheme = Scheme::Sqrt3;
+
+    fn growth(&self) -> Growth {
+        Growth::Three
     }
-    run_levels(
-        mesh,
-        ALGORITHM,
-        Levels {
-            count: options.levels,
-            growth: Growth::Three,
-            max_faces: options.max_faces,
-        },
-        &mut progress,
-        |parent, level, progress| sqrt3_level(parent, options, level, progress),
-    )
+
+    fn level(
+        &self,
+        mesh: &Mesh,
+        options: &SubdivisionOptions,
+        level: u32,
+        progress: &mut Progress<'_>,
+    ) -> Result<(Mesh, LevelReport)> {
+        sqrt3_level(mesh, options, level, progress)
+    }
 }
 
 /// Kobbelt's α for valence `n`.
