@@ -49,8 +49,10 @@
 use crate::algo::progress::Progress;
 use crate::algo::subdivision::creases::{Mask, PointSink, Sink, Spoke};
 use crate::algo::subdivision::refine::{face_ring, CutRule};
-use crate::algo::subdivision::split::{FaceSplit, Pass, SmoothRules};
-use crate::algo::subdivision::{subdivide, Scheme, SubdivisionOptions, SubdivisionReport, ON_HOLE};
+use crate::algo::subdivision::split::{FaceSplit, SmoothRules};
+use crate::algo::subdivision::{
+    subdivide, Pass, Scheme, SubdivisionOptions, SubdivisionReport, ON_HOLE,
+};
 use crate::error::Result;
 use crate::layout::{Fid, Hid, Vid};
 use crate::mesh::Mesh;

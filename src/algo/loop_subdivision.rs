@@ -49,9 +49,9 @@ use std::f64::consts::PI;
 use crate::algo::progress::Progress;
 use crate::algo::subdivision::creases::{Mask, PointSink, Sink, Spoke};
 use crate::algo::subdivision::refine::CutRule;
-use crate::algo::subdivision::split::{FaceSplit, Pass, SmoothRules};
+use crate::algo::subdivision::split::{FaceSplit, SmoothRules};
 use crate::algo::subdivision::{
-    scatter_edge_ends, subdivide, Scheme, SubdivisionOptions, SubdivisionReport,
+    scatter_edge_ends, subdivide, Pass, Scheme, SubdivisionOptions, SubdivisionReport,
 };
 use crate::error::Result;
 use crate::layout::{Hid, Vid};

@@ -421,6 +421,20 @@ impl<'p, 'a> Stage<'p, 'a> {
     }
 }
 
+/// The progress of one level's passes.
+pub(crate) struct Pass<'p, 'a> {
+    pub(crate) progress: &'p mut Progress<'a>,
+    pub(crate) algorithm: &'static str,
+    pub(crate) level: u32,
+}
+
+impl<'a> Pass<'_, 'a> {
+    /// A stage of `total` units named `what`.
+    pub(crate) fn stage(&mut self, what: &str, total: usize) -> Result<Stage<'_, 'a>> {
+        Stage::new(self.progress, self.algorithm, self.level, what, total)
+    }
+}
+
 /// An `Unsuitable` error.
 pub(crate) fn unsuitable(
     algorithm: &'static str,

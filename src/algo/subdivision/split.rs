@@ -27,7 +27,7 @@ use super::columns::{crease_children, RefinePlans};
 use super::creases::{emit_edge, emit_vertex, Features, Mask, PointSink, RuleCounts, Sink, Spoke};
 use super::refine::{check_valence_two, refine, valence_two_error, CutRule, Refinement};
 use super::{
-    finish_columns, Growth, LevelReport, Scheme, Stage, Subdivider, SubdivisionOptions, ON_HOLE,
+    finish_columns, Growth, LevelReport, Pass, Scheme, Subdivider, SubdivisionOptions, ON_HOLE,
 };
 
 /// A scheme whose levels split every edge at an edge point and cut every
@@ -105,20 +105,6 @@ impl SmoothRules for Linear {
     }
 }
 
-/// The progress of one level's passes.
-pub(crate) struct Pass<'p, 'a> {
-    pub(crate) progress: &'p mut Progress<'a>,
-    pub(crate) algorithm: &'static str,
-    pub(crate) level: u32,
-}
-
-impl<'a> Pass<'_, 'a> {
-    /// A stage of `total` units named `what`.
-    pub(crate) fn stage(&mut self, what: &str, total: usize) -> Result<Stage<'_, 'a>> {
-        Stage::new(self.progress, self.algorithm, self.level, what, total)
-    }
-}
-
 impl<S: FaceSplit> Subdivider for S {
     const SCHEME: Scheme = S::SCHEME;
 
@@ -172,18 +158,18 @@ fn split_level<S: FaceSplit>(
         // The position pass checks as it goes; without it, check first.
         check_valence_two(mesh, rule, algorithm)?;
     }
-    let (r, topology) = refine(mesh, rule, algorithm, level, progress)?;
+    let mut pass = Pass {
+        progress,
+        algorithm,
+        level,
+    };
+    let (r, topology) = refine(mesh, rule, &mut pass)?;
     let mut report = LevelReport {
         sharp_edges: features.sharp_edges,
         ..LevelReport::default()
     };
     let positions = match (rules, dense) {
         (Some(rules), Some(p)) => {
-            let mut pass = Pass {
-                progress,
-                algorithm,
-                level,
-            };
             let positions = Positions {
                 rules,
                 cut: rule,
