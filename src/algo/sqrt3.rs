@@ -10,26 +10,33 @@
 //! number. Triangles only: [`Error::Unsuitable`] names the first face that
 //! is not a triangle, or an interior vertex of valence 2.
 //!
-//! **Boundary** (Kobbelt's rule). Boundary edges are never flipped. The
-//! first level of a call (and every odd one: 1, 3, 5, ...) keeps them as
-//! they are: the triangle beside one is the piece of its parent between
-//! the edge and the face point, and boundary vertices stay where they are.
-//! The second level (and every even one) trisects every boundary edge:
-//! two boundary points on it, joined to the face point, so the piece
-//! becomes three triangles, and the boundary moves by the ternary cubic
-//! B-spline rules (mask `(1, 4, 10, 16, 19, 16, 10, 4, 1) / 27`): an old
-//! boundary vertex `v` between boundary neighbours `a` and `b` goes to
-//! `(4a + 19v + 4b) / 27`, the point a third of the way from `a` to `b`
-//! to `(p + 16a + 10b) / 27` (`p` the boundary vertex before `a`), the
-//! point two thirds of the way symmetrically. Two levels thus refine the
-//! boundary by 3 where the inside is refined by √3² = 3, and the boundary
-//! converges to a cubic B-spline curve. A boundary vertex that stays (a
-//! corner: [`Boundary::CreaseAndCorners`](crate::algo::Boundary) at
-//! valence 2, the corner column, a vertex on more than two boundary
-//! edges) ends the curve: the new points beside it lie at the thirds of
-//! the straight edge. Levels are counted within one call: two calls of
-//! one level each never trisect; ask for `levels: 2`. Seams (below) are
-//! kept but not trisected.
+//! **Boundary** (Kobbelt's rule). Boundary edges are never flipped. Odd
+//! levels of a call (1, 3, 5, ...) keep them: the triangle beside one is
+//! the piece of its parent between the edge and the face point, and
+//! boundary vertices stay where they are. Even levels (2, 4, ...) trisect
+//! every boundary edge: two boundary points on it, joined to the face
+//! point, so the piece becomes three triangles. Two levels thus refine
+//! the boundary by 3 where the inside is refined by √3² = 3, and the
+//! boundary converges to a cubic B-spline curve: at an even level it
+//! moves by the ternary cubic B-spline's masks (its subdivision mask is
+//! `(1, 4, 10, 16, 19, 16, 10, 4, 1) / 27`). With `p, a, b, q` four
+//! consecutive vertices of a boundary loop before the level:
+//!
+//! | new point | mask |
+//! |---|---|
+//! | old boundary vertex `a` | `(4p + 19a + 4b) / 27` |
+//! | a third of the way from `a` to `b` | `(p + 16a + 10b) / 27` |
+//! | two thirds of the way from `a` to `b` | `(10a + 16b + q) / 27` |
+//! | a third of the way from `a` to `b`, `a` a corner | `(2a + b) / 3` (`a` stays) |
+//!
+//! A boundary vertex that stays is a corner and ends the curve: the
+//! corner of a single face with [`Boundary::CreaseAndCorners`](crate::algo::Boundary)
+//! (at the even level of valence 3: the odd level before cut its face in
+//! three, two at it), a vertex of the
+//! [`corner_column`](SubdivisionOptions::corner_column), or a vertex on
+//! more than two boundary edges. Levels are counted within one call: two
+//! calls of one level each never trisect; ask for `levels: 2`. Seams
+//! (below) are kept but not trisected.
 //!
 //! **Rules.** Face point: the centroid. Old interior vertex
 //! `(1 − αₙ) v + αₙ/n Σ uᵢ` with `αₙ = (4 − 2 cos(2π/n)) / 9`.
@@ -279,6 +286,13 @@ impl<'a> VertexRules<'a> {
     fn boundary_move(&self, v: Vid) -> VertexMove {
         let mut ring = Vec::new();
         let on_boundary = self.features.gather(self.mesh, v, &mut ring);
+        // The corner of a single face (valence 2) had that face cut in
+        // three by the level before, two of them at it: valence 3 now (a
+        // boundary vertex of valence n comes out of an odd level with
+        // n + 1 or more).
+        if self.features.boundary_corners() && on_boundary && ring.len() == 3 {
+            return VertexMove::Stay;
+        }
         match self.features.rule(v, &ring, on_boundary).parent {
             Rule::Crease(a, b) => VertexMove::Curve(a, b),
             _ => VertexMove::Stay,

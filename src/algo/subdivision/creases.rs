@@ -245,6 +245,13 @@ impl Features {
         })
     }
 
+    /// Whether boundary vertices of valence 2 are corners
+    /// ([`Boundary::CreaseAndCorners`]).
+    #[inline]
+    pub(crate) fn boundary_corners(&self) -> bool {
+        self.boundary_corners
+    }
+
     /// Whether `v` needs the general rule (boundary vertices always do).
     #[inline(always)]
     pub(crate) fn is_special(&self, v: Vid) -> bool {
