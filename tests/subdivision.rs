@@ -1645,3 +1645,160 @@ fn sqrt3_boundary_attributes() {
     }
     assert_eq!(checked, 2 * boundary_edge_count(&one));
 }
+
+/// The boundary loop of a one-hole mesh, starting at an old vertex, as
+/// (vertex, whether it is old) — old vertices sit at every third place
+/// after a trisecting level.
+fn boundary_from_old(m: &Mesh, old: &[VertexKey]) -> Vec<VertexKey> {
+    let loops = hole_loops(m);
+    assert_eq!(loops.len(), 1);
+    let ring = &loops[0];
+    let start = ring.iter().position(|v| old.contains(v)).unwrap();
+    (0..ring.len())
+        .map(|i| ring[(start + i) % ring.len()])
+        .collect()
+}
+
+/// Vertex columns through a trisecting level: a colour interpolated like
+/// positions ("vertex" data) lands where the positions do, boundary points
+/// included; a linear ("varying") column keeps old values, gives a face
+/// point the mean of its corners and a boundary point the thirds of its
+/// edge.
+#[test]
+fn sqrt3_boundary_vertex_columns() {
+    let mut m = bumpy_grid();
+    let colour = m.add_vertex_attr::<[f64; 3]>("colour").unwrap();
+    let t = m.add_vertex_attr::<f64>("temperature").unwrap();
+    let vs: Vec<VertexKey> = m.vertices().collect();
+    for (i, &v) in vs.iter().enumerate() {
+        let p = m.position(v).unwrap();
+        m.set_attr(&colour, v, p).unwrap();
+        m.set_attr(&t, v, p[0] * p[0] + 0.1 * i as f64).unwrap();
+    }
+    let mut opts = SubdivisionOptions::levels(2);
+    opts.vertex_data = opts
+        .vertex_data
+        .with("temperature", VertexInterpolation::Linear);
+    let mut one = m.clone();
+    sqrt3_subdivide(
+        &mut one,
+        &SubdivisionOptions {
+            levels: 1,
+            ..opts.clone()
+        },
+        Progress::none(),
+    )
+    .unwrap();
+    let r = sqrt3_subdivide(&mut m, &opts, Progress::none()).unwrap();
+    m.validate().unwrap();
+    assert!(r.levels[1].boundary_trisected);
+    assert_eq!(boundary_edge_count(&m), 3 * boundary_edge_count(&one));
+    for v in m.vertices() {
+        let (c, p) = (
+            *m.attr(&colour, v).unwrap().unwrap(),
+            m.position(v).unwrap(),
+        );
+        assert!(close(c, p), "colour {c:?} at {p:?}");
+    }
+    let t1 = |v: VertexKey| *one.attr(&t, v).unwrap().unwrap();
+    let t2 = |v: VertexKey| *m.attr(&t, v).unwrap().unwrap();
+    let old: Vec<VertexKey> = one.vertices().collect();
+    for &v in &old {
+        assert_eq!(t2(v), t1(v), "an old vertex keeps its value");
+    }
+    let ring = boundary_from_old(&m, &old);
+    let corners: Vec<VertexKey> = ring.iter().step_by(3).copied().collect();
+    let k = corners.len();
+    for i in 0..k {
+        let (a, b) = (corners[i], corners[(i + 1) % k]);
+        let (x1, x2) = (ring[3 * i + 1], ring[3 * i + 2]);
+        assert!((t2(x1) - (2.0 * t1(a) + t1(b)) / 3.0).abs() < 1e-12);
+        assert!((t2(x2) - (t1(a) + 2.0 * t1(b)) / 3.0).abs() < 1e-12);
+    }
+    // A face point (a new vertex off the boundary) is the mean of the
+    // corners of its parent face: three old vertices around it.
+    let mut face_points = 0;
+    for v in m.vertices() {
+        if old.contains(&v) || m.vertex(v).unwrap().is_boundary() {
+            continue;
+        }
+        let corners: Vec<VertexKey> = m
+            .vertex(v)
+            .unwrap()
+            .neighbors()
+            .filter(|u| old.contains(u))
+            .collect();
+        assert_eq!(corners.len(), 3);
+        let mean = corners.iter().map(|&u| t1(u)).sum::<f64>() / 3.0;
+        assert!((t2(v) - mean).abs() < 1e-12);
+        face_points += 1;
+    }
+    assert_eq!(face_points, one.face_count());
+}
+
+/// A boundary vertex that stays (a corner of the grid with
+/// `Boundary::CreaseAndCorners`, or one marked in the corner column) ends
+/// the boundary curve: it keeps its place through both levels, and the
+/// trisection points beside it lie a third of the way along the straight
+/// edge.
+#[test]
+fn sqrt3_boundary_curve_ends_at_corners() {
+    let input = bumpy_grid();
+    let pinned = input
+        .vertices()
+        .find(|&v| {
+            let view = input.vertex(v).unwrap();
+            view.is_boundary() && view.degree() > 3
+        })
+        .unwrap();
+    let mut m = input.clone();
+    let pin = m.add_vertex_attr::<bool>("pin").unwrap();
+    m.set_attr(&pin, pinned, true).unwrap();
+    let opts = SubdivisionOptions {
+        boundary: Boundary::CreaseAndCorners,
+        corner_column: Some("pin".into()),
+        ..SubdivisionOptions::levels(2)
+    };
+    let mut one = m.clone();
+    sqrt3_subdivide(
+        &mut one,
+        &SubdivisionOptions {
+            levels: 1,
+            ..opts.clone()
+        },
+        Progress::none(),
+    )
+    .unwrap();
+    let r = sqrt3_subdivide(&mut m, &opts, Progress::none()).unwrap();
+    m.validate().unwrap();
+    // The grid's corners of a single face (valence 2) and the pinned one.
+    let stays: Vec<VertexKey> = input
+        .vertices()
+        .filter(|&v| {
+            let view = input.vertex(v).unwrap();
+            v == pinned || (view.is_boundary() && view.degree() == 2)
+        })
+        .collect();
+    assert!(stays.len() >= 3, "{} corners", stays.len());
+    // (The face points next to the pinned vertex inherit its mark.)
+    assert!(r.levels[1].corner_vertices >= stays.len());
+    for &v in &stays {
+        assert_eq!(m.position(v).unwrap(), input.position(v).unwrap());
+    }
+    let p = |v: VertexKey| one.position(v).unwrap();
+    let old: Vec<VertexKey> = one.vertices().collect();
+    let ring = boundary_from_old(&m, &old);
+    let n = ring.len();
+    let mut checked = 0;
+    for i in (0..n).step_by(3) {
+        let (a, x1, x2, b) = (ring[i], ring[i + 1], ring[i + 2], ring[(i + 3) % n]);
+        for (corner, x, other) in [(a, x1, b), (b, x2, a)] {
+            if stays.contains(&corner) {
+                let expected = add(scale(p(corner), 2.0 / 3.0), scale(p(other), 1.0 / 3.0));
+                assert!(close(m.position(x).unwrap(), expected));
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 2 * stays.len());
+}

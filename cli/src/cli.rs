@@ -4,6 +4,8 @@ use std::path::PathBuf;
 
 use crate::input::MeshFormat;
 use clap::{Args, Parser, Subcommand};
+use meshloom::algo::subdivision::MidpointFaces;
+use meshloom::algo::Scheme;
 use meshloom_cli::render::View;
 
 const EXAMPLES: &str = "\
@@ -169,12 +171,13 @@ Example:
     Render(RenderArgs),
     /// Subdivide: Loop, Catmull-Clark, sqrt(3) or midpoint, any levels.
     ///
-    /// Loop takes triangles, sqrt3 closed triangle meshes, catmull-clark
-    /// and midpoint any polygons. Boundaries follow the crease rule (add
-    /// --corners to keep the corners of single faces); an f64 edge column
-    /// named by --crease-column gives semi-sharp creases (loop and
-    /// catmull-clark). Attributes follow: UVs stay linear per face, so
-    /// seams stay seams; face values go to every child face.
+    /// Loop and sqrt3 take triangles, catmull-clark and midpoint any
+    /// polygons. Boundaries follow the crease rule (add --corners to keep
+    /// the corners of single faces; sqrt3 trisects the boundary every
+    /// second level); an f64 edge column named by --crease-column gives
+    /// semi-sharp creases (loop and catmull-clark only). Attributes follow:
+    /// UVs stay linear per face, so seams stay seams; face values go to
+    /// every child face.
     #[command(after_help = "\
 Example:
   meshloom subdivide cube.obj smooth.obj --scheme catmull-clark --levels 3
@@ -599,31 +602,6 @@ pub enum ColorBy {
     Curvature,
 }
 
-/// A subdivision scheme.
-#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Scheme {
-    /// Loop (triangles).
-    Loop,
-    /// Catmull-Clark (any polygons; quads after one level).
-    CatmullClark,
-    /// Kobbelt's sqrt(3) (closed triangle meshes).
-    Sqrt3,
-    /// Midpoint (nothing moves; triangles 1-to-4, other meshes to quads).
-    Midpoint,
-}
-
-impl Scheme {
-    /// The name on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Scheme::Loop => "loop",
-            Scheme::CatmullClark => "catmull-clark",
-            Scheme::Sqrt3 => "sqrt3",
-            Scheme::Midpoint => "midpoint",
-        }
-    }
-}
-
 /// `meshloom subdivide`.
 #[derive(Args, Debug)]
 pub struct SubdivideArgs {
@@ -633,8 +611,9 @@ pub struct SubdivideArgs {
     /// The mesh file to write (format from its extension).
     #[arg(value_parser = mesh_path)]
     pub output: PathBuf,
-    /// The scheme.
-    #[arg(long, value_enum)]
+    /// The scheme: loop (triangles), catmull-clark (any polygons; quads
+    /// after one level), sqrt3 (triangles), midpoint (nothing moves).
+    #[arg(long, value_name = "SCHEME", value_parser = words::<Scheme>(Scheme::WORDS))]
     pub scheme: Scheme,
     /// Levels, 0 to 8 (each multiplies the faces by 3 or 4).
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(0..=8))]
@@ -642,9 +621,17 @@ pub struct SubdivideArgs {
     /// An f64 edge column of crease sharpness (loop, catmull-clark).
     #[arg(long, value_name = "NAME")]
     pub crease_column: Option<String>,
+    /// A bool vertex column: vertices where it is true stay where they are.
+    #[arg(long, value_name = "NAME")]
+    pub corner_column: Option<String>,
     /// Keep boundary corners (vertices of a single face) in place.
     #[arg(long)]
     pub corners: bool,
+    /// How midpoint cuts the faces: auto (triangles 1-to-4 when every face
+    /// is a triangle, else quads), quads or triangles.
+    #[arg(long, value_name = "HOW", default_value_t = MidpointFaces::Auto,
+          value_parser = words::<MidpointFaces>(MidpointFaces::WORDS))]
+    pub midpoint_faces: MidpointFaces,
     /// Refuse, before any work, a result estimated past this many faces.
     #[arg(long, value_name = "N", default_value_t = meshloom::algo::DEFAULT_MAX_FACES)]
     pub max_faces: usize,
@@ -653,6 +640,16 @@ pub struct SubdivideArgs {
     pub json: bool,
     #[command(flatten)]
     pub read: ReadArgs,
+}
+
+/// The value parser of an option enum that takes the library's words
+/// (its `FromStr`): `--help` lists them, another word is a usage error.
+fn words<T>(words: &'static [&'static str]) -> impl clap::builder::TypedValueParser<Value = T>
+where
+    T: std::str::FromStr<Err = meshloom::choice::UnknownChoice> + Clone + Send + Sync + 'static,
+{
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(words.iter().copied()).try_map(|s| s.parse::<T>())
 }
 
 /// What the readers know, for messages.

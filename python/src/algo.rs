@@ -20,13 +20,13 @@ use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
 use meshloom::algo::subdivision::SubdivisionReport;
 use meshloom::algo::DEFAULT_MAX_FACES;
 use meshloom::algo::{
-    add_corner_normals, add_face_normals, add_vertex_normals, catmull_clark, corner_normals,
-    face_normals, loop_subdivide, midpoint_subdivide, sqrt3_subdivide, vertex_normals, Boundary,
-    CornerNormalOptions, DecimateOptions, DecimateReport, Flow, MidpointFaces, MidpointOptions,
-    NormalWeight, Progress, ProgressInfo, SubdivisionOptions, VertexInterpolation,
+    add_corner_normals, add_face_normals, add_vertex_normals, corner_normals, face_normals,
+    subdivide, vertex_normals, CornerNormalOptions, DecimateOptions, DecimateReport, Flow,
+    NormalWeight, Progress, ProgressInfo, Scheme, SubdivisionOptions, VertexInterpolation,
     VertexNormalOptions,
 };
 use meshloom::attr::{Attr, Contagion, Element, VertexAttr};
+use meshloom::choice::UnknownChoice;
 use meshloom::{Mesh, VertexKey};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -237,7 +237,7 @@ fn counts_dict<'py>(py: Python<'py>, c: &meshloom::algo::Counts) -> PyResult<Bou
 
 fn subdivision_report<'py>(py: Python<'py>, r: &SubdivisionReport) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item("scheme", r.scheme)?;
+    d.set_item("scheme", r.scheme.word())?;
     d.set_item("input", counts_dict(py, &r.input)?)?;
     d.set_item("output", counts_dict(py, &r.output())?)?;
     let levels = PyList::empty(py);
@@ -490,13 +490,14 @@ impl PyMesh {
 
     /// Subdivide in place; returns the report (a dict: `scheme`, `input`
     /// and `output` counts, one dict per level). `scheme`: `"loop"`
-    /// (triangles), `"catmull_clark"` (any polygons), `"sqrt3"` (triangles)
-    /// or `"midpoint"` (linear: triangles 1-to-4, else quads; `faces` =
-    /// `"auto"`, `"quads"` or `"triangles"`). `boundary`: `"crease"` or
-    /// `"crease_and_corners"`; `corner_column` (bool vertex column of
-    /// fixed vertices) and `crease_column` (float edge column of crease
-    /// sharpness; not for sqrt3); `linear_columns`: vertex columns refined
-    /// linearly instead of with the scheme's stencil. `progress`: a
+    /// (triangles), `"catmull_clark"` (or `"catmull-clark"`; any polygons),
+    /// `"sqrt3"` (triangles) or `"midpoint"` (linear: triangles 1-to-4,
+    /// else quads; `faces` = `"auto"`, `"quads"` or `"triangles"`).
+    /// `boundary`: `"crease"` or `"crease_and_corners"`; `corner_column`
+    /// (bool vertex column of fixed vertices) and `crease_column` (float
+    /// edge column of crease sharpness; loop and catmull_clark only, the
+    /// others raise `UnsuitableError`); `linear_columns`: vertex columns
+    /// refined linearly instead of with the scheme's stencil. `progress`: a
     /// callable taking a dict and returning False to cancel
     /// (`CancelledError`; the mesh is unchanged). `max_faces`: a request
     /// estimated to make more faces is refused before any work
@@ -516,20 +517,14 @@ impl PyMesh {
         max_faces: usize,
     ) -> PyResult<Py<PyDict>> {
         let py = slf.py();
-        let boundary = match boundary {
-            "crease" => Boundary::Crease,
-            "crease_and_corners" => Boundary::CreaseAndCorners,
-            other => {
-                return Err(PyValueError::new_err(format!(
-                    "boundary is \"crease\" or \"crease_and_corners\", not {other:?}"
-                )))
-            }
-        };
+        let word = |e: UnknownChoice| PyValueError::new_err(e.to_string());
+        let scheme: Scheme = scheme.parse().map_err(word)?;
         let mut options = SubdivisionOptions {
             levels,
-            boundary,
+            boundary: boundary.parse().map_err(word)?,
             corner_column,
             crease_column,
+            midpoint_faces: faces.parse().map_err(word)?,
             max_faces,
             ..SubdivisionOptions::default()
         };
@@ -540,36 +535,7 @@ impl PyMesh {
                 .with(c, VertexInterpolation::Linear);
         }
         let cb = Callback::new(progress)?;
-        let report = match scheme {
-            "loop" => cb.finish(edit(slf, |m| cb.run(|p| loop_subdivide(m, &options, p))))?,
-            "catmull_clark" => {
-                cb.finish(edit(slf, |m| cb.run(|p| catmull_clark(m, &options, p))))?
-            }
-            "sqrt3" => cb.finish(edit(slf, |m| cb.run(|p| sqrt3_subdivide(m, &options, p))))?,
-            "midpoint" => {
-                let faces = match faces {
-                    "auto" => MidpointFaces::Auto,
-                    "quads" => MidpointFaces::Quads,
-                    "triangles" => MidpointFaces::Triangles,
-                    other => {
-                        return Err(PyValueError::new_err(format!(
-                            "faces is \"auto\", \"quads\" or \"triangles\", not {other:?}"
-                        )))
-                    }
-                };
-                let o = MidpointOptions {
-                    levels,
-                    faces,
-                    max_faces,
-                };
-                cb.finish(edit(slf, |m| cb.run(|p| midpoint_subdivide(m, &o, p))))?
-            }
-            other => {
-                return Err(PyValueError::new_err(format!(
-                "scheme is \"loop\", \"catmull_clark\", \"sqrt3\" or \"midpoint\", not {other:?}"
-            )))
-            }
-        };
+        let report = cb.finish(edit(slf, |m| cb.run(|p| subdivide(m, scheme, &options, p))))?;
         Ok(subdivision_report(py, &report)?.unbind())
     }
 

@@ -3,7 +3,7 @@
 //!
 //! **Counts** per level: V' = V + E, E' = 2E + 3F, F' = 4F; holes keep
 //! their number and double their sides. Triangles only
-//! ([`Error::Unsuitable`] names the first other face; triangulate first or
+//! ([`Error::Unsuitable`](crate::Error::Unsuitable) names the first other face; triangulate first or
 //! use [Catmull-Clark](crate::algo::catmull_clark())).
 //!
 //! **Rules.** Edge point `⅜ (a + b) + ⅛ (c + d)` (`c`, `d` the opposite
@@ -19,16 +19,17 @@
 //! parent triangle (seams stay seams), face values split in four (¼ each),
 //! edge flags reach both halves of their edge.
 //!
-//! **Built wholesale**, not through [`Mesh::split_edge`] and
-//! [`Mesh::split_face`]: the operators would relink one element at a time,
-//! with a check and the rules of every column each, where here one pass
-//! over the faces and one over the edges write every record once into
-//! arenas allocated at their final size. See
-//! [`subdivision`](crate::algo::subdivision) for what that means for keys
-//! and cancellation; `BENCHMARKS.md` has the figures against the peers.
+//! **Built wholesale** by the face-splitting level the driver shares with
+//! Catmull-Clark and midpoint, not through [`Mesh::split_edge`] and
+//! [`Mesh::split_face`]: one pass over the faces and one over the edges
+//! write every record once into arenas allocated at their final size. See
+//! [`subdivision`](crate::algo::subdivision) for the driver, keys and
+//! cancellation. This file holds Loop's rules: its masks and fast
+//! stencils. `BENCHMARKS.md` has the figures against the peers.
 //!
-//! **Cost.** O(V + E + F) per level, three passes over the parent (faces,
-//! vertices, edges) plus one per arena that has attribute columns.
+//! **Cost.** O(V + E + F) per level: the topology's passes over the
+//! faces and the edges, the positions' over the edges (the scatter), the
+//! vertices and the edges, plus one per arena that has attribute columns.
 //!
 //! ```
 //! use meshloom::algo::{loop_subdivide, Progress, SubdivisionOptions};
@@ -46,31 +47,24 @@
 use std::f64::consts::PI;
 
 use crate::algo::progress::Progress;
-use crate::algo::subdivision::creases::{
-    emit_edge, emit_vertex, Features, Mask, PointSink, RuleCounts, Sink, Spoke,
-};
-use crate::algo::subdivision::refine::{
-    check_valence_two, refine, valence_two_error, CutRule, Refinement,
-};
+use crate::algo::subdivision::creases::{Mask, PointSink, Sink, Spoke};
+use crate::algo::subdivision::refine::CutRule;
+use crate::algo::subdivision::split::{FaceSplit, SmoothRules};
 use crate::algo::subdivision::{
-    check_columns, crease_children, finish_columns, run_levels, scatter_edge_ends, Growth,
-    LevelReport, Levels, RefinePlans, Stage, SubdivisionOptions, SubdivisionReport, ON_HOLE,
+    scatter_edge_ends, subdivide, Pass, Scheme, SubdivisionOptions, SubdivisionReport,
 };
-use crate::error::{Error, Result};
-use crate::layout::{with_headroom, Eid, Hid, Vid};
+use crate::error::Result;
+use crate::layout::{Hid, Vid};
 use crate::mesh::Mesh;
 
-const ALGORITHM: &str = "loop_subdivide";
-
-/// Apply `options.levels` levels of Loop subdivision to a triangle mesh.
+/// Apply `options.levels` levels of Loop subdivision to a triangle mesh:
+/// [`subdivide`] with [`Scheme::Loop`].
 ///
 /// # Errors
-/// [`Error::Unsuitable`] for a face that is not a triangle or an interior
-/// vertex of valence 2 (its two faces share both its edges), and for a NaN
-/// sharpness; [`Error::AttributeMissing`] / [`Error::AttributeType`] for a
-/// column named in the options; [`Error::NonFinitePosition`] for a vertex
-/// at NaN or infinity; [`Error::Cancelled`]. On any error the mesh is
-/// exactly as it was.
+/// [`Error::Unsuitable`](crate::Error::Unsuitable) for a face that is not
+/// a triangle or an interior vertex of valence 2 (its two faces share both
+/// its edges), and for a NaN sharpness; the other errors of [`subdivide`].
+/// On any error the mesh is exactly as it was.
 ///
 /// # Complexity
 /// O(output size) time; the result of each level is allocated once.
@@ -89,35 +83,7 @@ pub fn loop_subdivide(
     options: &SubdivisionOptions,
     progress: Progress<'_>,
 ) -> Result<SubdivisionReport> {
-    mesh.as_one_step("Loop subdivision", |mesh| {
-        loop_subdivide_run(mesh, options, progress)
-    })
-}
-
-/// [`loop_subdivide`] itself, outside the journal's step.
-fn loop_subdivide_run(
-    mesh: &mut Mesh,
-    options: &SubdivisionOptions,
-    mut progress: Progress<'_>,
-) -> Result<SubdivisionReport> {
-    check_columns(
-        mesh,
-        ALGORITHM,
-        options.corner_column.as_deref(),
-        options.crease_column.as_deref(),
-        &options.vertex_data,
-    )?;
-    run_levels(
-        mesh,
-        ALGORITHM,
-        Levels {
-            count: options.levels,
-            growth: Growth::Four,
-            max_faces: options.max_faces,
-        },
-        &mut progress,
-        |parent, level, progress| loop_level(parent, options, level, progress),
-    )
+    subdivide(mesh, Scheme::Loop, options, progress)
 }
 
 /// Loop's β for valence `n`.
@@ -130,10 +96,27 @@ pub(crate) fn loop_beta(n: usize) -> f64 {
     (0.625 - c * c) / n as f64
 }
 
-/// The smooth rules of Loop subdivision.
-pub(crate) struct LoopMask;
+/// Loop subdivision, on the face-splitting level.
+pub(crate) struct Loop;
 
-impl Mask for LoopMask {
+impl FaceSplit for Loop {
+    const SCHEME: Scheme = Scheme::Loop;
+    type Rules = Loop;
+
+    #[inline]
+    fn cut(&self) -> CutRule {
+        CutRule::Triangles
+    }
+
+    #[inline]
+    fn rules(&self) -> Option<&Loop> {
+        Some(self)
+    }
+}
+
+/// The smooth masks: old vertex `(1 − nβ) v + β Σ uᵢ`, edge point
+/// `⅜ (a + b) + ⅛ (c + d)`.
+impl Mask for Loop {
     #[inline]
     fn smooth_vertex<S: Sink>(&self, _mesh: &Mesh, v: Vid, ring: &[Spoke], w: f64, sink: &mut S) {
         let n = ring.len();
@@ -157,157 +140,39 @@ impl Mask for LoopMask {
     }
 }
 
-fn loop_level(
-    mesh: &Mesh,
-    options: &SubdivisionOptions,
-    level: u32,
-    progress: &mut Progress<'_>,
-) -> Result<(Mesh, LevelReport)> {
-    let features = Features::read(
-        mesh,
-        ALGORITHM,
-        options.boundary,
-        options.corner_column.as_deref(),
-        options.crease_column.as_deref(),
-    )?;
-    let (r, topology) = refine(mesh, CutRule::Triangles, ALGORITHM, level, progress)?;
-    let mut report = LevelReport {
-        sharp_edges: features.sharp_edges,
-        ..LevelReport::default()
-    };
-    let dense = mesh
-        .attrs
-        .positions()
-        .filter(|c| c.present_bits().is_none())
-        .map(|c| c.raw());
-    let positions = match dense {
-        Some(p) => {
-            let (positions, counts) = loop_positions(mesh, &r, &features, p, level, progress)?;
-            report.crease_vertices = counts.crease;
-            report.corner_vertices = counts.corner;
-            report.blended_vertices = counts.blended;
-            Some(positions)
-        }
-        None => {
-            check_valence_two(mesh, CutRule::Triangles, ALGORITHM)?;
-            None
-        }
-    };
-    let plans = RefinePlans {
-        mesh,
-        r: &r,
-        smooth: Some((&LoopMask, &features)),
-    };
-    let crease = options.crease_column.as_deref().map(|name| {
-        let children = crease_children(mesh, name, |e, push| {
-            push(r.child(e, 0).raw());
-            push(r.child(e, 1).raw());
-        });
-        (name, children)
-    });
-    let attrs = finish_columns(mesh, &plans, positions, &options.vertex_data, crease);
-    Ok((topology.into_mesh(attrs), report))
-}
-
-/// The positions of the new level: old vertices by the vertex rules, then
-/// edge points.
-fn loop_positions(
-    mesh: &Mesh,
-    r: &Refinement,
-    features: &Features,
-    p: &[[f64; 3]],
-    level: u32,
-    progress: &mut Progress<'_>,
-) -> Result<(Vec<[f64; 3]>, RuleCounts)> {
-    let nv = r.nv as usize;
-    // The old vertices' slots first hold the neighbour sums (see
-    // `scatter_edges`); the edge points are pushed after them.
-    let mut out: Vec<[f64; 3]> = with_headroom(r.vertex_slots());
-    out.resize(nv, [0.0; 3]);
-    let mut valence = vec![0u32; nv];
-    scatter_edge_ends(mesh, p, &mut out, &mut valence);
-    let betas: Vec<f64> = (0..64).map(loop_beta).collect();
-    let mut counts = RuleCounts::default();
-    let mut sink = PointSink::new(p);
-    let mut ring = Vec::new();
-
-    let mut stage = Stage::new(progress, ALGORITHM, level, "vertices", nv)?;
-    for (vi, out) in out.iter_mut().enumerate() {
-        stage.tick(vi)?;
-        if !mesh.v_slots.is_live(vi) {
-            continue;
-        }
-        let v = Vid::new(vi as u32);
-        let pv = p[vi];
-        if !pv.iter().all(|c| c.is_finite()) {
-            return Err(Error::NonFinitePosition {
-                key: mesh.vkey(v).into(),
-                position: pv,
-            });
-        }
-        let n = valence[vi];
-        if n != ON_HOLE && n > 0 && !features.is_special(v) {
-            // Interior and smooth: `out` holds the sum of the neighbours.
-            if n == 2 {
-                if let Some(e) = valence_two_error(mesh, v, CutRule::Triangles, ALGORITHM) {
-                    return Err(e);
-                }
-            }
-            let n = n as usize;
-            let b = betas.get(n).copied().unwrap_or_else(|| loop_beta(n));
-            let a = 1.0 - n as f64 * b;
-            let sum = *out;
-            *out = [
-                a * pv[0] + b * sum[0],
-                a * pv[1] + b * sum[1],
-                a * pv[2] + b * sum[2],
-            ];
-        } else {
-            let boundary = features.gather(mesh, v, &mut ring);
-            if !boundary && ring.len() == 2 {
-                if let Some(e) = valence_two_error(mesh, v, CutRule::Triangles, ALGORITHM) {
-                    return Err(e);
-                }
-            }
-            let rule = features.rule(v, &ring, boundary);
-            counts.count(&rule);
-            emit_vertex(&LoopMask, mesh, v, &ring, rule, &mut sink);
-            *out = sink.take();
-        }
+/// The fast stencils: the vertex sums `Σ uᵢ` from the edge-order scatter
+/// pass, no face points.
+impl SmoothRules for Loop {
+    #[inline]
+    fn scatter(
+        &self,
+        mesh: &Mesh,
+        p: &[[f64; 3]],
+        sums: &mut [[f64; 3]],
+        valence: &mut [u32],
+        _pass: &mut Pass<'_, '_>,
+    ) -> Result<Vec<[f64; 3]>> {
+        scatter_edge_ends(mesh, p, sums, valence);
+        Ok(Vec::new())
     }
-    stage.finish()?;
 
-    let ne = mesh.e_slots.slot_count();
-    let mut stage = Stage::new(progress, ALGORITHM, level, "edge points", ne)?;
-    for ei in 0..ne {
-        stage.tick(ei)?;
-        if !mesh.e_slots.is_live(ei) {
-            continue;
-        }
-        let e = Eid::new(ei as u32);
-        let [h, t] = e.halfedges();
-        let boundary = r.corner_of(h).is_none() || r.corner_of(t).is_none();
-        let s = if boundary {
-            f64::INFINITY
-        } else {
-            features.sharpness(e)
-        };
-        out.push(if s == 0.0 {
-            let (rh, rt) = (mesh.he[h], mesh.he[t]);
-            let (a, b) = (p[rh.origin.index()], p[rt.origin.index()]);
-            let c = p[mesh.origin(rh.next.twin()).index()];
-            let d = p[mesh.origin(rt.next.twin()).index()];
-            [
-                0.375 * (a[0] + b[0]) + 0.125 * (c[0] + d[0]),
-                0.375 * (a[1] + b[1]) + 0.125 * (c[1] + d[1]),
-                0.375 * (a[2] + b[2]) + 0.125 * (c[2] + d[2]),
-            ]
-        } else {
-            emit_edge(&LoopMask, mesh, e, s, &mut sink);
-            sink.take()
-        });
+    #[inline]
+    fn vertex_weights(&self, n: usize) -> (f64, f64) {
+        let b = loop_beta(n);
+        (1.0 - n as f64 * b, b)
     }
-    stage.finish()?;
-    debug_assert_eq!(out.len(), r.vertex_slots());
-    Ok((out, counts))
+
+    #[inline(always)]
+    fn edge_point(&self, mesh: &Mesh, h: Hid, points: &PointSink<'_>) -> [f64; 3] {
+        let p = points.p;
+        let (rh, rt) = (mesh.he[h], mesh.he[h.twin()]);
+        let (a, b) = (p[rh.origin.index()], p[rt.origin.index()]);
+        let c = p[mesh.origin(rh.next.twin()).index()];
+        let d = p[mesh.origin(rt.next.twin()).index()];
+        [
+            0.375 * (a[0] + b[0]) + 0.125 * (c[0] + d[0]),
+            0.375 * (a[1] + b[1]) + 0.125 * (c[1] + d[1]),
+            0.375 * (a[2] + b[2]) + 0.125 * (c[2] + d[2]),
+        ]
+    }
 }

@@ -13,8 +13,13 @@
 //! face-varying, face values split among the children, edge values to
 //! both halves.
 //!
-//! **Built wholesale**, sharing Loop's and Catmull-Clark's topology pass
-//! (see [`subdivision`](crate::algo::subdivision)).
+//! **Built wholesale** by the face-splitting level Loop and Catmull-Clark
+//! run on, without their smooth rules: the positions, like every vertex
+//! column, follow the linear plan (see
+//! [`subdivision`](crate::algo::subdivision)). Through [`subdivide`]
+//! with [`Scheme::Midpoint`], the faces are cut as
+//! [`SubdivisionOptions::midpoint_faces`] says; the boundary and corner
+//! options change nothing (nothing moves), and a crease column is refused.
 //!
 //! ```
 //! use meshloom::algo::{midpoint_subdivide, MidpointOptions, Progress};
@@ -29,31 +34,17 @@
 //! # Ok::<(), meshloom::Error>(())
 //! ```
 
-use crate::algo::loop_subdivision::LoopMask;
 use crate::algo::progress::Progress;
-use crate::algo::subdivision::refine::{check_valence_two, refine, CutRule};
-use crate::algo::subdivision::{
-    finish_columns, run_levels, Growth, LevelReport, Levels, RefinePlans, SubdivisionReport,
-    VertexData,
-};
+use crate::algo::subdivision::refine::CutRule;
+use crate::algo::subdivision::split::{FaceSplit, Linear};
+use crate::algo::subdivision::{subdivide, Scheme, SubdivisionOptions, SubdivisionReport};
 use crate::error::Result;
 use crate::mesh::Mesh;
 
-const ALGORITHM: &str = "midpoint_subdivide";
+pub use crate::algo::subdivision::MidpointFaces;
 
-/// How [`midpoint_subdivide`] cuts the faces.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
-pub enum MidpointFaces {
-    /// Triangles 1-to-4 when every face is a triangle, quads otherwise.
-    #[default]
-    Auto,
-    /// Every face into one quad per corner, around its centroid.
-    Quads,
-    /// Every triangle into four (other faces are refused).
-    Triangles,
-}
-
-/// Options of [`midpoint_subdivide`].
+/// Options of [`midpoint_subdivide`]: the part of [`SubdivisionOptions`]
+/// midpoint subdivision reads.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct MidpointOptions {
     /// Levels to apply (default 1).
@@ -61,7 +52,7 @@ pub struct MidpointOptions {
     /// How faces are cut (default: by the mesh).
     pub faces: MidpointFaces,
     /// The most faces the result may have (as
-    /// [`SubdivisionOptions::max_faces`](crate::algo::SubdivisionOptions::max_faces);
+    /// [`SubdivisionOptions::max_faces`];
     /// default [`DEFAULT_MAX_FACES`](crate::algo::DEFAULT_MAX_FACES)).
     pub max_faces: usize,
 }
@@ -86,7 +77,19 @@ impl MidpointOptions {
     }
 }
 
-/// Apply `options.levels` levels of linear subdivision.
+impl From<&MidpointOptions> for SubdivisionOptions {
+    fn from(o: &MidpointOptions) -> SubdivisionOptions {
+        SubdivisionOptions {
+            levels: o.levels,
+            midpoint_faces: o.faces,
+            max_faces: o.max_faces,
+            ..SubdivisionOptions::default()
+        }
+    }
+}
+
+/// Apply `options.levels` levels of linear subdivision: [`subdivide`]
+/// with [`Scheme::Midpoint`].
 ///
 /// # Errors
 /// [`Error::Unsuitable`](crate::Error::Unsuitable) for a face that is not a
@@ -108,55 +111,46 @@ pub fn midpoint_subdivide(
     options: &MidpointOptions,
     progress: Progress<'_>,
 ) -> Result<SubdivisionReport> {
-    mesh.as_one_step("Midpoint subdivision", |mesh| {
-        midpoint_subdivide_run(mesh, options, progress)
-    })
+    subdivide(mesh, Scheme::Midpoint, &options.into(), progress)
 }
 
-/// [`midpoint_subdivide`] itself, outside the journal's step.
-fn midpoint_subdivide_run(
-    mesh: &mut Mesh,
-    options: &MidpointOptions,
-    mut progress: Progress<'_>,
-) -> Result<SubdivisionReport> {
-    let rule = match options.faces {
-        MidpointFaces::Quads => CutRule::Quads,
-        MidpointFaces::Triangles => CutRule::Triangles,
-        MidpointFaces::Auto => {
-            let all_triangles = mesh
-                .fids()
-                .all(|f| mesh.is_hole(f) || mesh.face_loop(f).count() == 3);
-            if all_triangles {
-                CutRule::Triangles
-            } else {
-                CutRule::Quads
+/// Midpoint subdivision with its cut rule decided.
+pub(crate) struct Midpoint {
+    rule: CutRule,
+}
+
+impl Midpoint {
+    /// The cut of `faces` for `mesh`: `Auto` cuts triangles 1-to-4 when
+    /// every face is one, everything else into quads (the first level
+    /// decides: its result is all triangles or all quads).
+    pub(crate) fn for_mesh(mesh: &Mesh, faces: MidpointFaces) -> Midpoint {
+        let rule = match faces {
+            MidpointFaces::Quads => CutRule::Quads,
+            MidpointFaces::Triangles => CutRule::Triangles,
+            MidpointFaces::Auto => {
+                let all_triangles = mesh
+                    .fids()
+                    .all(|f| mesh.is_hole(f) || mesh.face_loop(f).count() == 3);
+                if all_triangles {
+                    CutRule::Triangles
+                } else {
+                    CutRule::Quads
+                }
             }
-        }
-    };
-    let data = VertexData::default();
-    run_levels(
-        mesh,
-        ALGORITHM,
-        Levels {
-            count: options.levels,
-            growth: match rule {
-                CutRule::Triangles => Growth::Four,
-                _ => Growth::Corners,
-            },
-            max_faces: options.max_faces,
-        },
-        &mut progress,
-        |parent, level, progress| {
-            check_valence_two(parent, rule, ALGORITHM)?;
-            let (r, topology) = refine(parent, rule, ALGORITHM, level, progress)?;
-            // No smooth rules: the "smooth" plan is the linear one.
-            let plans = RefinePlans::<LoopMask> {
-                mesh: parent,
-                r: &r,
-                smooth: None,
-            };
-            let attrs = finish_columns(parent, &plans, None, &data, None);
-            Ok((topology.into_mesh(attrs), LevelReport::default()))
-        },
-    )
+        };
+        Midpoint { rule }
+    }
+}
+
+impl FaceSplit for Midpoint {
+    const SCHEME: Scheme = Scheme::Midpoint;
+    type Rules = Linear;
+
+    fn cut(&self) -> CutRule {
+        self.rule
+    }
+
+    fn rules(&self) -> Option<&Linear> {
+        None
+    }
 }

@@ -10,7 +10,7 @@
 //! | [`smooth`] | explicit (uniform, cotangent), Taubin and implicit smoothing, with a boundary and a vertex mask kept fixed | the mesh's positions, [`smooth::SmoothReport`] |
 //! | [`fill_hole`](mod@fill_hole) | Liepa's hole filling: the least-weight triangulation of each hole, refined to the rim's edge length and faired (k-harmonic) over the patch | the mesh, [`FillHoleReport`] |
 //! | [`fair`] | the smoothest (k-harmonic, k = 1..3) surface over a region with its surroundings fixed | the mesh's positions, [`fair::FairReport`] |
-//! | [`subdivision`] | what the schemes share: options (levels, boundary, creases, per-column vertex/varying data), the report | [`SubdivisionOptions`], [`SubdivisionReport`] |
+//! | [`subdivision`] | [`subdivide`] by any [`Scheme`] on one driver; what the schemes share: options (levels, boundary, creases, per-column vertex/varying data), the report | the mesh, rebuilt wholesale; [`SubdivisionReport`] |
 //! | [`loop_subdivision`] | Loop subdivision of triangle meshes, semi-sharp creases | the mesh, rebuilt wholesale |
 //! | [`catmull_clark`](mod@catmull_clark) | Catmull-Clark subdivision of any polygons, semi-sharp creases | the mesh, rebuilt wholesale |
 //! | [`sqrt3`] | Kobbelt's sqrt(3) subdivision | the mesh, rebuilt wholesale |
@@ -88,6 +88,6 @@ pub use progress::{Flow, Progress, ProgressInfo};
 pub use remesh::{remesh, RemeshOptions, RemeshReport};
 pub use sqrt3::sqrt3_subdivide;
 pub use subdivision::{
-    Boundary, Counts, LevelReport, SubdivisionOptions, SubdivisionReport, VertexData,
-    VertexInterpolation,
+    subdivide, Boundary, Counts, LevelReport, Scheme, SubdivisionOptions, SubdivisionReport,
+    VertexData, VertexInterpolation,
 };

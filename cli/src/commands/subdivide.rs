@@ -1,13 +1,14 @@
 //! `meshloom subdivide IN OUT --scheme loop|catmull-clark|sqrt3|midpoint
-//! [--levels N] [--crease-column NAME] [--corners] [--json]`.
+//! [--levels N] [--crease-column NAME] [--corner-column NAME] [--corners]
+//! [--midpoint-faces auto|quads|triangles] [--json]`: the library's one
+//! driver, [`algo::subdivide`], which also checks the options (a crease
+//! column only for loop and catmull-clark).
 
 use serde_json::json;
 
-use meshloom::algo::{
-    self, Boundary, Flow, MidpointOptions, ProgressInfo, SubdivisionOptions, SubdivisionReport,
-};
+use meshloom::algo::{self, Boundary, Flow, ProgressInfo, SubdivisionOptions};
 
-use crate::cli::{Scheme, SubdivideArgs};
+use crate::cli::SubdivideArgs;
 use crate::output::{self, to_json};
 use crate::progress::Progress;
 use crate::{input, Failure};
@@ -22,48 +23,31 @@ pub fn run(args: &SubdivideArgs) -> Result<(), Failure> {
         } else {
             Boundary::Crease
         },
+        corner_column: args.corner_column.clone(),
         crease_column: args.crease_column.clone(),
+        midpoint_faces: args.midpoint_faces,
         max_faces: args.max_faces,
         ..SubdivisionOptions::default()
     };
+    let scheme = args.scheme;
     let report = {
-        let bar = Progress::spinner(format!("subdividing ({})", args.scheme.name()));
+        let bar = Progress::spinner(format!("subdividing ({scheme})"));
         let mut show = |info: &ProgressInfo<'_>| {
             bar.message(format!(
-                "{}: {} {}/{}",
-                args.scheme.name(),
-                info.stage,
-                info.done,
-                info.total
+                "{scheme}: {} {}/{}",
+                info.stage, info.done, info.total
             ));
             Flow::Continue
         };
         let progress = algo::Progress::new(&mut show);
-        let done: meshloom::Result<SubdivisionReport> = match args.scheme {
-            Scheme::Loop => algo::loop_subdivide(&mut mesh, &options, progress),
-            Scheme::CatmullClark => algo::catmull_clark(&mut mesh, &options, progress),
-            Scheme::Sqrt3 => algo::sqrt3_subdivide(&mut mesh, &options, progress),
-            Scheme::Midpoint => {
-                if args.crease_column.is_some() {
-                    return Err(Failure::input(
-                        "--crease-column needs --scheme loop or catmull-clark",
-                    ));
-                }
-                let options = MidpointOptions {
-                    max_faces: args.max_faces,
-                    ..MidpointOptions::levels(args.levels)
-                };
-                algo::midpoint_subdivide(&mut mesh, &options, progress)
-            }
-        };
-        done.map_err(Failure::input)?
+        algo::subdivide(&mut mesh, scheme, &options, progress).map_err(Failure::input)?
     };
     input::write(&mesh, &args.output, false, false)?;
     if args.json {
         return output::json(&json!({
             "input": args.input.display().to_string(),
             "output": args.output.display().to_string(),
-            "scheme": args.scheme.name(),
+            "scheme": scheme.word(),
             "report": to_json(&report)?,
         }));
     }

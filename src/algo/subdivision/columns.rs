@@ -176,6 +176,13 @@ pub(crate) fn vertex_linear_plan_refine(mesh: &Mesh, r: &Refinement) -> ColumnPl
         let [h, t] = e.halfedges();
         plan.interpolate([(mesh.origin(h).raw(), 0.5), (mesh.origin(t).raw(), 0.5)]);
     }
+    face_points(mesh, r, &mut plan);
+    debug_assert_eq!(plan.len(), r.vertex_slots());
+    plan
+}
+
+/// The face points, in face order: each the mean of its face's corners.
+fn face_points(mesh: &Mesh, r: &Refinement, plan: &mut ColumnPlan) {
     let mut ring = Vec::new();
     for f in mesh.fids() {
         if mesh.is_hole(f) {
@@ -183,17 +190,10 @@ pub(crate) fn vertex_linear_plan_refine(mesh: &Mesh, r: &Refinement) -> ColumnPl
         }
         face_ring(mesh, mesh.face_halfedge(f), &mut ring);
         if r.rule.cut(ring.len()) == Some(Cut::Quads) {
-            face_point_inputs(mesh, &ring, &mut plan);
+            let w = 1.0 / ring.len() as f64;
+            plan.interpolate(ring.iter().map(|&h| (mesh.origin(h).raw(), w)));
         }
     }
-    debug_assert_eq!(plan.len(), r.vertex_slots());
-    plan
-}
-
-/// A face point: the mean of the face's corners.
-pub(crate) fn face_point_inputs(mesh: &Mesh, ring: &[Hid], plan: &mut ColumnPlan) {
-    let w = 1.0 / ring.len() as f64;
-    plan.interpolate(ring.iter().map(|&h| (mesh.origin(h).raw(), w)));
 }
 
 /// Corners, face-varying and linear: each child corner interpolates the
@@ -396,16 +396,7 @@ impl<M: Mask> ColumnPlans for RefinePlans<'_, M> {
             );
             plan.end_interpolate(start);
         }
-        let mut ring = Vec::new();
-        for f in mesh.fids() {
-            if mesh.is_hole(f) {
-                continue;
-            }
-            face_ring(mesh, mesh.face_halfedge(f), &mut ring);
-            if r.rule.cut(ring.len()) == Some(Cut::Quads) {
-                face_point_inputs(mesh, &ring, &mut plan);
-            }
-        }
+        face_points(mesh, r, &mut plan);
         debug_assert_eq!(plan.len(), r.vertex_slots());
         plan
     }

@@ -21,10 +21,8 @@
 //! weight)` contributions: a [`PointSink`] sums positions, a [`PlanSink`]
 //! records the stencil for the vertex columns interpolated like positions.
 
-use crate::algo::subdivision::{column_of_type, unsuitable, Boundary};
-use crate::attr::ValueType;
+use crate::algo::subdivision::{corner_column_index, crease_column_index, unsuitable, Boundary};
 use crate::error::Result;
-use crate::keys::ElementKind;
 use crate::layout::{Eid, Fid, Hid, Vid};
 use crate::mesh::Mesh;
 use crate::store::plan::ColumnPlan;
@@ -66,6 +64,12 @@ impl<'a> PointSink<'a> {
     pub(crate) fn take(&mut self) -> [f64; 3] {
         std::mem::replace(&mut self.acc, [0.0; 3])
     }
+
+    /// The face point of parent face `f`.
+    #[inline(always)]
+    pub(crate) fn face_point(&self, f: Fid) -> [f64; 3] {
+        self.face_points[self.face_rank[f.index()] as usize]
+    }
 }
 
 impl Sink for PointSink<'_> {
@@ -79,7 +83,7 @@ impl Sink for PointSink<'_> {
 
     #[inline(always)]
     fn face(&mut self, f: Fid, w: f64) {
-        let q = self.face_points[self.face_rank[f.index()] as usize];
+        let q = self.face_point(f);
         self.acc[0] += w * q[0];
         self.acc[1] += w * q[1];
         self.acc[2] += w * q[2];
@@ -178,13 +182,7 @@ impl Features {
         let sharpness = match crease_column {
             None => None,
             Some(name) => {
-                let i = column_of_type(
-                    mesh,
-                    ElementKind::Edge,
-                    name,
-                    &[ValueType::F64, ValueType::F32],
-                    "f64",
-                )?;
+                let i = crease_column_index(mesh, name)?;
                 let col = &mesh.attrs.edge.cols[i].1;
                 let mut s = vec![0.0f64; mesh.e_slots.slot_count()];
                 for e in mesh.eids() {
@@ -210,8 +208,7 @@ impl Features {
         let pinned = match corner_column {
             None => None,
             Some(name) => {
-                let i =
-                    column_of_type(mesh, ElementKind::Vertex, name, &[ValueType::Bool], "bool")?;
+                let i = corner_column_index(mesh, name)?;
                 let col = &mesh.attrs.vertex.cols[i].1;
                 let flags: Vec<bool> = (0..mesh.v_slots.slot_count())
                     .map(|v| {
@@ -246,6 +243,13 @@ impl Features {
             special,
             sharp_edges,
         })
+    }
+
+    /// Whether boundary vertices of valence 2 are corners
+    /// ([`Boundary::CreaseAndCorners`]).
+    #[inline]
+    pub(crate) fn boundary_corners(&self) -> bool {
+        self.boundary_corners
     }
 
     /// Whether `v` needs the general rule (boundary vertices always do).

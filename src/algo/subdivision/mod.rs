@@ -1,11 +1,52 @@
-//! What the four subdivision schemes share: options, the report, the
-//! driver that runs the levels and hands the result over, the topology of
-//! the face-splitting schemes, the crease rules, and the attribute plans.
+//! Subdivision: one driver, four schemes.
 //!
-//! The schemes themselves live one per file beside this folder:
-//! [`loop_subdivision`](crate::algo::loop_subdivision),
-//! [`catmull_clark`](mod@crate::algo::catmull_clark),
-//! [`sqrt3`](crate::algo::sqrt3) and [`midpoint`](crate::algo::midpoint).
+//! [`subdivide`] refines a mesh by any [`Scheme`]: Loop, Catmull-Clark, √3
+//! or midpoint. The per-scheme functions ([`loop_subdivide`](crate::algo::loop_subdivide),
+//! [`catmull_clark`](crate::algo::catmull_clark()),
+//! [`sqrt3_subdivide`](crate::algo::sqrt3_subdivide),
+//! [`midpoint_subdivide`](crate::algo::midpoint_subdivide)) are the same
+//! call with the scheme fixed.
+//!
+//! ```
+//! use meshloom::algo::{subdivide, Progress, Scheme, SubdivisionOptions};
+//! let scheme: Scheme = "catmull-clark".parse()?;
+//! let mut cube = meshloom::shapes::cube();
+//! let report = subdivide(&mut cube, scheme, &SubdivisionOptions::levels(2), Progress::none())?;
+//! assert_eq!(report.scheme, Scheme::CatmullClark);
+//! assert_eq!(cube.face_count(), 6 * 4 * 4);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # The driver and the schemes
+//!
+//! The driver checks the options once for every scheme (the named columns
+//! exist with a fitting type; a crease column only for the schemes that
+//! keep creases), refuses a result estimated past
+//! [`max_faces`](SubdivisionOptions::max_faces) before any work, runs the
+//! levels, each built from the previous one, and hands the last over in
+//! one journal step. A scheme is a type behind one trait, and the driver
+//! and the level passes are generic over it: each scheme's loops are
+//! compiled for it alone, with its stencils inlined.
+//!
+//! | scheme | a level's topology | new positions |
+//! |---|---|---|
+//! | Loop | every edge split, every triangle cut 1-to-4 | the generic passes with Loop's masks |
+//! | Catmull-Clark | every edge split, every face cut into one quad per corner | the generic passes with Catmull-Clark's masks |
+//! | midpoint | as Loop (triangles) or as Catmull-Clark (quads) | none move: new vertices by the linear plan |
+//! | √3 | a point in every face joined to its corners, every old interior edge flipped; the boundary kept or trisected | its own passes |
+//!
+//! Loop, Catmull-Clark and midpoint share one level function: the
+//! topology of `refine`, the crease and corner rules, the position passes
+//! (a scatter pass that gathers each vertex's sums in element order, the
+//! old vertices' rules with a fast path for smooth interior vertices, the
+//! edge points) and the attribute plans. **√3 does not fit that level**:
+//! no edge is split, every interior edge is flipped away, and the boundary
+//! alternates between kept and trisected, so its layout of new elements,
+//! its topology pass, its point rules and its attribute plans are its own
+//! ([`sqrt3`](crate::algo::sqrt3)). It shares the driver, the options and
+//! their checks, the report, the corner rules (the corner column,
+//! [`Boundary::CreaseAndCorners`]), the scatter pass for its vertex sums,
+//! the progress stages and the assembly of the new columns.
 //!
 //! # How a level is built
 //!
@@ -14,15 +55,15 @@
 //! edges write every new half-edge record once, in slot order, into arenas
 //! allocated once at their final size. The operators would do the same
 //! relinking one element at a time, each with its own checks and rule
-//! calls. The smooth vertex rules read sums made by a scatter pass in face
-//! or edge order (`scatter_edge_ends`, and Catmull-Clark's face pass)
-//! instead of turning around each vertex, so the passes stream through
-//! memory whatever the order of the vertices. `BENCHMARKS.md` times the
-//! schemes beside pmp-library, OpenMesh and CGAL.
+//! calls. The smooth vertex rules read
+//! sums made by a scatter pass in face or edge order instead of turning
+//! around each vertex: the turn misses the cache for nearly every spoke
+//! on a mesh whose vertex order is not its edge order. `BENCHMARKS.md`
+//! times the schemes beside pmp-library, OpenMesh and CGAL.
 //!
-//! Nothing of the input changes until every level is
-//! built: a cancelled or failed run drops its scratch meshes and leaves the
-//! input exactly as it was. The result goes in through `Mesh::replace_with`.
+//! Nothing of the input changes until every level is built: a cancelled
+//! or failed run drops its scratch meshes and leaves the input exactly as
+//! it was. The result goes in through `Mesh::replace_with`.
 //!
 //! # Keys
 //!
@@ -45,12 +86,18 @@
 //! | half-edges (corners: UVs) | face-varying, linear: each child corner interpolates the corners of its parent face only, so seams stay seams and charts never mix (OpenSubdiv's "linear all" face-varying interpolation) |
 //! | edges | the two children along a parent edge get `split(value, ½)` (flags are copied, conserved values halved); new edges inside a face get `interpolate` of nothing; the crease column's children get sharpness − 1 |
 //! | faces | every child gets `split(value, share)`, shares by area in the parent's plane (¼ for a triangle cut in four); holes keep their values |
+//!
+//! √3 differs where its topology does: see [`sqrt3`](crate::algo::sqrt3).
 
 mod columns;
 pub(crate) mod creases;
+mod driver;
 pub(crate) mod refine;
+pub(crate) mod split;
 
-pub(crate) use columns::{crease_children, finish_columns, ColumnPlans, RefinePlans};
+pub(crate) use columns::{finish_columns, ColumnPlans};
+pub use driver::{subdivide, Scheme};
+pub(crate) use driver::{Growth, Subdivider};
 
 use crate::algo::progress::Progress;
 use crate::attr::ValueType;
@@ -61,6 +108,14 @@ use crate::mesh::Mesh;
 
 /// How the boundary is treated (boundary edges are always infinitely
 /// sharp creases: the boundary curve follows the curve rule of the scheme).
+/// Words: `crease`, `crease-and-corners`.
+///
+/// ```
+/// use meshloom::algo::Boundary;
+/// assert_eq!("crease-and-corners".parse::<Boundary>()?, Boundary::CreaseAndCorners);
+/// assert_eq!(Boundary::default().to_string(), "crease");
+/// # Ok::<(), meshloom::choice::UnknownChoice>(())
+/// ```
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Boundary {
     /// Every boundary vertex follows the crease (curve) rule, corners
@@ -74,7 +129,13 @@ pub enum Boundary {
     CreaseAndCorners,
 }
 
-/// How a vertex column with a linear rule is refined.
+crate::choice::choices!(Boundary {
+    Crease = "crease",
+    CreaseAndCorners = "crease-and-corners",
+});
+
+/// How a vertex column with a linear rule is refined. Words: `smooth`,
+/// `linear`.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub enum VertexInterpolation {
     /// With the scheme's stencil, like positions (OpenSubdiv's "vertex"
@@ -87,6 +148,30 @@ pub enum VertexInterpolation {
     /// (OpenSubdiv's "varying" data).
     Linear,
 }
+
+crate::choice::choices!(VertexInterpolation {
+    Smooth = "smooth",
+    Linear = "linear",
+});
+
+/// How [`Scheme::Midpoint`] cuts the faces (the other schemes cut by their
+/// rule). Words: `auto`, `quads`, `triangles`.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub enum MidpointFaces {
+    /// Triangles 1-to-4 when every face is a triangle, quads otherwise.
+    #[default]
+    Auto,
+    /// Every face into one quad per corner, around its centroid.
+    Quads,
+    /// Every triangle into four (other faces are refused).
+    Triangles,
+}
+
+crate::choice::choices!(MidpointFaces {
+    Auto = "auto",
+    Quads = "quads",
+    Triangles = "triangles",
+});
 
 /// The choice between [`VertexInterpolation::Smooth`] and
 /// [`Linear`](VertexInterpolation::Linear) for the vertex columns with a
@@ -124,10 +209,12 @@ impl VertexData {
     }
 }
 
-/// Options of [`loop_subdivide`](crate::algo::loop_subdivide),
-/// [`catmull_clark`](crate::algo::catmull_clark()) and
-/// [`sqrt3_subdivide`](crate::algo::sqrt3_subdivide) (which takes no crease
-/// column).
+/// Options of [`subdivide`] (and of the per-scheme functions). Every scheme
+/// reads `levels`, `max_faces` and checks the columns named; the schemes
+/// that move vertices (all but midpoint) read `boundary`,
+/// `corner_column` and `vertex_data`; only Loop and Catmull-Clark take a
+/// `crease_column` (the others refuse one, see [`Scheme::takes_creases`]);
+/// only midpoint reads `midpoint_faces`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SubdivisionOptions {
     /// Levels to apply (default 1; 0 leaves the mesh as it is).
@@ -138,7 +225,8 @@ pub struct SubdivisionOptions {
     /// A boolean vertex column: vertices where it is `true` stay where they
     /// are (the corner rule), anywhere on the mesh. Default: none.
     pub corner_column: Option<String>,
-    /// A numeric (`f64` or `f32`) edge column of crease sharpness, as in
+    /// A numeric (`f64` or `f32`) edge column of crease sharpness (Loop and
+    /// Catmull-Clark only), as in
     /// OpenSubdiv and Pixar's semi-sharp creases: an edge of sharpness
     /// `s ≥ 1` follows the sharp (curve) rule, its two children get `s − 1`;
     /// `0 < s < 1` blends the sharp and smooth rules; `f64::INFINITY` never
@@ -147,6 +235,8 @@ pub struct SubdivisionOptions {
     pub crease_column: Option<String>,
     /// Smooth or linear, per vertex column with a linear rule.
     pub vertex_data: VertexData,
+    /// How midpoint subdivision cuts the faces (default: by the mesh).
+    pub midpoint_faces: MidpointFaces,
     /// The most faces the result may have: a request estimated past it is
     /// refused before any work with [`Error::TooLarge`] (default
     /// [`DEFAULT_MAX_FACES`](crate::algo::DEFAULT_MAX_FACES)). Each level multiplies the faces by 3 or 4.
@@ -161,6 +251,7 @@ impl Default for SubdivisionOptions {
             corner_column: None,
             crease_column: None,
             vertex_data: VertexData::default(),
+            midpoint_faces: MidpointFaces::Auto,
             max_faces: super::DEFAULT_MAX_FACES,
         }
     }
@@ -227,9 +318,8 @@ pub struct LevelReport {
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SubdivisionReport {
-    /// The scheme's function name (`"loop_subdivide"`, `"catmull_clark"`,
-    /// `"sqrt3_subdivide"`, `"midpoint_subdivide"`).
-    pub scheme: &'static str,
+    /// The scheme.
+    pub scheme: Scheme,
     /// Counts of the input.
     pub input: Counts,
     /// One entry per level, in order.
@@ -240,104 +330,6 @@ impl SubdivisionReport {
     /// Counts after the last level (the input's when no level ran).
     pub fn output(&self) -> Counts {
         self.levels.last().map_or(self.input, |l| l.counts)
-    }
-}
-
-/// Run `levels` levels of `level`, each reading the previous result, and
-/// hand the last over to `mesh`. Nothing of `mesh` changes before every
-/// level is built; an error or a cancellation leaves it as it was.
-pub(crate) fn run_levels(
-    mesh: &mut Mesh,
-    scheme: &'static str,
-    levels: Levels,
-    progress: &mut Progress<'_>,
-    mut level: impl FnMut(&Mesh, u32, &mut Progress<'_>) -> Result<(Mesh, LevelReport)>,
-) -> Result<SubdivisionReport> {
-    levels.check(mesh, scheme)?;
-    let Levels { count: levels, .. } = levels;
-    let mut report = SubdivisionReport {
-        scheme,
-        input: Counts::of(mesh),
-        levels: Vec::with_capacity(levels as usize),
-    };
-    let mut current: Option<Mesh> = None;
-    for i in 0..levels {
-        let source = current.as_ref().unwrap_or(mesh);
-        if source.is_empty() {
-            break;
-        }
-        let (next, mut level_report) = level(source, i, progress)?;
-        next.debug_validate();
-        level_report.counts = Counts::of(&next);
-        report.levels.push(level_report);
-        current = Some(next);
-    }
-    progress.report(scheme, "done", 1, 1)?;
-    if let Some(result) = current {
-        super::check_finite(&result, scheme)?;
-        mesh.replace_with(result);
-    }
-    Ok(report)
-}
-
-/// How many faces one level makes of a face.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub(crate) enum Growth {
-    /// Every face into four (Loop; midpoint's triangles).
-    Four,
-    /// An n-sided face into n quads, then every quad into four
-    /// (Catmull-Clark; midpoint's quads).
-    Corners,
-    /// Every triangle into three (√3; its boundary trisection adds a few).
-    Three,
-}
-
-/// The levels a driver runs and the size it may reach.
-#[derive(Copy, Clone, Debug)]
-pub(crate) struct Levels {
-    pub(crate) count: u32,
-    pub(crate) growth: Growth,
-    pub(crate) max_faces: usize,
-}
-
-impl Levels {
-    /// The faces after every level, estimated from the face count and
-    /// corner count of `mesh` (√3 is counted with its boundary
-    /// trisection's extra faces as one more third).
-    pub(crate) fn estimate(&self, mesh: &Mesh) -> f64 {
-        if self.count == 0 {
-            return mesh.face_count() as f64;
-        }
-        let faces = mesh.face_count() as f64;
-        let later = f64::from(self.count - 1);
-        match self.growth {
-            Growth::Four => faces * 4f64.powf(later + 1.0),
-            Growth::Three => faces * 3f64.powf(later + 1.0) * (4.0 / 3.0),
-            Growth::Corners => {
-                // Every half-edge is a corner of a face or of a hole.
-                let in_holes: usize = mesh
-                    .holes()
-                    .filter_map(|f| mesh.face(f).ok())
-                    .map(|f| f.degree())
-                    .sum();
-                let corners = mesh.halfedge_count() - in_holes;
-                corners as f64 * 4f64.powf(later)
-            }
-        }
-    }
-
-    /// Refuse, before any work, a result estimated past `max_faces`.
-    fn check(&self, mesh: &Mesh, scheme: &'static str) -> Result<()> {
-        let estimate = self.estimate(mesh);
-        if estimate > self.max_faces as f64 {
-            return Err(Error::TooLarge {
-                algorithm: scheme,
-                estimate: estimate.min(u64::MAX as f64) as u64,
-                limit: self.max_faces as u64,
-                option: "max_faces",
-            });
-        }
-        Ok(())
     }
 }
 
@@ -430,6 +422,20 @@ impl<'p, 'a> Stage<'p, 'a> {
     }
 }
 
+/// The progress of one level's passes.
+pub(crate) struct Pass<'p, 'a> {
+    pub(crate) progress: &'p mut Progress<'a>,
+    pub(crate) algorithm: &'static str,
+    pub(crate) level: u32,
+}
+
+impl<'a> Pass<'_, 'a> {
+    /// A stage of `total` units named `what`.
+    pub(crate) fn stage(&mut self, what: &str, total: usize) -> Result<Stage<'_, 'a>> {
+        Stage::new(self.progress, self.algorithm, self.level, what, total)
+    }
+}
+
 /// An `Unsuitable` error.
 pub(crate) fn unsuitable(
     algorithm: &'static str,
@@ -452,16 +458,10 @@ pub(crate) fn check_columns(
     vertex_data: &VertexData,
 ) -> Result<()> {
     if let Some(name) = corner_column {
-        column_of_type(mesh, ElementKind::Vertex, name, &[ValueType::Bool], "bool")?;
+        corner_column_index(mesh, name)?;
     }
     if let Some(name) = crease_column {
-        column_of_type(
-            mesh,
-            ElementKind::Edge,
-            name,
-            &[ValueType::F64, ValueType::F32],
-            "f64",
-        )?;
+        crease_column_index(mesh, name)?;
     }
     for (name, _) in &vertex_data.columns {
         if name == crate::attr::POSITION {
@@ -481,9 +481,25 @@ pub(crate) fn check_columns(
     Ok(())
 }
 
+/// The index of corner column `name`: a boolean vertex column.
+pub(crate) fn corner_column_index(mesh: &Mesh, name: &str) -> Result<usize> {
+    column_of_type(mesh, ElementKind::Vertex, name, &[ValueType::Bool], "bool")
+}
+
+/// The index of crease column `name`: an `f64` or `f32` edge column.
+pub(crate) fn crease_column_index(mesh: &Mesh, name: &str) -> Result<usize> {
+    column_of_type(
+        mesh,
+        ElementKind::Edge,
+        name,
+        &[ValueType::F64, ValueType::F32],
+        "f64",
+    )
+}
+
 /// The index of column `name` of arena `kind`, whose values convert to one
 /// of `types`.
-pub(crate) fn column_of_type(
+fn column_of_type(
     mesh: &Mesh,
     kind: ElementKind,
     name: &str,

@@ -36,8 +36,7 @@ use crate::layout::{with_headroom, Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVe
 use crate::mesh::Mesh;
 use crate::slots::Slots;
 
-use super::{unsuitable, Stage};
-use crate::algo::progress::Progress;
+use super::{unsuitable, Pass};
 
 /// How a face is cut.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -221,38 +220,111 @@ fn triangle_at(mesh: &Mesh, h0: Hid) -> Option<[Hid; 3]> {
     (mesh.he[h2].next == h0).then_some([h0, h1, h2])
 }
 
-/// Cut triangle `hs` (corner ids from `c0`) 1-to-4: its corner ids, the
-/// records of its three inside edges and the links of its three corner
-/// triangles, as the `Cut::Triangle` branch of [`refine`] writes them for
-/// any ring of three (the centre triangle's link is the caller's).
-#[inline(always)]
-fn cut_triangle(
-    r: &mut Refinement,
-    hs: [Hid; 3],
-    c0: u32,
-    he: &mut IdVec<Hid, HalfedgeRecord>,
-    f_halfedge: &mut IdVec<Fid, FaceLink>,
-) {
-    let center = Fid::new(r.corners + r.tris);
-    for (i, &h) in hs.iter().enumerate() {
-        r.corner[h.index()] = c0 + i as u32 + 1;
+/// What the face pass writes: the records of the new inside edges and the
+/// links of the corner faces, in corner order, and the links to append
+/// after them (centre triangles, holes; face points after the vertices).
+struct FaceRecords {
+    he: IdVec<Hid, HalfedgeRecord>,
+    f_halfedge: IdVec<Fid, FaceLink>,
+    centers: Vec<FaceLink>,
+    hole_links: Vec<FaceLink>,
+    face_point_links: Vec<Hid>,
+}
+
+impl FaceRecords {
+    /// Cut triangle `hs` (corner ids from `c0`) 1-to-4: its corner ids, the
+    /// records of its three inside edges and the links of its four
+    /// triangles, as [`cut_ring`](Self::cut_ring) writes them for any ring
+    /// of three.
+    #[inline(always)]
+    fn cut_triangle(&mut self, r: &mut Refinement, hs: [Hid; 3], c0: u32) {
+        let center = Fid::new(r.corners + r.tris);
+        for (i, &h) in hs.iter().enumerate() {
+            r.corner[h.index()] = c0 + i as u32 + 1;
+        }
+        for i in 0..3 {
+            let (hi, hp) = (hs[i], hs[(i + 2) % 3]);
+            let (mi, mp) = (r.edge_point(hi.edge()), r.edge_point(hp.edge()));
+            self.he.push(HalfedgeRecord {
+                origin: mi,
+                next: r.second_child(hp),
+                face: Fid::new(c0 + i as u32),
+            });
+            self.he.push(HalfedgeRecord {
+                origin: mp,
+                next: Eid::new(c0 + ((i + 1) % 3) as u32).halfedge(1),
+                face: center,
+            });
+        }
+        for h in hs {
+            self.f_halfedge.push(FaceLink::new(r.first_child(h), false));
+        }
+        self.centers
+            .push(FaceLink::new(Eid::new(c0).halfedge(1), false));
     }
-    for i in 0..3 {
-        let (hi, hp) = (hs[i], hs[(i + 2) % 3]);
-        let (mi, mp) = (r.edge_point(hi.edge()), r.edge_point(hp.edge()));
-        he.push(HalfedgeRecord {
-            origin: mi,
-            next: r.second_child(hp),
-            face: Fid::new(c0 + i as u32),
-        });
-        he.push(HalfedgeRecord {
-            origin: mp,
-            next: Eid::new(c0 + ((i + 1) % 3) as u32).halfedge(1),
-            face: center,
-        });
-    }
-    for h in hs {
-        f_halfedge.push(FaceLink::new(r.first_child(h), false));
+
+    /// Cut the face of half-edges `ring` (parent face slot `fi`, corner ids
+    /// from `c0`) by `cut`: the records of its inside edges and the links
+    /// of its children.
+    fn cut_ring(&mut self, r: &mut Refinement, ring: &[Hid], cut: Cut, fi: usize, c0: u32) {
+        let n = ring.len();
+        for (i, &h) in ring.iter().enumerate() {
+            r.corner[h.index()] = c0 + i as u32 + 1;
+        }
+        // Corner ids of position i, i - 1 and i + 1 around the face, without
+        // a division (this loop runs once per corner of the mesh).
+        let cid = |i: usize| c0 + i as u32;
+        let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
+        let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
+        match cut {
+            Cut::Triangle => {
+                r.face_rank[fi] = r.tris;
+                let center = Fid::new(r.corners + r.tris);
+                r.tris += 1;
+                for i in 0..n {
+                    let (hi, hp) = (ring[i], ring[prev(i)]);
+                    let (mi, mp) = (r.edge_point(hi.edge()), r.edge_point(hp.edge()));
+                    // m_i -> m_{i-1}, in the corner triangle at origin(h_i).
+                    self.he.push(HalfedgeRecord {
+                        origin: mi,
+                        next: r.second_child(hp),
+                        face: Fid::new(cid(i)),
+                    });
+                    // m_{i-1} -> m_i, in the centre triangle.
+                    self.he.push(HalfedgeRecord {
+                        origin: mp,
+                        next: Eid::new(cid(next(i))).halfedge(1),
+                        face: center,
+                    });
+                }
+                self.centers
+                    .push(FaceLink::new(Eid::new(c0).halfedge(1), false));
+            }
+            Cut::Quads => {
+                r.face_rank[fi] = r.quads;
+                let c = Vid::new(r.nv + r.edges + r.quads);
+                r.quads += 1;
+                for (i, &hi) in ring.iter().enumerate() {
+                    let mi = r.edge_point(hi.edge());
+                    // m_i -> c, in the quad at origin(h_i).
+                    self.he.push(HalfedgeRecord {
+                        origin: mi,
+                        next: Eid::new(cid(prev(i))).halfedge(1),
+                        face: Fid::new(cid(i)),
+                    });
+                    // c -> m_i, in the quad at dest(h_i).
+                    self.he.push(HalfedgeRecord {
+                        origin: c,
+                        next: r.second_child(hi),
+                        face: Fid::new(cid(next(i))),
+                    });
+                }
+                self.face_point_links.push(Eid::new(c0).halfedge(1));
+            }
+        }
+        for &h in ring {
+            self.f_halfedge.push(FaceLink::new(r.first_child(h), false));
+        }
     }
 }
 
@@ -277,56 +349,94 @@ pub(crate) fn fresh_slots(old: &Slots, n: usize, algorithm: &'static str) -> Res
 pub(crate) fn refine(
     mesh: &Mesh,
     rule: CutRule,
-    algorithm: &'static str,
-    level: u32,
-    progress: &mut Progress<'_>,
+    pass: &mut Pass<'_, '_>,
 ) -> Result<(Refinement, Topology)> {
-    let nv = mesh.v_slots.slot_count();
-    let ne_slots = mesh.e_slots.slot_count();
-    let nf_slots = mesh.f_slots.slot_count();
-    let edges = mesh.edge_count();
-    let mut boundary = 0usize;
-    for f in mesh.fids() {
-        if mesh.is_hole(f) {
-            boundary += mesh.face_loop(f).count();
-        }
-    }
-    let corners = Eid::halfedge_slots(edges) - boundary;
-    let too_big = u32::try_from(nv + edges + mesh.face_count()).is_err()
-        || u32::try_from(Eid::halfedge_slots(corners + 2 * edges)).is_err()
-        || Eid::halfedge_slots(corners + 2 * edges) >= (1usize << 31);
-    if too_big {
-        return Err(unsuitable(
-            algorithm,
-            None,
-            "the result would have more than 2^31 half-edges",
-        ));
-    }
-    let mut r = Refinement {
-        nv: nv as u32,
-        edges: edges as u32,
-        corners: corners as u32,
-        tris: 0,
-        quads: 0,
-        holes: 0,
-        rule,
-        edge_rank: Ranks::of(&mesh.e_slots),
-        corner: vec![0u32; Eid::halfedge_slots(ne_slots)],
-        face_rank: vec![0u32; nf_slots],
+    let algorithm = pass.algorithm;
+    let mut r = Refinement::new(mesh, rule, algorithm)?;
+    let FaceRecords {
+        mut he,
+        mut f_halfedge,
+        centers,
+        hole_links,
+        face_point_links,
+    } = face_pass(mesh, &mut r, pass)?;
+    f_halfedge.extend_from(&centers);
+    f_halfedge.extend_from(&hole_links);
+    let mut v_halfedge = old_vertex_links(mesh, &r);
+    edge_pass(mesh, &r, &mut he, &mut v_halfedge, pass)?;
+    v_halfedge.extend_from(&face_point_links);
+    let new_edges = (r.corners + 2 * r.edges) as usize;
+    let topology = Topology {
+        v_slots: mesh.v_slots.extended((r.edges + r.quads) as usize),
+        e_slots: fresh_slots(&mesh.e_slots, new_edges, algorithm)?,
+        f_slots: fresh_slots(&mesh.f_slots, f_halfedge.len(), algorithm)?,
+        v_halfedge,
+        he,
+        f_halfedge,
+        holes: r.holes as usize,
     };
+    Ok((r, topology))
+}
 
-    // ----- faces: the records of the new inside edges, in corner order ----
-    let new_edges = corners + 2 * edges;
-    let mut he: IdVec<Hid, HalfedgeRecord> =
-        IdVec::from_vec(with_headroom(Eid::halfedge_slots(new_edges)));
-    let max_faces = corners + mesh.face_count() + mesh.hole_count();
-    let mut f_halfedge: IdVec<Fid, FaceLink> = IdVec::from_vec(with_headroom(max_faces));
-    let mut centers: Vec<FaceLink> = Vec::new();
-    let mut hole_links: Vec<FaceLink> = Vec::with_capacity(mesh.hole_count());
-    let mut face_point_links: Vec<Hid> = Vec::new();
+impl Refinement {
+    /// The maps of `mesh`'s level before the face pass fills them: counts,
+    /// edge ranks, and room for the corner ids and face ranks.
+    ///
+    /// # Errors
+    /// [`Error::Unsuitable`](crate::Error::Unsuitable) for a result past
+    /// 2^31 half-edges.
+    fn new(mesh: &Mesh, rule: CutRule, algorithm: &'static str) -> Result<Refinement> {
+        let nv = mesh.v_slots.slot_count();
+        let edges = mesh.edge_count();
+        let mut boundary = 0usize;
+        for f in mesh.fids() {
+            if mesh.is_hole(f) {
+                boundary += mesh.face_loop(f).count();
+            }
+        }
+        let corners = Eid::halfedge_slots(edges) - boundary;
+        let too_big = u32::try_from(nv + edges + mesh.face_count()).is_err()
+            || u32::try_from(Eid::halfedge_slots(corners + 2 * edges)).is_err()
+            || Eid::halfedge_slots(corners + 2 * edges) >= (1usize << 31);
+        if too_big {
+            return Err(unsuitable(
+                algorithm,
+                None,
+                "the result would have more than 2^31 half-edges",
+            ));
+        }
+        Ok(Refinement {
+            nv: nv as u32,
+            edges: edges as u32,
+            corners: corners as u32,
+            tris: 0,
+            quads: 0,
+            holes: 0,
+            rule,
+            edge_rank: Ranks::of(&mesh.e_slots),
+            corner: vec![0u32; Eid::halfedge_slots(mesh.e_slots.slot_count())],
+            face_rank: vec![0u32; mesh.f_slots.slot_count()],
+        })
+    }
+}
+
+/// The faces, in slot order: the records of the new inside edges and the
+/// links of the child faces, in corner order; fills `r`'s corner ids and
+/// face ranks.
+fn face_pass(mesh: &Mesh, r: &mut Refinement, pass: &mut Pass<'_, '_>) -> Result<FaceRecords> {
+    let nf_slots = mesh.f_slots.slot_count();
+    let new_edges = (r.corners + 2 * r.edges) as usize;
+    let max_faces = r.corners as usize + mesh.face_count() + mesh.hole_count();
+    let mut out = FaceRecords {
+        he: IdVec::from_vec(with_headroom(Eid::halfedge_slots(new_edges))),
+        f_halfedge: IdVec::from_vec(with_headroom(max_faces)),
+        centers: Vec::new(),
+        hole_links: Vec::with_capacity(mesh.hole_count()),
+        face_point_links: Vec::new(),
+    };
     let mut ring: Vec<Hid> = Vec::with_capacity(16);
     let mut next_corner = 0u32;
-    let mut stage = Stage::new(progress, algorithm, level, "faces", nf_slots)?;
+    let mut stage = pass.stage("faces", nf_slots)?;
     for fi in 0..nf_slots {
         stage.tick(fi)?;
         if !mesh.f_slots.is_live(fi) {
@@ -337,15 +447,14 @@ pub(crate) fn refine(
         if link.is_hole() {
             r.face_rank[fi] = r.holes;
             r.holes += 1;
-            hole_links.push(FaceLink::new(r.first_child(link.halfedge()), true));
+            out.hole_links
+                .push(FaceLink::new(r.first_child(link.halfedge()), true));
             continue;
         }
-        if rule == CutRule::Triangles {
+        if r.rule == CutRule::Triangles {
             if let Some(hs) = triangle_at(mesh, link.halfedge()) {
-                // The common case, with the ring in registers: the same
-                // records as the general `Cut::Triangle` branch below.
-                cut_triangle(&mut r, hs, next_corner, &mut he, &mut f_halfedge);
-                centers.push(FaceLink::new(Eid::new(next_corner).halfedge(1), false));
+                // The common case, with the ring in registers.
+                out.cut_triangle(r, hs, next_corner);
                 r.face_rank[fi] = r.tris;
                 r.tris += 1;
                 next_corner += 3;
@@ -354,78 +463,25 @@ pub(crate) fn refine(
         }
         face_ring(mesh, link.halfedge(), &mut ring);
         let n = ring.len();
-        let Some(cut) = rule.cut(n) else {
+        let Some(cut) = r.rule.cut(n) else {
             return Err(unsuitable(
-                algorithm,
+                pass.algorithm,
                 Some(mesh.fkey(f).into()),
                 format!("the scheme takes triangles; this face has {n} sides"),
             ));
         };
-        let c0 = next_corner;
-        for (i, &h) in ring.iter().enumerate() {
-            r.corner[h.index()] = c0 + i as u32 + 1;
-        }
+        out.cut_ring(r, &ring, cut, fi, next_corner);
         next_corner += n as u32;
-        // Corner ids of position i, i - 1 and i + 1 around the face, without
-        // a division (this loop runs once per corner of the mesh).
-        let cid = |i: usize| c0 + i as u32;
-        let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
-        let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
-        match cut {
-            Cut::Triangle => {
-                r.face_rank[fi] = r.tris;
-                let center = Fid::new(r.corners + r.tris);
-                r.tris += 1;
-                for i in 0..n {
-                    let (hi, hp) = (ring[i], ring[prev(i)]);
-                    let (mi, mp) = (r.edge_point(hi.edge()), r.edge_point(hp.edge()));
-                    // m_i -> m_{i-1}, in the corner triangle at origin(h_i).
-                    he.push(HalfedgeRecord {
-                        origin: mi,
-                        next: r.second_child(hp),
-                        face: Fid::new(cid(i)),
-                    });
-                    // m_{i-1} -> m_i, in the centre triangle.
-                    he.push(HalfedgeRecord {
-                        origin: mp,
-                        next: Eid::new(cid(next(i))).halfedge(1),
-                        face: center,
-                    });
-                }
-                centers.push(FaceLink::new(Eid::new(c0).halfedge(1), false));
-            }
-            Cut::Quads => {
-                r.face_rank[fi] = r.quads;
-                let c = Vid::new(r.nv + r.edges + r.quads);
-                r.quads += 1;
-                for (i, &hi) in ring.iter().enumerate() {
-                    let mi = r.edge_point(hi.edge());
-                    // m_i -> c, in the quad at origin(h_i).
-                    he.push(HalfedgeRecord {
-                        origin: mi,
-                        next: Eid::new(cid(prev(i))).halfedge(1),
-                        face: Fid::new(cid(i)),
-                    });
-                    // c -> m_i, in the quad at dest(h_i).
-                    he.push(HalfedgeRecord {
-                        origin: c,
-                        next: r.second_child(hi),
-                        face: Fid::new(cid(next(i))),
-                    });
-                }
-                face_point_links.push(Eid::new(c0).halfedge(1));
-            }
-        }
-        for &h in &ring {
-            f_halfedge.push(FaceLink::new(r.first_child(h), false));
-        }
     }
     stage.finish()?;
     debug_assert_eq!(next_corner, r.corners);
-    f_halfedge.extend_from(&centers);
-    f_halfedge.extend_from(&hole_links);
+    Ok(out)
+}
 
-    // ----- vertices: the parent's keep their slots ---------------------------
+/// The outgoing half-edges of the parent's vertices, which keep their
+/// slots (vacant ones stay vacant), with room for the new vertices.
+fn old_vertex_links(mesh: &Mesh, r: &Refinement) -> IdVec<Vid, Hid> {
+    let nv = r.nv as usize;
     let mut v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(with_headroom(r.vertex_slots()));
     for vi in 0..nv {
         let v = Vid::new(vi as u32);
@@ -435,9 +491,20 @@ pub(crate) fn refine(
             Hid::NONE
         });
     }
+    v_halfedge
+}
 
-    // ----- edges: the records of the two children of each ------------------
-    let mut stage = Stage::new(progress, algorithm, level, "edges", ne_slots)?;
+/// The edges, in slot order: the records of the two children of each, and
+/// the outgoing half-edge of its edge point.
+fn edge_pass(
+    mesh: &Mesh,
+    r: &Refinement,
+    he: &mut IdVec<Hid, HalfedgeRecord>,
+    v_halfedge: &mut IdVec<Vid, Hid>,
+    pass: &mut Pass<'_, '_>,
+) -> Result<()> {
+    let ne_slots = mesh.e_slots.slot_count();
+    let mut stage = pass.stage("edges", ne_slots)?;
     for ei in 0..ne_slots {
         stage.tick(ei)?;
         if !mesh.e_slots.is_live(ei) {
@@ -446,8 +513,8 @@ pub(crate) fn refine(
         let e = Eid::new(ei as u32);
         let m = r.edge_point(e);
         let [h, t] = e.halfedges();
-        let (ha, hb) = child_records(mesh, &r, h, m);
-        let (ta, tb) = child_records(mesh, &r, t, m);
+        let (ha, hb) = child_records(mesh, r, h, m);
+        let (ta, tb) = child_records(mesh, r, t, m);
         // Child 0 is (a, m): h's first child and t's second; child 1 is
         // (m, b): h's second child and t's first.
         he.push(ha);
@@ -462,19 +529,7 @@ pub(crate) fn refine(
         };
         v_halfedge.push(out);
     }
-    stage.finish()?;
-    v_halfedge.extend_from(&face_point_links);
-
-    let topology = Topology {
-        v_slots: mesh.v_slots.extended((r.edges + r.quads) as usize),
-        e_slots: fresh_slots(&mesh.e_slots, new_edges, algorithm)?,
-        f_slots: fresh_slots(&mesh.f_slots, f_halfedge.len(), algorithm)?,
-        v_halfedge,
-        he,
-        f_halfedge,
-        holes: r.holes as usize,
-    };
-    Ok((r, topology))
+    stage.finish()
 }
 
 /// The records of the two children of parent half-edge `p`, whose edge
