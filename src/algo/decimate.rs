@@ -20,8 +20,8 @@
 //! seams (corners whose values differ across an edge, in any half-edge
 //! column) and material borders (a face column, where asked) are *lines*.
 //! With [`Keep::Slide`] (the default) a vertex on exactly two line edges
-//! may only collapse along one of them and stays on it (its position is
-//! the best point on that edge), so a line keeps its place and its ends do
+//! may only collapse along one of them, into the neighbour there (whose
+//! position stays), so a line keeps the input's polyline and its ends do
 //! not slide off it (meshoptimizer's "border" and "seam" vertex kinds); a
 //! vertex at the end or crossing of lines, or where a line turns by more
 //! than the feature angle (45° without one: the corner of a square), never
@@ -566,9 +566,15 @@ impl Engine {
             (FREE, _) => (h0, pb, 1.0),
             (_, FREE) => (h1, pa, 1.0),
             (LINE, LINE) if self.on_line(e) => {
-                let t = q.best_on_segment(self.unit(pa), self.unit(pb));
-                let p = quadric::add(pa, quadric::scale(sub(pb, pa), t));
-                (h0, p, t)
+                // Along the line, onto the cheaper end: the survivor keeps
+                // a position of the input's line, so the line never leaves
+                // the input's polyline (a point between the ends would cut
+                // across a bend).
+                if q.eval(self.unit(pb)) <= q.eval(self.unit(pa)) {
+                    (h0, pb, 1.0)
+                } else {
+                    (h1, pa, 1.0)
+                }
             }
             (LINE, FIXED) if self.on_line(e) => (h0, pb, 1.0),
             (FIXED, LINE) if self.on_line(e) => (h1, pa, 1.0),

@@ -152,25 +152,6 @@ impl Q64 {
         ];
         x.iter().all(|c| c.is_finite()).then_some(x)
     }
-
-    /// The parameter in `0..=1` of the best point on the segment `a → b`.
-    #[inline(always)]
-    pub(super) fn best_on_segment(&self, a: V3, b: V3) -> f64 {
-        let d = sub(b, a);
-        let ad = self.a_mul(d);
-        let den = dot(d, ad);
-        if den.is_nan() || den <= 0.0 {
-            return 0.5;
-        }
-        let q = &self.0;
-        let num = dot(a, ad) + q[6] * d[0] + q[7] * d[1] + q[8] * d[2];
-        let t = -num / den;
-        if t.is_finite() {
-            t.clamp(0.0, 1.0)
-        } else {
-            0.5
-        }
-    }
 }
 
 #[cfg(test)]
@@ -190,12 +171,9 @@ mod tests {
     }
 
     #[test]
-    fn a_plane_alone_is_singular_and_the_segment_search_finds_it() {
+    fn a_plane_alone_is_singular() {
         let q = Q64::plane([0.0, 0.0, 1.0], 0.0, 1.0);
         assert!(q.minimiser().is_none());
-        let t = q.best_on_segment([0.0, 0.0, -1.0], [0.0, 0.0, 3.0]);
-        assert!((t - 0.25).abs() < 1e-12);
-        assert_eq!(q.best_on_segment([0.0, 0.0, 1.0], [0.0, 0.0, 3.0]), 0.0);
         let narrowed = q.narrow().wide();
         assert_eq!(narrowed.0, q.0);
     }
