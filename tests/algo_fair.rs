@@ -62,6 +62,7 @@ fn fairing_the_top_of_a_bump_lowers_it_and_keeps_the_rest() {
                 region: FairRegion::Vertices(region.clone()),
                 order,
                 weights,
+                ..FairOptions::default()
             };
             let report = fair(&mut m, &opts, Progress::none()).unwrap();
             m.validate().unwrap();
@@ -96,6 +97,7 @@ fn a_bump_on_flat_surroundings_becomes_the_plane() {
                 region: FairRegion::Vertices(region),
                 order,
                 weights,
+                ..FairOptions::default()
             };
             fair(&mut m, &opts, Progress::none()).unwrap();
             m.validate().unwrap();
@@ -141,6 +143,7 @@ fn a_planar_region_stays_planar() {
                 region: FairRegion::All,
                 order,
                 weights,
+                ..FairOptions::default()
             };
             let report = fair(&mut m, &opts, Progress::none()).unwrap();
             m.validate().unwrap();
@@ -212,6 +215,7 @@ fn uniform_fairing_solves_the_k_laplace_equation() {
             region: FairRegion::Vertices(region.clone()),
             order,
             weights: LaplaceWeights::Uniform,
+            ..FairOptions::default()
         };
         fair(&mut m, &opts, Progress::none()).unwrap();
         let pos = |v: VertexKey| m.position(v).unwrap();
@@ -306,6 +310,7 @@ fn uniform_fairing_forgets_the_region_old_positions() {
             region: FairRegion::Vertices(cap.clone()),
             order,
             weights: LaplaceWeights::Uniform,
+            ..FairOptions::default()
         };
         let (mut a, mut b) = (clean.clone(), noisy.clone());
         fair(&mut a, &opts, Progress::none()).unwrap();

@@ -1,10 +1,10 @@
 //! Smoothing: Taubin keeps volume where uniform Laplacian shrinks, implicit
-//! smoothing evens a noisy sphere, masks and boundaries keep vertices bit
+//! smoothing evens a noisy sphere, pinned vertices and boundaries keep vertices bit
 //! for bit, cancelled and failed runs change nothing, degenerate faces give
 //! no NaN.
 
 use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
-use meshloom::algo::{Flow, Progress, ProgressInfo};
+use meshloom::algo::{Flow, Keep, Progress, ProgressInfo};
 use meshloom::shapes::{self, GridFaces};
 use meshloom::{Error, Mesh};
 
@@ -211,7 +211,7 @@ fn boundary_is_fixed_by_default_and_can_move() {
     // Free boundary: boundary vertices move too.
     let mut m = base.clone();
     let opts = SmoothOptions {
-        fix_boundary: false,
+        boundary: Keep::Free,
         ..Default::default()
     };
     smooth(&mut m, &opts, Progress::none()).unwrap();
@@ -220,19 +220,19 @@ fn boundary_is_fixed_by_default_and_can_move() {
 }
 
 #[test]
-fn a_masked_smooth_leaves_unmasked_vertices_bit_identical() {
+fn a_smooth_leaves_pinned_vertices_bit_identical() {
     for &method in METHODS {
         let mut m = noisy_sphere(3, 0.05);
-        let mask = m.add_vertex_attr::<bool>("region").unwrap();
+        let pinned = m.add_vertex_attr::<bool>("pinned").unwrap();
         let keys: Vec<_> = m.vertices().collect();
-        // The cap z > 0.3.
+        // Everything but the cap z > 0.3 is pinned.
         for &v in &keys {
-            let inside = m.position(v).unwrap()[2] > 0.3;
-            m.set_attr(&mask, v, inside).unwrap();
+            let outside = m.position(v).unwrap()[2] <= 0.3;
+            m.set_attr(&pinned, v, outside).unwrap();
         }
         let before = snapshot(&m);
         let opts = SmoothOptions {
-            mask: Some(mask.clone()),
+            pinned: Some(pinned.clone()),
             ..SmoothOptions::with_method(method)
         };
         let report = smooth(&mut m, &opts, Progress::none()).unwrap();
@@ -241,7 +241,7 @@ fn a_masked_smooth_leaves_unmasked_vertices_bit_identical() {
         let mut inside = 0;
         for &v in &keys {
             let i = v.index();
-            if *m.attr(&mask, v).unwrap().unwrap() {
+            if !*m.attr(&pinned, v).unwrap().unwrap() {
                 inside += 1;
             } else {
                 assert_eq!(before[i], after[i], "{method:?}");
@@ -279,7 +279,11 @@ fn cancel_and_failures_leave_the_mesh_unchanged() {
     }
     let mut m = noisy_sphere(2, 0.05);
     let before = snapshot(&m);
-    let mask = m.add_vertex_attr::<bool>("nothing").unwrap();
+    let all = m.add_vertex_attr::<bool>("everything").unwrap();
+    let keys: Vec<_> = m.vertices().collect();
+    for &v in &keys {
+        m.set_attr(&all, v, true).unwrap();
+    }
     let bad = [
         SmoothOptions {
             step: Some(1.5),
@@ -298,7 +302,7 @@ fn cancel_and_failures_leave_the_mesh_unchanged() {
             ..SmoothOptions::with_method(SmoothMethod::Taubin)
         },
         SmoothOptions {
-            mask: Some(mask.clone()),
+            pinned: Some(all.clone()),
             ..Default::default()
         },
         SmoothOptions {
@@ -307,7 +311,7 @@ fn cancel_and_failures_leave_the_mesh_unchanged() {
         },
         SmoothOptions {
             rescale: true,
-            mask: Some(mask),
+            pinned: Some(all),
             ..SmoothOptions::with_method(SmoothMethod::Implicit)
         },
     ];
@@ -349,7 +353,11 @@ fn degenerate_triangles_give_no_nan() {
     for &method in METHODS {
         let mut m = mesh.clone();
         let opts = SmoothOptions {
-            fix_boundary: method != SmoothMethod::Implicit,
+            boundary: if method == SmoothMethod::Implicit {
+                Keep::Free
+            } else {
+                Keep::Lock
+            },
             ..SmoothOptions::with_method(method)
         };
         match smooth(&mut m, &opts, Progress::none()) {

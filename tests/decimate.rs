@@ -77,7 +77,7 @@ fn real_closed_meshes_keep_topology_reach_the_target_and_stay_close() {
                 mesh.vertex_count()
             ),
         }
-        assert_eq!(r.vertices, mesh.vertex_count());
+        assert_eq!(r.output.vertices, mesh.vertex_count());
         assert_eq!(r.collapses, input.vertex_count() - mesh.vertex_count());
         let h = relative_hausdorff(&input, &mesh, Sampling::Dense);
         assert!(h < bound, "{path}: Hausdorff {h} of the diagonal");
@@ -651,7 +651,7 @@ fn guard_boundary_lock_and_slide() {
     };
     let r = decimate(&mut locked, &options, Progress::none()).unwrap();
     assert_eq!(boundary_vertices(&locked), before);
-    assert!(r.fixed_vertices >= before.len());
+    assert!(r.fixed >= before.len());
     // Sliding: boundary vertices go, but every one left is on the square.
     let mut slid = input.clone();
     decimate(
@@ -691,7 +691,7 @@ fn guard_locked_vertex_mask() {
         }
     }
     let options = DecimateOptions {
-        locked: Some(lock),
+        pinned: Some(lock),
         ..DecimateOptions::to(Target::Ratio(0.2))
     };
     let r = decimate(&mut mesh, &options, Progress::none()).unwrap();
@@ -741,7 +741,7 @@ fn guard_feature_edges_by_angle_and_by_column() {
     }
     let before = crease(&flat);
     let options = DecimateOptions {
-        feature_edges: Some(feature),
+        features: Some(feature),
         ..DecimateOptions::to(Target::Ratio(0.2))
     };
     decimate(&mut flat, &options, Progress::none()).unwrap();
@@ -759,7 +759,7 @@ fn lod_levels_are_nested_valid_and_replayable() {
         let mesh = level.mesh.as_ref().unwrap();
         mesh.validate().unwrap();
         assert_eq!(mesh.vertex_count(), (ratio * n).ceil() as usize);
-        assert_eq!(level.report.vertices, mesh.vertex_count());
+        assert_eq!(level.report.output.vertices, mesh.vertex_count());
         assert_eq!(mesh.euler_characteristic(), 2);
         // Nested: every vertex of a level was a vertex of the level before.
         let keys: Vec<VertexKey> = mesh.vertices().collect();

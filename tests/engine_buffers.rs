@@ -150,7 +150,7 @@ fn a_hard_edge_splits_the_buffer_vertices_along_it() {
     let hard = mesh.add_edge_attr::<bool>("hard").unwrap();
     let opts = TriangleBufferOptions {
         normals: Some(CornerNormalOptions {
-            hard_edges: Some(hard.clone()),
+            features: Some(hard.clone()),
             ..CornerNormalOptions::default()
         }),
         ..TriangleBufferOptions::default()

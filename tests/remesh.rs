@@ -5,7 +5,7 @@
 
 use std::collections::HashMap;
 
-use meshloom::algo::remesh::{remesh, BoundaryMode, RemeshOptions, RemeshReport, Resample, Sizing};
+use meshloom::algo::remesh::{remesh, Keep, RemeshOptions, RemeshReport, Resample, Sizing};
 use meshloom::algo::{Flow, Progress};
 use meshloom::shapes::{self, GridFaces};
 use meshloom::{Error, Mesh};
@@ -158,7 +158,7 @@ fn a_cube_keeps_its_corners_and_sharp_edges_with_a_feature_angle() {
     };
     let r = run(&mut mesh, &options);
     assert_eq!(r.feature_edges, 12);
-    assert_eq!(r.fixed_vertices, 8);
+    assert_eq!(r.fixed, 8);
     assert!(mesh.vertex_count() > 100);
     let ps: Vec<V3> = mesh.vertices().map(|v| mesh.position(v).unwrap()).collect();
     // Corners stay.
@@ -257,7 +257,7 @@ fn a_fixed_boundary_stays_exactly_as_it_was() {
     let mut mesh = input.clone();
     let options = RemeshOptions {
         sizing: Sizing::Uniform(0.5),
-        boundary: BoundaryMode::Fixed,
+        boundary: Keep::Lock,
         ..RemeshOptions::default()
     };
     run(&mut mesh, &options);

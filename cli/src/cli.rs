@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use crate::input::MeshFormat;
 use clap::{Args, Parser, Subcommand};
 use meshloom::algo::subdivision::MidpointFaces;
+use meshloom::algo::Keep;
 use meshloom::algo::Scheme;
 use meshloom_cli::render::View;
 
@@ -125,10 +126,11 @@ Example:
     /// which keeps the volume; implicit: backward Euler steps of the
     /// cotangent flow (--step is the time step, default 0.001; 1
     /// iteration), solved by a sparse Cholesky factorisation. Boundary
-    /// vertices stay put unless --free-boundary; with --mask-column only
-    /// the vertices where that vertex column is true (or non-zero) move.
-    /// Every other column keeps its values; normal columns read from the
-    /// input are stale and dropped (--normals computes new ones).
+    /// vertices stay put (--boundary lock) unless --boundary slide (they
+    /// move along the input's boundary) or free; vertices where the
+    /// --pinned vertex column is true (or non-zero) never move. Every
+    /// other column keeps its values; normal columns read from the input
+    /// are stale and dropped (--normals computes new ones).
     #[command(after_help = "\
 Example:
   meshloom smooth scan.ply smooth.ply --method taubin --iterations 20
@@ -139,14 +141,14 @@ Example:
     /// Stops at a share of the vertices, a vertex or face count, or before
     /// the error (a distance in mesh units) would pass --max-error; give
     /// one target, or --max-error alone. Boundaries and UV seams are kept
-    /// as lines (their vertices slide only along them); --keep-boundary and
-    /// --keep-seams keep their vertices where they are. UVs, colours and
-    /// other attributes follow each collapse. Faces must be triangles
-    /// (`meshloom triangulate` first).
+    /// as lines (their vertices slide only along them); --boundary lock
+    /// and --seams lock keep their vertices where they are, free lets them
+    /// go. UVs, colours and other attributes follow each collapse. Faces
+    /// must be triangles (`meshloom triangulate` first).
     #[command(after_help = "\
 Example:
   meshloom decimate bunny.off bunny-10.off --ratio 0.1
-  meshloom decimate scan.ply small.ply --faces 5000 --max-error 0.01 --keep-boundary --json")]
+  meshloom decimate scan.ply small.ply --faces 5000 --max-error 0.01 --boundary lock --json")]
     Decimate(DecimateArgs),
     /// Write several levels of detail from one decimation.
     ///
@@ -156,7 +158,7 @@ Example:
     #[command(after_help = "\
 Example:
   meshloom lod bunny.off out/bunny.obj --ratios 0.5,0.25,0.1
-  meshloom lod part.glb part.glb --ratios 0.3,0.1 --keep-seams --json")]
+  meshloom lod part.glb part.glb --ratios 0.3,0.1 --seams lock --json")]
     Lod(LodArgs),
     /// Draw a shaded picture of a mesh as PNG.
     ///
@@ -191,8 +193,9 @@ Example:
     /// target edge length is --edge-length, or by default the input's mean
     /// edge length; --adaptive TOL makes it follow the curvature instead
     /// (the largest length within TOL of the surface). Boundaries slide
-    /// along themselves, corners stay; --feature-angle DEG keeps edges
-    /// sharper than DEG degrees as lines too. UVs and other vertex and
+    /// along themselves, corners stay (--boundary lock keeps them as they
+    /// are); --feature-angle DEG keeps edges sharper than DEG degrees as
+    /// lines too. UVs and other vertex and
     /// corner attributes are resampled from the input, per seam side.
     /// Faces must be triangles (`meshloom triangulate` first).
     #[command(after_help = "\
@@ -330,11 +333,14 @@ pub struct SmoothArgs {
     /// implicit: the time step (default 0.001).
     #[arg(long)]
     pub step: Option<f64>,
-    /// Move only the vertices where this vertex column is true or non-zero.
-    #[arg(long, value_name = "NAME")]
+    #[command(flatten)]
+    pub keep: ConstraintArgs,
+    /// Deprecated: `--pinned` with the complement (only the vertices where
+    /// this vertex column is true or non-zero move).
+    #[arg(long, value_name = "NAME", hide = true, conflicts_with = "pinned")]
     pub mask_column: Option<String>,
-    /// Let boundary vertices move too.
-    #[arg(long)]
+    /// Deprecated: `--boundary free`.
+    #[arg(long, hide = true, conflicts_with = "boundary")]
     pub free_boundary: bool,
     /// Implicit only: restore the input's surface area and centroid.
     #[arg(long)]
@@ -445,11 +451,13 @@ pub struct DecimateArgs {
     /// Stop before a collapse whose error (mesh units) would pass this.
     #[arg(long, value_parser = non_negative)]
     pub max_error: Option<f64>,
-    /// Keep boundary vertices where they are.
-    #[arg(long)]
+    #[command(flatten)]
+    pub keep: ConstraintArgs,
+    /// Deprecated: `--boundary lock`.
+    #[arg(long, hide = true, conflicts_with = "boundary")]
     pub keep_boundary: bool,
-    /// Keep UV seam (and other corner discontinuity) vertices where they are.
-    #[arg(long)]
+    /// Deprecated: `--seams lock`.
+    #[arg(long, hide = true, conflicts_with = "seams")]
     pub keep_seams: bool,
     /// Print the report as one JSON object instead of text.
     #[arg(long)]
@@ -483,12 +491,10 @@ pub struct RemeshArgs {
     /// Rounds of split, collapse, flip and relaxation.
     #[arg(long, default_value_t = 10)]
     pub iterations: usize,
-    /// Edges whose faces meet at more than this many degrees are kept as
-    /// sharp lines; where they meet or end, vertices stay.
-    #[arg(long, value_parser = degrees)]
-    pub feature_angle: Option<f64>,
-    /// Keep boundary vertices and edges exactly where they are.
-    #[arg(long)]
+    #[command(flatten)]
+    pub keep: ConstraintArgs,
+    /// Deprecated: `--boundary lock`.
+    #[arg(long, hide = true, conflicts_with = "boundary")]
     pub keep_boundary: bool,
     /// Refuse, before any work, a target length estimated to make more
     /// faces than this.
@@ -512,17 +518,55 @@ pub struct LodArgs {
     /// The levels' shares of the input's vertices, largest first.
     #[arg(long, value_delimiter = ',', required = true, value_parser = ratio)]
     pub ratios: Vec<f64>,
-    /// Keep boundary vertices where they are.
-    #[arg(long)]
+    #[command(flatten)]
+    pub keep: ConstraintArgs,
+    /// Deprecated: `--boundary lock`.
+    #[arg(long, hide = true, conflicts_with = "boundary")]
     pub keep_boundary: bool,
-    /// Keep UV seam (and other corner discontinuity) vertices where they are.
-    #[arg(long)]
+    /// Deprecated: `--seams lock`.
+    #[arg(long, hide = true, conflicts_with = "seams")]
     pub keep_seams: bool,
     /// Print the levels' reports as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]
     pub read: ReadArgs,
+}
+
+/// What an algorithm keeps: the library's constraints, in the words of
+/// `meshloom::algo::Keep` (free, slide, lock).
+#[derive(Args, Debug)]
+pub struct ConstraintArgs {
+    /// Boundary vertices: free (no constraint), slide (they stay on the
+    /// input's boundary; corners stay) or lock (they and the boundary
+    /// edges stay). Default: slide for decimate, lod and remesh; lock for
+    /// smooth.
+    #[arg(long, value_name = "free|slide|lock", value_parser = keep)]
+    pub boundary: Option<Keep>,
+    /// UV seams (edges across which a corner column's values differ):
+    /// free, slide or lock. Default: slide for decimate, lod and remesh;
+    /// free for smooth.
+    #[arg(long, value_name = "free|slide|lock", value_parser = keep)]
+    pub seams: Option<Keep>,
+    /// Edges whose faces meet at more than this many degrees are feature
+    /// edges (decimate holds their vertices; remesh and smooth slide along
+    /// them); it is also the turn that makes a line's vertex a corner
+    /// (default 45).
+    #[arg(long, value_name = "DEG", value_parser = degrees)]
+    pub feature_angle: Option<f64>,
+    /// An edge column whose true (or non-zero) edges are feature edges.
+    #[arg(long, value_name = "COLUMN")]
+    pub features: Option<String>,
+    /// A vertex column whose true (or non-zero) vertices are pinned: they
+    /// never move.
+    #[arg(long, value_name = "COLUMN")]
+    pub pinned: Option<String>,
+}
+
+/// A word of `Keep` (free, slide, lock), read by the library's own parser.
+fn keep(s: &str) -> Result<Keep, String> {
+    s.parse()
+        .map_err(|e: meshloom::choice::UnknownChoice| e.to_string())
 }
 
 /// A number from 0 to 1.

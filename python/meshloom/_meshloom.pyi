@@ -11,7 +11,7 @@ __version__: str
 _Path = Union[str, PathLike[str]]
 _Kind = str  # "vertex", "halfedge" (or "corner"), "edge", "face"
 _Progress = Any  # a callable taking {"algorithm", "stage", "done", "total"}; returning False cancels
-_Keep = Union[bool, str]  # True / "slide", False / "free", "lock"
+_Keep = str  # "free", "slide" or "lock" (meshloom.algo.Keep's words)
 _Mask = Union[str, npt.ArrayLike, None]  # a bool vertex column name or a bool array in vertex order
 
 class Rule(Protocol):
@@ -262,23 +262,25 @@ class Mesh:
     def cut_path(self, path: Sequence[Vertex]) -> List[Face]: ...
     def check_cut_path(self, path: Sequence[Vertex]) -> None: ...
     # algorithms (angles in radians; reports are dicts)
-    def normals(self, kind: str = "vertex", *, weight: str = "angle", crease_angle: Optional[float] = ..., hard_edges: Optional[str] = None, store: bool = False) -> npt.NDArray[np.float64]:
+    def normals(self, kind: str = "vertex", *, weight: str = "angle", feature_angle: Optional[float] = ..., features: Optional[str] = None, store: bool = False, crease_angle: Optional[float] = ..., hard_edges: Optional[str] = None) -> npt.NDArray[np.float64]:
         """(n, 3) normals of "face", "vertex" or "corner" (half-edge) kind, in element order."""
     def curvature(self, *, boundary: str = "from_interior", store: bool = False) -> Dict[str, npt.NDArray[np.float64]]:
         """Per-vertex ``mean``, ``gaussian``, ``min``, ``max`` curvature and ``area``."""
     def subdivide(self, scheme: str = "loop", levels: int = 1, *, boundary: str = "crease", corner_column: Optional[str] = None, crease_column: Optional[str] = None, linear_columns: Sequence[str] = ..., faces: str = "auto", progress: _Progress = None, max_faces: int = 10_000_000) -> Dict[str, Any]:
         """Subdivide in place: "loop", "catmull_clark", "sqrt3" or "midpoint"."""
-    def smooth(self, method: str = "uniform", *, iterations: Optional[int] = None, step: Optional[float] = None, taubin_mu: Optional[float] = None, fix_boundary: bool = True, mask: _Mask = None, rescale: bool = False, progress: _Progress = None) -> Dict[str, Any]:
-        """Smooth positions in place: "uniform", "cotan", "taubin" or "implicit"."""
-    def fair(self, region: Union[_Mask, Sequence[Vertex]] = None, *, order: int = 2, weights: str = "cotan", progress: _Progress = None) -> Dict[str, Any]:
+    def smooth(self, method: str = "uniform", *, iterations: Optional[int] = None, step: Optional[float] = None, taubin_mu: Optional[float] = None, boundary: Optional[_Keep] = None, seams: Optional[_Keep] = None, feature_angle: Optional[float] = None, features: Optional[str] = None, pinned: _Mask = None, rescale: bool = False, progress: _Progress = None, fix_boundary: Optional[bool] = None, mask: _Mask = None) -> Dict[str, Any]:
+        """Smooth positions in place: "uniform", "cotan", "taubin" or "implicit".
+        ``boundary`` "lock" (default), "slide" or "free"; ``pinned`` vertices never move.
+        ``fix_boundary`` and ``mask`` are deprecated."""
+    def fair(self, region: Union[_Mask, Sequence[Vertex]] = None, *, order: int = 2, weights: str = "cotan", boundary: Optional[_Keep] = None, seams: Optional[_Keep] = None, feature_angle: Optional[float] = None, features: Optional[str] = None, pinned: _Mask = None, progress: _Progress = None) -> Dict[str, Any]:
         """The smoothest surface over a region with its surroundings fixed."""
-    def remesh(self, edge_length: Optional[float] = None, *, adaptive: Optional[float] = None, min_length: Optional[float] = None, max_length: Optional[float] = None, iterations: int = 10, smoothing_steps: int = 5, project: bool = True, keep_boundary: bool = False, feature_angle: Optional[float] = None, feature_edges: Optional[str] = None, seams: bool = True, locked: Optional[str] = None, resample: Union[str, Sequence[str], None] = None, progress: _Progress = None, max_faces: int = 10_000_000) -> Dict[str, Any]:
+    def remesh(self, edge_length: Optional[float] = None, *, adaptive: Optional[float] = None, min_length: Optional[float] = None, max_length: Optional[float] = None, iterations: int = 10, smoothing_steps: int = 5, project: bool = True, boundary: Optional[_Keep] = None, seams: Optional[_Keep] = None, feature_angle: Optional[float] = None, features: Optional[str] = None, pinned: _Mask = None, resample: Union[str, Sequence[str], None] = None, progress: _Progress = None, max_faces: int = 10_000_000, keep_boundary: Optional[bool] = None, feature_edges: Optional[str] = None, locked: Optional[str] = None) -> Dict[str, Any]:
         """Isotropic remeshing (Botsch-Kobbelt) of a triangle mesh, in place."""
     def fill_holes(self, *, refine: bool = True, fair: bool = True, fair_order: int = 2, max_rim: Optional[int] = None, progress: _Progress = None, max_refined_rim: Optional[int] = None) -> Dict[str, Any]:
         """Fill every hole by Liepa's method (triangulate, refine, fair), in place."""
-    def decimate(self, ratio: Optional[float] = None, *, vertices: Optional[int] = None, faces: Optional[int] = None, max_error: Optional[float] = None, max_normal_deviation: Optional[float] = ..., min_quality: Optional[float] = None, max_valence: Optional[int] = None, keep_boundary: Optional[_Keep] = None, keep_seams: Optional[_Keep] = None, material: Optional[str] = None, locked: Optional[str] = None, feature_angle: Optional[float] = None, feature_edges: Optional[str] = None, attributes: Optional[Dict[str, float]] = None, progress: _Progress = None) -> Dict[str, Any]:
+    def decimate(self, ratio: Optional[float] = None, *, vertices: Optional[int] = None, faces: Optional[int] = None, max_error: Optional[float] = None, max_normal_deviation: Optional[float] = ..., min_quality: Optional[float] = None, max_valence: Optional[int] = None, boundary: Optional[_Keep] = None, seams: Optional[_Keep] = None, feature_angle: Optional[float] = None, features: Optional[str] = None, pinned: _Mask = None, material: Optional[str] = None, attributes: Optional[Dict[str, float]] = None, progress: _Progress = None, keep_boundary: Optional[Union[bool, _Keep]] = None, keep_seams: Optional[Union[bool, _Keep]] = None, locked: Optional[str] = None, feature_edges: Optional[str] = None) -> Dict[str, Any]:
         """Quadric error decimation of a triangle mesh, in place."""
-    def lod_chain(self, targets: Optional[Sequence[Union[float, Dict[str, Union[int, float]]]]] = None, *, max_error: Optional[float] = None, max_normal_deviation: Optional[float] = ..., min_quality: Optional[float] = None, max_valence: Optional[int] = None, keep_boundary: Optional[_Keep] = None, keep_seams: Optional[_Keep] = None, material: Optional[str] = None, locked: Optional[str] = None, feature_angle: Optional[float] = None, feature_edges: Optional[str] = None, attributes: Optional[Dict[str, float]] = None, progress: _Progress = None) -> List[Dict[str, Any]]:
+    def lod_chain(self, targets: Optional[Sequence[Union[float, Dict[str, Union[int, float]]]]] = None, *, max_error: Optional[float] = None, max_normal_deviation: Optional[float] = ..., min_quality: Optional[float] = None, max_valence: Optional[int] = None, boundary: Optional[_Keep] = None, seams: Optional[_Keep] = None, feature_angle: Optional[float] = None, features: Optional[str] = None, pinned: Optional[str] = None, material: Optional[str] = None, attributes: Optional[Dict[str, float]] = None, progress: _Progress = None, keep_boundary: Optional[Union[bool, _Keep]] = None, keep_seams: Optional[Union[bool, _Keep]] = None, locked: Optional[str] = None, feature_edges: Optional[str] = None) -> List[Dict[str, Any]]:
         """Nested levels of detail (``mesh`` and ``report`` per level); the mesh is not changed."""
     # pickling and equality
     def __getstate__(self) -> Tuple[bytes, List[Tuple[str, str, Any, List[Tuple[int, Any]]]]]: ...

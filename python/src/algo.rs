@@ -15,16 +15,16 @@ use meshloom::algo::decimate::{decimate, lod_chain, Keep, LodOptions, Target};
 use meshloom::algo::fair::{fair, FairOptions, FairRegion};
 use meshloom::algo::fill_hole::{fill_holes, FillHoleOptions};
 use meshloom::algo::laplacian::LaplaceWeights;
-use meshloom::algo::remesh::{remesh, BoundaryMode, RemeshOptions, Resample, Sizing};
+use meshloom::algo::remesh::{remesh, RemeshOptions, Resample, Sizing};
 use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
 use meshloom::algo::subdivision::SubdivisionReport;
-use meshloom::algo::DEFAULT_MAX_FACES;
 use meshloom::algo::{
     add_corner_normals, add_face_normals, add_vertex_normals, corner_normals, face_normals,
     subdivide, vertex_normals, CornerNormalOptions, DecimateOptions, DecimateReport, Flow,
     NormalWeight, Progress, ProgressInfo, Scheme, SubdivisionOptions, VertexInterpolation,
     VertexNormalOptions,
 };
+use meshloom::algo::{Constraints, DEFAULT_MAX_FACES};
 use meshloom::attr::{Attr, Contagion, Element, VertexAttr};
 use meshloom::choice::UnknownChoice;
 use meshloom::{Mesh, VertexKey};
@@ -196,8 +196,13 @@ pub(crate) fn flag_column<K: Element>(
         .transpose()
 }
 
-/// The mask's column handle, adding the temporary column for an array.
-fn mask_handle(mesh: &mut Mesh, mask: &Mask) -> meshloom::Result<Option<VertexAttr<bool>>> {
+/// The mask's column handle, adding the temporary column `temp` for an
+/// array.
+fn mask_handle(
+    mesh: &mut Mesh,
+    mask: &Mask,
+    temp: &str,
+) -> meshloom::Result<Option<VertexAttr<bool>>> {
     match mask {
         Mask::None => Ok(None),
         Mask::Column(name) => flag_column::<VertexKey>(mesh, Some(name)),
@@ -214,7 +219,7 @@ fn mask_handle(mesh: &mut Mesh, mask: &Mask) -> meshloom::Result<Option<VertexAt
                     ),
                 });
             }
-            let h = mesh.add_vertex_attr::<bool>(TEMP_MASK)?;
+            let h = mesh.add_vertex_attr::<bool>(temp)?;
             let mut view = mesh.attr_view_mut(&h)?;
             for (k, &b) in keys.iter().zip(values) {
                 view.set(*k, Some(b))?;
@@ -228,6 +233,169 @@ fn drop_mask(mesh: &mut Mesh, h: Option<VertexAttr<bool>>, mask: &Mask) {
     if let (Some(h), Mask::Array(_)) = (h, mask) {
         let _ = mesh.remove_attr(&h);
     }
+}
+
+/// The complement of a mask, as an array in vertex order (a column is read
+/// from `mesh`).
+fn complement(mesh: &Mesh, mask: &Mask) -> meshloom::Result<Mask> {
+    Ok(match mask {
+        Mask::None => Mask::None,
+        Mask::Array(values) => Mask::Array(values.iter().map(|b| !b).collect()),
+        Mask::Column(name) => {
+            let h = mesh.attr_handle::<VertexKey, bool, Contagion>(name)?;
+            let view = mesh.attr_view(&h)?;
+            Mask::Array(
+                mesh.vertices()
+                    .map(|v| view.get(v) != Some(&true))
+                    .collect(),
+            )
+        }
+    })
+}
+
+/// A temporary bool vertex column holding an array given for `pinned`.
+const TEMP_PINNED: &str = "__meshloom_pinned";
+
+/// Warn (`DeprecationWarning`) that the keyword `old` is replaced by `new`.
+fn deprecated(py: Python<'_>, old: &str, new: &str) -> PyResult<()> {
+    let message = std::ffi::CString::new(format!("{old} is deprecated; use {new}"))
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let category = py.get_type::<pyo3::exceptions::PyDeprecationWarning>();
+    PyErr::warn(py, &category, &message, 1)
+}
+
+/// A word of `Keep` ("free", "slide", "lock"), read by the library's own
+/// parser; `None` when the keyword was not given.
+fn keep_word(ob: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<Keep>> {
+    let Some(ob) = ob.filter(|o| !o.is_none()) else {
+        return Ok(None);
+    };
+    let word: String = ob.extract().map_err(|_| {
+        PyTypeError::new_err(format!("{what} is one of {}", Keep::WORDS.join(", ")))
+    })?;
+    word.parse::<Keep>()
+        .map(Some)
+        .map_err(|e| PyValueError::new_err(format!("{what}: {e}")))
+}
+
+/// An old keyword that took `True`/`False` or a word: a word passes
+/// through, `True` is `if_true`, `False` is free; with a warning naming
+/// the new keyword.
+fn old_keep(
+    py: Python<'_>,
+    ob: Option<&Bound<'_, PyAny>>,
+    old: &str,
+    new: &str,
+    if_true: Keep,
+) -> PyResult<Option<Keep>> {
+    let Some(ob) = ob.filter(|o| !o.is_none()) else {
+        return Ok(None);
+    };
+    let k = match ob.extract::<bool>() {
+        Ok(b) => Some(if b { if_true } else { Keep::Free }),
+        Err(_) => keep_word(Some(ob), old)?,
+    };
+    let shown = k.map_or(String::new(), |k| k.word().to_owned());
+    deprecated(py, old, &format!("{new}=\"{shown}\""))?;
+    Ok(k)
+}
+
+/// The constraint keywords every algorithm takes, in the words of
+/// `meshloom::algo::Constraints`: `boundary` and `seams` (`"free"`,
+/// `"slide"`, `"lock"`), `feature_angle` (radians), `features` (a bool
+/// edge column name), `pinned` (a bool vertex column name or array: true =
+/// never moves). `None` leaves the algorithm's default.
+struct KeepKw {
+    boundary: Option<Keep>,
+    seams: Option<Keep>,
+    feature_angle: Option<f64>,
+    features: Option<String>,
+    pinned: Mask,
+}
+
+impl KeepKw {
+    fn new(
+        boundary: Option<&Bound<'_, PyAny>>,
+        seams: Option<&Bound<'_, PyAny>>,
+        feature_angle: Option<f64>,
+        features: Option<String>,
+        pinned: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<KeepKw> {
+        Ok(KeepKw {
+            boundary: keep_word(boundary, "boundary")?,
+            seams: keep_word(seams, "seams")?,
+            feature_angle,
+            features,
+            pinned: mask_of(pinned)?,
+        })
+    }
+
+    /// Take an old keyword naming a column (`locked`, `feature_edges`) in
+    /// place of the new one, with a warning.
+    fn old_column(
+        py: Python<'_>,
+        new: &mut Option<String>,
+        old: Option<String>,
+        old_name: &str,
+        new_name: &str,
+    ) -> PyResult<()> {
+        if let Some(name) = old {
+            deprecated(py, old_name, new_name)?;
+            new.get_or_insert(name);
+        }
+        Ok(())
+    }
+
+    /// `c` with these keywords over it, the columns looked up on `mesh` by
+    /// name (an array given for `pinned` is left to [`KeepKw::apply`]).
+    fn apply_named(&self, mesh: &Mesh, mut c: Constraints) -> meshloom::Result<Constraints> {
+        if let Some(k) = self.boundary {
+            c.boundary = k;
+        }
+        if let Some(k) = self.seams {
+            c.seams = k;
+        }
+        if self.feature_angle.is_some() {
+            c.feature_angle = self.feature_angle;
+        }
+        if self.features.is_some() {
+            c.features = flag_column(mesh, self.features.as_deref())?;
+        }
+        if let Mask::Column(name) = &self.pinned {
+            c.pinned = flag_column(mesh, Some(name))?;
+        }
+        Ok(c)
+    }
+
+    /// As [`KeepKw::apply_named`], an array given for `pinned` written to
+    /// a temporary column, whose handle comes back to be dropped with
+    /// [`drop_mask`].
+    fn apply(
+        &self,
+        mesh: &mut Mesh,
+        c: Constraints,
+    ) -> meshloom::Result<(Constraints, Option<VertexAttr<bool>>)> {
+        let mut c = self.apply_named(mesh, c)?;
+        let mut temp = None;
+        if let Mask::Array(_) = self.pinned {
+            temp = mask_handle(mesh, &self.pinned, TEMP_PINNED)?;
+            c.pinned = temp.clone();
+        }
+        Ok((c, temp))
+    }
+}
+
+/// Set the five constraint fields of an options struct from a
+/// `Constraints`.
+macro_rules! set_constraints {
+    ($o:expr, $c:expr) => {{
+        let c = $c;
+        $o.boundary = c.boundary;
+        $o.seams = c.seams;
+        $o.feature_angle = c.feature_angle;
+        $o.features = c.features;
+        $o.pinned = c.pinned;
+    }};
 }
 
 fn counts_dict<'py>(py: Python<'py>, c: &meshloom::algo::Counts) -> PyResult<Bound<'py, PyDict>> {
@@ -259,27 +427,15 @@ fn decimate_report<'py>(py: Python<'py>, r: &DecimateReport) -> PyResult<Bound<'
         meshloom::algo::decimate::StopReason::MaxError => "max_error",
         meshloom::algo::decimate::StopReason::NoCollapses => "no_collapses",
     };
-    let d = fields_dict!(py, r; error, vertices_before, faces_before, vertices, faces, collapses, passes, fixed_vertices);
+    let d = fields_dict!(py, r; error, collapses, passes, fixed);
+    d.set_item("input", counts_dict(py, &r.input)?)?;
+    d.set_item("output", counts_dict(py, &r.output)?)?;
     d.set_item("stopped_by", stopped)?;
     d.set_item(
         "refused",
         fields_dict!(py, r.refused; topology, normal, quality, valence),
     )?;
     Ok(d)
-}
-
-fn keep_of(ob: &Bound<'_, PyAny>, what: &str) -> PyResult<Keep> {
-    if let Ok(b) = ob.extract::<bool>() {
-        return Ok(if b { Keep::Slide } else { Keep::Free });
-    }
-    match ob.extract::<String>()?.as_str() {
-        "free" => Ok(Keep::Free),
-        "slide" => Ok(Keep::Slide),
-        "lock" => Ok(Keep::Lock),
-        other => Err(PyValueError::new_err(format!(
-            "{what} is True, False, \"free\", \"slide\" or \"lock\", not {other:?}"
-        ))),
-    }
 }
 
 /// A decimation target: one of `ratio`, `vertices`, `faces`, or none
@@ -309,29 +465,21 @@ struct DecimateKw {
     max_normal_deviation: Option<f64>,
     min_quality: Option<f64>,
     max_valence: Option<usize>,
-    boundary: Keep,
-    seams: Keep,
+    keep: KeepKw,
     material: Option<String>,
-    locked: Option<String>,
-    feature_angle: Option<f64>,
-    feature_edges: Option<String>,
     attributes: Vec<(String, f64)>,
 }
 
 impl DecimateKw {
-    fn options(&self, mesh: &Mesh, target: Target) -> meshloom::Result<DecimateOptions> {
-        Ok(DecimateOptions {
+    /// The options but the constraints.
+    fn base(&self, target: Target) -> DecimateOptions {
+        DecimateOptions {
             target,
             max_error: self.max_error,
             max_normal_deviation: self.max_normal_deviation,
             min_quality: self.min_quality,
             max_valence: self.max_valence,
-            boundary: self.boundary,
-            seams: self.seams,
             material: self.material.clone(),
-            locked: flag_column(mesh, self.locked.as_deref())?,
-            feature_angle: self.feature_angle,
-            feature_edges: flag_column(mesh, self.feature_edges.as_deref())?,
             attributes: self
                 .attributes
                 .iter()
@@ -340,7 +488,67 @@ impl DecimateKw {
                     weight: *weight,
                 })
                 .collect(),
-        })
+            ..DecimateOptions::default()
+        }
+    }
+
+    /// The options, and the temporary pinned column to drop (an array).
+    fn options(
+        &self,
+        mesh: &mut Mesh,
+        target: Target,
+    ) -> meshloom::Result<(DecimateOptions, Option<VertexAttr<bool>>)> {
+        let mut o = self.base(target);
+        let (c, temp) = self.keep.apply(mesh, o.constraints())?;
+        set_constraints!(o, c);
+        Ok((o, temp))
+    }
+
+    /// The options of a chain over `mesh`, which is not changed (columns
+    /// by name only).
+    fn lod_options(&self, mesh: &Mesh) -> meshloom::Result<DecimateOptions> {
+        let mut o = self.base(Target::Ratio(0.5));
+        let c = self.keep.apply_named(mesh, o.constraints())?;
+        set_constraints!(o, c);
+        Ok(o)
+    }
+}
+
+/// The old constraint keywords of `decimate` and `lod_chain`, each mapped
+/// to the new one with a `DeprecationWarning`: `keep_boundary` and
+/// `keep_seams` (`True` = lock), `locked`, `feature_edges`.
+struct OldDecimateKw<'a, 'py> {
+    keep_boundary: Option<&'a Bound<'py, PyAny>>,
+    keep_seams: Option<&'a Bound<'py, PyAny>>,
+    locked: Option<String>,
+    feature_edges: Option<String>,
+}
+
+impl OldDecimateKw<'_, '_> {
+    fn onto(self, py: Python<'_>, keep: &mut KeepKw) -> PyResult<()> {
+        let b = old_keep(
+            py,
+            self.keep_boundary,
+            "keep_boundary",
+            "boundary",
+            Keep::Lock,
+        )?;
+        keep.boundary = keep.boundary.or(b);
+        let s = old_keep(py, self.keep_seams, "keep_seams", "seams", Keep::Lock)?;
+        keep.seams = keep.seams.or(s);
+        if let Some(name) = self.locked {
+            deprecated(py, "locked", "pinned")?;
+            if matches!(keep.pinned, Mask::None) {
+                keep.pinned = Mask::Column(name);
+            }
+        }
+        KeepKw::old_column(
+            py,
+            &mut keep.features,
+            self.feature_edges,
+            "feature_edges",
+            "features",
+        )
     }
 }
 
@@ -350,12 +558,8 @@ fn decimate_kw(
     max_normal_deviation: Option<f64>,
     min_quality: Option<f64>,
     max_valence: Option<usize>,
-    keep_boundary: &Bound<'_, PyAny>,
-    keep_seams: &Bound<'_, PyAny>,
+    keep: KeepKw,
     material: Option<String>,
-    locked: Option<String>,
-    feature_angle: Option<f64>,
-    feature_edges: Option<String>,
     attributes: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<DecimateKw> {
     let attributes = match attributes {
@@ -370,14 +574,62 @@ fn decimate_kw(
         max_normal_deviation,
         min_quality,
         max_valence,
-        boundary: keep_of(keep_boundary, "keep_boundary")?,
-        seams: keep_of(keep_seams, "keep_seams")?,
+        keep,
         material,
-        locked,
-        feature_angle,
-        feature_edges,
         attributes,
     })
+}
+
+/// Which columns `remesh` resamples: `"linear"` (or None), `"off"`, or a
+/// list of column names.
+fn resample_of(resample: Option<&Bound<'_, PyAny>>) -> PyResult<Resample> {
+    let Some(r) = resample.filter(|r| !r.is_none()) else {
+        return Ok(Resample::Linear);
+    };
+    if let Ok(s) = r.extract::<String>() {
+        return match s.as_str() {
+            "linear" => Ok(Resample::Linear),
+            "off" => Ok(Resample::Off),
+            other => Err(PyValueError::new_err(format!(
+                "resample is \"linear\", \"off\" or a list of column names, not {other:?}"
+            ))),
+        };
+    }
+    Ok(Resample::Columns(r.extract::<Vec<String>>().map_err(
+        |_| PyTypeError::new_err("resample is \"linear\", \"off\" or a list of column names"),
+    )?))
+}
+
+/// A fair region given as a list (or tuple) of `Vertex` keys of this
+/// mesh; `None` for anything else (a column name, an array, None).
+fn region_keys(
+    slf: &Bound<'_, PyMesh>,
+    region: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Option<Vec<VertexKey>>> {
+    let Some(r) = region else {
+        return Ok(None);
+    };
+    if r.cast::<PyList>().is_err() && !r.is_instance_of::<pyo3::types::PyTuple>() {
+        return Ok(None);
+    }
+    let mut out = Vec::new();
+    for item in r.try_iter()? {
+        let item = item?;
+        match item.cast::<PyVertex>() {
+            Ok(v) => {
+                let v = v.get();
+                if !v.mesh.is(slf) {
+                    return Err(PyValueError::new_err(format!(
+                        "{:?} belongs to another mesh",
+                        v.key
+                    )));
+                }
+                out.push(v.key);
+            }
+            Err(_) => return Ok(None),
+        }
+    }
+    Ok((!out.is_empty()).then_some(out))
 }
 
 const DEFAULT_NORMAL_DEVIATION: f64 = 75.0 * std::f64::consts::PI / 180.0;
@@ -389,27 +641,38 @@ impl PyMesh {
     /// in the order of `faces`), `"vertex"` (in the order of `vertices`,
     /// faces weighted by `weight`: `"angle"`, `"area"` or `"uniform"`) or
     /// `"corner"` (one per half-edge, in the order of `halfedges`, split
-    /// where faces meet at more than `crease_angle` radians (None: never)
-    /// or along the edges where the bool edge column `hard_edges` is
+    /// at feature edges: where faces meet at more than `feature_angle`
+    /// radians (None: never) or where the bool edge column `features` is
     /// true). `store=True` also writes them to the column `"normal"` of
     /// that kind (half-edges for corners), which then follows edits by
-    /// interpolation.
-    #[pyo3(signature = (kind = "vertex", *, weight = "angle", crease_angle = Some(DEFAULT_CREASE), hard_edges = None, store = false))]
+    /// interpolation. `crease_angle` and `hard_edges` are the deprecated
+    /// names of `feature_angle` and `features`.
+    #[pyo3(signature = (kind = "vertex", *, weight = "angle", feature_angle = Some(DEFAULT_CREASE), features = None, store = false, crease_angle = None, hard_edges = None))]
+    #[allow(clippy::too_many_arguments)]
     fn normals(
         slf: &Bound<'_, Self>,
         kind: &str,
         weight: &str,
-        crease_angle: Option<f64>,
-        hard_edges: Option<String>,
+        feature_angle: Option<f64>,
+        features: Option<String>,
         store: bool,
+        crease_angle: Option<&Bound<'_, PyAny>>,
+        hard_edges: Option<String>,
     ) -> PyResult<Py<PyAny>> {
         let py = slf.py();
         let weight = weight_of(weight)?;
+        let mut feature_angle = feature_angle;
+        if let Some(a) = crease_angle {
+            deprecated(py, "crease_angle", "feature_angle")?;
+            feature_angle = a.extract()?;
+        }
+        let mut features = features;
+        KeepKw::old_column(py, &mut features, hard_edges, "hard_edges", "features")?;
         let corner = |m: &Mesh| -> meshloom::Result<CornerNormalOptions> {
             Ok(CornerNormalOptions {
                 weight,
-                crease_angle,
-                hard_edges: flag_column(m, hard_edges.as_deref())?,
+                feature_angle,
+                features: flag_column(m, features.as_deref())?,
             })
         };
         let vertex = VertexNormalOptions { weight };
@@ -545,10 +808,15 @@ impl PyMesh {
     /// `"uniform"`, `"cotan"`, `"taubin"` or `"implicit"` (backward Euler
     /// mean-curvature flow). `iterations` (default 10, implicit 1); `step`
     /// (explicit and Taubin: lambda in (0, 1], default 0.5; implicit: the
-    /// time step, default 0.001); `taubin_mu`; `fix_boundary`; `mask`: the
-    /// vertices that may move, as a bool vertex column name or a bool array
-    /// in vertex order; `rescale` (implicit: keep area and centroid).
-    #[pyo3(signature = (method = "uniform", *, iterations = None, step = None, taubin_mu = None, fix_boundary = true, mask = None, rescale = false, progress = None))]
+    /// time step, default 0.001); `taubin_mu`; `rescale` (implicit: keep
+    /// area and centroid). What stays: `boundary` (`"lock"`, the default;
+    /// `"slide"`: on the input's boundary; `"free"`), `seams` (default
+    /// `"free"`), `feature_angle` (radians) and `features` (a bool edge
+    /// column: lines that slide), `pinned` (a bool vertex column name or a
+    /// bool array in vertex order: true = never moves). `fix_boundary`
+    /// (True = `boundary="lock"`, False = `"free"`) and `mask` (the
+    /// vertices that may move: `pinned` is its complement) are deprecated.
+    #[pyo3(signature = (method = "uniform", *, iterations = None, step = None, taubin_mu = None, boundary = None, seams = None, feature_angle = None, features = None, pinned = None, rescale = false, progress = None, fix_boundary = None, mask = None))]
     #[allow(clippy::too_many_arguments)]
     fn smooth(
         slf: &Bound<'_, Self>,
@@ -556,10 +824,15 @@ impl PyMesh {
         iterations: Option<u32>,
         step: Option<f64>,
         taubin_mu: Option<f64>,
-        fix_boundary: bool,
-        mask: Option<&Bound<'_, PyAny>>,
+        boundary: Option<&Bound<'_, PyAny>>,
+        seams: Option<&Bound<'_, PyAny>>,
+        feature_angle: Option<f64>,
+        features: Option<String>,
+        pinned: Option<&Bound<'_, PyAny>>,
         rescale: bool,
         progress: Option<Bound<'_, PyAny>>,
+        fix_boundary: Option<&Bound<'_, PyAny>>,
+        mask: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Py<PyDict>> {
         let py = slf.py();
         let method = match method {
@@ -579,18 +852,24 @@ impl PyMesh {
         }
         options.step = step;
         options.taubin_mu = taubin_mu;
-        options.fix_boundary = fix_boundary;
         options.rescale = rescale;
+        let mut keep = KeepKw::new(boundary, seams, feature_angle, features, pinned)?;
+        let fixed = old_keep(py, fix_boundary, "fix_boundary", "boundary", Keep::Lock)?;
+        keep.boundary = keep.boundary.or(fixed);
         let mask = mask_of(mask)?;
+        if !matches!(mask, Mask::None) {
+            deprecated(py, "mask", "pinned (its complement)")?;
+        }
         let cb = Callback::new(progress)?;
         let r = cb.finish(edit(slf, |m| {
-            let h = mask_handle(m, &mask)?;
-            let o = SmoothOptions {
-                mask: h.clone(),
-                ..options.clone()
-            };
+            if matches!(keep.pinned, Mask::None) {
+                keep.pinned = complement(m, &mask)?;
+            }
+            let (c, temp) = keep.apply(m, options.constraints())?;
+            let mut o = options.clone();
+            set_constraints!(o, c);
             let out = cb.run(|p| smooth(m, &o, p));
-            drop_mask(m, h, &mask);
+            drop_mask(m, temp, &keep.pinned);
             out
         }))?;
         let d = fields_dict!(py, r; moved, fixed, iterations, max_displacement, stale);
@@ -599,65 +878,58 @@ impl PyMesh {
 
     /// Fair a region in place: the smoothest surface (k-harmonic, `order`
     /// 1 to 3, default 2) over the region with its surroundings fixed.
-    /// `region`: None (every vertex but the boundary rings), a bool vertex
-    /// column name, a bool array in vertex order, or a list of `Vertex`
-    /// keys. `weights`: `"cotan"` or `"uniform"`. Returns the report (a
-    /// dict: `moved`, `constraints`, `max_displacement`).
-    #[pyo3(signature = (region = None, *, order = 2, weights = "cotan", progress = None))]
+    /// `region`: None (every vertex), a bool vertex column name, a bool
+    /// array in vertex order, or a list of `Vertex` keys. `weights`:
+    /// `"cotan"` or `"uniform"`. What stays: `boundary` (`"lock"`, the
+    /// default: the boundary and its order − 1 rings; `"slide"`: boundary
+    /// vertices are spread along the input's boundary; `"free"`), `seams`
+    /// (default `"free"`), `feature_angle` (radians), `features` (a bool
+    /// edge column), `pinned` (a bool vertex column name or array: true =
+    /// never moves). Returns the report (a dict: `moved`, `constraints`,
+    /// `max_displacement`).
+    #[pyo3(signature = (region = None, *, order = 2, weights = "cotan", boundary = None, seams = None, feature_angle = None, features = None, pinned = None, progress = None))]
+    #[allow(clippy::too_many_arguments)]
     fn fair(
         slf: &Bound<'_, Self>,
         region: Option<&Bound<'_, PyAny>>,
         order: u32,
         weights: &str,
+        boundary: Option<&Bound<'_, PyAny>>,
+        seams: Option<&Bound<'_, PyAny>>,
+        feature_angle: Option<f64>,
+        features: Option<String>,
+        pinned: Option<&Bound<'_, PyAny>>,
         progress: Option<Bound<'_, PyAny>>,
     ) -> PyResult<Py<PyDict>> {
         let py = slf.py();
         let weights = laplace_weights(weights)?;
-        let keys: Option<Vec<VertexKey>> = match region {
-            Some(r) if r.cast::<PyList>().is_ok() || r.is_instance_of::<pyo3::types::PyTuple>() => {
-                let mut out = Vec::new();
-                for item in r.try_iter()? {
-                    let item = item?;
-                    match item.cast::<PyVertex>() {
-                        Ok(v) => {
-                            let v = v.get();
-                            if !v.mesh.is(slf) {
-                                return Err(PyValueError::new_err(format!(
-                                    "{:?} belongs to another mesh",
-                                    v.key
-                                )));
-                            }
-                            out.push(v.key);
-                        }
-                        Err(_) => {
-                            out.clear();
-                            break;
-                        }
-                    }
-                }
-                (!out.is_empty()).then_some(out)
-            }
-            _ => None,
-        };
+        let keys = region_keys(slf, region)?;
         let mask = if keys.is_some() {
             Mask::None
         } else {
             mask_of(region)?
         };
+        let keep = KeepKw::new(boundary, seams, feature_angle, features, pinned)?;
         let cb = Callback::new(progress)?;
         let r = cb.finish(edit(slf, |m| {
-            let h = mask_handle(m, &mask)?;
+            let h = mask_handle(m, &mask, TEMP_MASK)?;
             let region = match (&keys, &h) {
                 (Some(k), _) => FairRegion::Vertices(k.clone()),
                 (None, Some(h)) => FairRegion::Mask(h.clone()),
                 (None, None) => FairRegion::All,
             };
-            let o = FairOptions {
+            let mut o = FairOptions {
                 region,
                 order,
                 weights,
+                ..FairOptions::default()
             };
-            let out = cb.run(|p| fair(m, &o, p));
+            let out = keep.apply(m, o.constraints()).and_then(|(c, temp)| {
+                set_constraints!(o, c);
+                let out = cb.run(|p| fair(m, &o, p));
+                drop_mask(m, temp, &keep.pinned);
+                out
+            });
             drop_mask(m, h, &mask);
             out
         }))?;
@@ -671,20 +943,23 @@ impl PyMesh {
     /// `edge_length` (default: the input's mean edge length) or `adaptive`
     /// (an approximation tolerance in mesh units; edges follow the
     /// curvature, clamped to `min_length`..`max_length`). `iterations`
-    /// (default 10), `smoothing_steps` per round (default 5), `project`;
-    /// `keep_boundary`: boundaries stay exactly as they are (default: they
-    /// are remeshed, their vertices sliding along them). Kept lines:
-    /// `feature_angle` (radians) or `feature_edges` (a bool edge column),
-    /// `seams` (UV seams of the resampled corner columns, default True),
-    /// `locked` (a bool vertex column of vertices that never move).
+    /// (default 10), `smoothing_steps` per round (default 5), `project`.
+    /// What stays: `boundary` (`"slide"`, the default: boundary vertices
+    /// slide along the input's boundary; `"lock"`: boundaries stay exactly
+    /// as they are; `"free"`), `seams` (UV seams of the resampled corner
+    /// columns, default `"slide"`), `feature_angle` (radians) and
+    /// `features` (a bool edge column): lines that slide; `pinned` (a bool
+    /// vertex column name or array: vertices that never move).
     /// `resample`: `"linear"` (every linear vertex and corner column, the
     /// default), `"off"`, or a list of column names, resampled from the
     /// input surface so UVs do not drift. Returns the report (a dict:
-    /// `iterations`, `splits`, `collapses`, `flips`, `target_length`, and
-    /// the counts before and after). `max_faces`: a target estimated to
-    /// make more faces is refused before any work (`TooLargeError`). One
-    /// undo unit; a cancelled or failed run leaves the mesh as it was.
-    #[pyo3(signature = (edge_length = None, *, adaptive = None, min_length = None, max_length = None, iterations = 10, smoothing_steps = 5, project = true, keep_boundary = false, feature_angle = None, feature_edges = None, seams = true, locked = None, resample = None, progress = None, max_faces = DEFAULT_MAX_FACES))]
+    /// `iterations`, `splits`, `collapses`, `flips`, `target_length`,
+    /// `fixed`, and the `input` and `output` counts). `max_faces`: a target
+    /// estimated to make more faces is refused before any work
+    /// (`TooLargeError`). One undo unit; a cancelled or failed run leaves
+    /// the mesh as it was. Deprecated: `keep_boundary` (True =
+    /// `boundary="lock"`), `feature_edges`, `locked`, and a bool `seams`.
+    #[pyo3(signature = (edge_length = None, *, adaptive = None, min_length = None, max_length = None, iterations = 10, smoothing_steps = 5, project = true, boundary = None, seams = None, feature_angle = None, features = None, pinned = None, resample = None, progress = None, max_faces = DEFAULT_MAX_FACES, keep_boundary = None, feature_edges = None, locked = None))]
     #[allow(clippy::too_many_arguments)]
     fn remesh(
         slf: &Bound<'_, Self>,
@@ -695,14 +970,17 @@ impl PyMesh {
         iterations: usize,
         smoothing_steps: usize,
         project: bool,
-        keep_boundary: bool,
+        boundary: Option<&Bound<'_, PyAny>>,
+        seams: Option<&Bound<'_, PyAny>>,
         feature_angle: Option<f64>,
-        feature_edges: Option<String>,
-        seams: bool,
-        locked: Option<String>,
+        features: Option<String>,
+        pinned: Option<&Bound<'_, PyAny>>,
         resample: Option<&Bound<'_, PyAny>>,
         progress: Option<Bound<'_, PyAny>>,
         max_faces: usize,
+        keep_boundary: Option<&Bound<'_, PyAny>>,
+        feature_edges: Option<String>,
+        locked: Option<String>,
     ) -> PyResult<Py<PyDict>> {
         let py = slf.py();
         let sizing = match (edge_length, adaptive) {
@@ -719,52 +997,41 @@ impl PyMesh {
             },
             (None, None) => Sizing::MeanEdgeLength,
         };
-        let resample = match resample {
-            None => Resample::Linear,
-            Some(r) => {
-                if let Ok(s) = r.extract::<String>() {
-                    match s.as_str() {
-                        "linear" => Resample::Linear,
-                        "off" => Resample::Off,
-                        other => {
-                            return Err(PyValueError::new_err(format!(
-                                "resample is \"linear\", \"off\" or a list of column names, not {other:?}"
-                            )))
-                        }
-                    }
-                } else {
-                    Resample::Columns(r.extract::<Vec<String>>().map_err(|_| {
-                        PyTypeError::new_err(
-                            "resample is \"linear\", \"off\" or a list of column names",
-                        )
-                    })?)
-                }
-            }
-        };
-        let boundary = if keep_boundary {
-            BoundaryMode::Fixed
-        } else {
-            BoundaryMode::Slide
-        };
+        let resample = resample_of(resample)?;
+        let old_seams = seams.filter(|s| s.is_instance_of::<pyo3::types::PyBool>());
+        let seams = seams.filter(|s| !s.is_instance_of::<pyo3::types::PyBool>());
+        let mut keep = KeepKw::new(boundary, seams, feature_angle, features, pinned)?;
+        let b = old_keep(py, keep_boundary, "keep_boundary", "boundary", Keep::Lock)?;
+        keep.boundary = keep.boundary.or(b);
+        let s = old_keep(py, old_seams, "seams=True/False", "seams", Keep::Slide)?;
+        keep.seams = keep.seams.or(s);
+        OldDecimateKw {
+            keep_boundary: None,
+            keep_seams: None,
+            locked,
+            feature_edges,
+        }
+        .onto(py, &mut keep)?;
         let cb = Callback::new(progress)?;
         let r = cb.finish(edit(slf, |m| {
-            let o = RemeshOptions {
+            let mut o = RemeshOptions {
                 sizing,
                 iterations,
                 smoothing_steps,
                 project,
-                boundary,
-                feature_angle,
-                feature_edges: flag_column(m, feature_edges.as_deref())?,
-                seams,
-                locked: flag_column(m, locked.as_deref())?,
                 resample: resample.clone(),
                 max_faces,
                 ..RemeshOptions::default()
             };
-            cb.run(|p| remesh(m, &o, p))
+            let (c, temp) = keep.apply(m, o.constraints())?;
+            set_constraints!(o, c);
+            let out = cb.run(|p| remesh(m, &o, p));
+            drop_mask(m, temp, &keep.pinned);
+            out
         }))?;
-        let d = fields_dict!(py, r; iterations, splits, collapses, flips, target_length, vertices_before, faces_before, vertices, faces);
+        let d = fields_dict!(py, r; iterations, splits, collapses, flips, target_length, fixed, feature_edges);
+        d.set_item("input", counts_dict(py, &r.input)?)?;
+        d.set_item("output", counts_dict(py, &r.output)?)?;
         Ok(d.unbind())
     }
 
@@ -811,21 +1078,23 @@ impl PyMesh {
 
     /// Decimate a triangle mesh in place by quadric error edge collapse;
     /// returns the report (a dict: `stopped_by` (`"target"`, `"max_error"`,
-    /// `"no_collapses"`), `error`, counts before and after, `collapses`,
-    /// `passes`, `refused` by guard, `fixed_vertices`). The target is one
-    /// of `ratio` (share of the vertices; default 0.5), `vertices`,
+    /// `"no_collapses"`), `error`, the `input` and `output` counts,
+    /// `collapses`, `passes`, `refused` by guard, `fixed`). The target is
+    /// one of `ratio` (share of the vertices; default 0.5), `vertices`,
     /// `faces`, or none with `max_error` (a distance in mesh units).
     /// Guards: `max_normal_deviation` (radians, default 75 degrees; None:
-    /// off), `min_quality`, `max_valence`. `keep_boundary` and `keep_seams`
-    /// (UV seams and every other corner-column discontinuity): True/"slide"
-    /// (the default), False/"free" or "lock". `material`: a face column
-    /// whose borders are kept like seams; `locked`: a bool vertex column
-    /// of vertices that never move; `feature_angle` (radians) and
-    /// `feature_edges` (a bool edge column): edges whose vertices never
-    /// move; `attributes`: {column name: weight} of vertex or corner
-    /// float columns taking part in the error. Attribute columns follow
-    /// every collapse by rule.
-    #[pyo3(signature = (ratio = None, *, vertices = None, faces = None, max_error = None, max_normal_deviation = Some(DEFAULT_NORMAL_DEVIATION), min_quality = None, max_valence = None, keep_boundary = None, keep_seams = None, material = None, locked = None, feature_angle = None, feature_edges = None, attributes = None, progress = None))]
+    /// off), `min_quality`, `max_valence`. What stays: `boundary` and
+    /// `seams` (UV seams and every other corner-column discontinuity):
+    /// `"slide"` (the default), `"free"` or `"lock"`; `material`: a face
+    /// column whose borders are kept like seams; `pinned`: a bool vertex
+    /// column (name or array) of vertices that never move;
+    /// `feature_angle` (radians) and `features` (a bool edge column):
+    /// edges whose vertices never move; `attributes`: {column name:
+    /// weight} of vertex or corner float columns taking part in the error.
+    /// Attribute columns follow every collapse by rule. Deprecated:
+    /// `keep_boundary` and `keep_seams` (True = `"lock"`), `locked`,
+    /// `feature_edges`.
+    #[pyo3(signature = (ratio = None, *, vertices = None, faces = None, max_error = None, max_normal_deviation = Some(DEFAULT_NORMAL_DEVIATION), min_quality = None, max_valence = None, boundary = None, seams = None, feature_angle = None, features = None, pinned = None, material = None, attributes = None, progress = None, keep_boundary = None, keep_seams = None, locked = None, feature_edges = None))]
     #[allow(clippy::too_many_arguments)]
     fn decimate(
         slf: &Bound<'_, Self>,
@@ -836,35 +1105,44 @@ impl PyMesh {
         max_normal_deviation: Option<f64>,
         min_quality: Option<f64>,
         max_valence: Option<usize>,
-        keep_boundary: Option<&Bound<'_, PyAny>>,
-        keep_seams: Option<&Bound<'_, PyAny>>,
-        material: Option<String>,
-        locked: Option<String>,
+        boundary: Option<&Bound<'_, PyAny>>,
+        seams: Option<&Bound<'_, PyAny>>,
         feature_angle: Option<f64>,
-        feature_edges: Option<String>,
+        features: Option<String>,
+        pinned: Option<&Bound<'_, PyAny>>,
+        material: Option<String>,
         attributes: Option<&Bound<'_, PyDict>>,
         progress: Option<Bound<'_, PyAny>>,
+        keep_boundary: Option<&Bound<'_, PyAny>>,
+        keep_seams: Option<&Bound<'_, PyAny>>,
+        locked: Option<String>,
+        feature_edges: Option<String>,
     ) -> PyResult<Py<PyDict>> {
         let py = slf.py();
         let target = target_of(ratio, vertices, faces, max_error)?;
-        let slide = pyo3::types::PyString::new(py, "slide").into_any();
+        let mut keep = KeepKw::new(boundary, seams, feature_angle, features, pinned)?;
+        OldDecimateKw {
+            keep_boundary,
+            keep_seams,
+            locked,
+            feature_edges,
+        }
+        .onto(py, &mut keep)?;
         let kw = decimate_kw(
             max_error,
             max_normal_deviation,
             min_quality,
             max_valence,
-            keep_boundary.unwrap_or(&slide),
-            keep_seams.unwrap_or(&slide),
+            keep,
             material,
-            locked,
-            feature_angle,
-            feature_edges,
             attributes,
         )?;
         let cb = Callback::new(progress)?;
         let r = cb.finish(edit(slf, |m| {
-            let o = kw.options(m, target)?;
-            cb.run(|p| decimate(m, &o, p))
+            let (o, temp) = kw.options(m, target)?;
+            let out = cb.run(|p| decimate(m, &o, p));
+            drop_mask(m, temp, &kw.keep.pinned);
+            out
         }))?;
         Ok(decimate_report(py, &r)?.unbind())
     }
@@ -872,10 +1150,11 @@ impl PyMesh {
     /// A level-of-detail chain: one decimation through several targets,
     /// coarser and coarser; the mesh itself is not changed. `targets`: a
     /// list of ratios (floats) or dicts `{"vertices": n}` / `{"faces": n}`
-    /// (default `[0.5, 0.25, 0.1]`). The other keywords are `decimate`'s.
+    /// (default `[0.5, 0.25, 0.1]`). The other keywords are `decimate`'s
+    /// (`pinned` by column name only).
     /// Returns one dict per level: `mesh` (a new `Mesh`, with the
     /// attribute columns, Python-rule columns included) and `report`.
-    #[pyo3(signature = (targets = None, *, max_error = None, max_normal_deviation = Some(DEFAULT_NORMAL_DEVIATION), min_quality = None, max_valence = None, keep_boundary = None, keep_seams = None, material = None, locked = None, feature_angle = None, feature_edges = None, attributes = None, progress = None))]
+    #[pyo3(signature = (targets = None, *, max_error = None, max_normal_deviation = Some(DEFAULT_NORMAL_DEVIATION), min_quality = None, max_valence = None, boundary = None, seams = None, feature_angle = None, features = None, pinned = None, material = None, attributes = None, progress = None, keep_boundary = None, keep_seams = None, locked = None, feature_edges = None))]
     #[allow(clippy::too_many_arguments)]
     fn lod_chain(
         slf: &Bound<'_, Self>,
@@ -884,14 +1163,18 @@ impl PyMesh {
         max_normal_deviation: Option<f64>,
         min_quality: Option<f64>,
         max_valence: Option<usize>,
-        keep_boundary: Option<&Bound<'_, PyAny>>,
-        keep_seams: Option<&Bound<'_, PyAny>>,
-        material: Option<String>,
-        locked: Option<String>,
+        boundary: Option<&Bound<'_, PyAny>>,
+        seams: Option<&Bound<'_, PyAny>>,
         feature_angle: Option<f64>,
-        feature_edges: Option<String>,
+        features: Option<String>,
+        pinned: Option<String>,
+        material: Option<String>,
         attributes: Option<&Bound<'_, PyDict>>,
         progress: Option<Bound<'_, PyAny>>,
+        keep_boundary: Option<&Bound<'_, PyAny>>,
+        keep_seams: Option<&Bound<'_, PyAny>>,
+        locked: Option<String>,
+        feature_edges: Option<String>,
     ) -> PyResult<Py<PyList>> {
         let py = slf.py();
         let targets: Vec<Target> = match targets {
@@ -923,25 +1206,29 @@ impl PyMesh {
                 })
                 .collect::<PyResult<_>>()?,
         };
-        let slide = pyo3::types::PyString::new(py, "slide").into_any();
+        let mut keep = KeepKw::new(boundary, seams, feature_angle, features, None)?;
+        keep.pinned = pinned.map_or(Mask::None, Mask::Column);
+        OldDecimateKw {
+            keep_boundary,
+            keep_seams,
+            locked,
+            feature_edges,
+        }
+        .onto(py, &mut keep)?;
         let kw = decimate_kw(
             max_error,
             max_normal_deviation,
             min_quality,
             max_valence,
-            keep_boundary.unwrap_or(&slide),
-            keep_seams.unwrap_or(&slide),
+            keep,
             material,
-            locked,
-            feature_angle,
-            feature_edges,
             attributes,
         )?;
         let cb = Callback::new(progress)?;
         let chain = {
             let this = slf.try_borrow().map_err(busy)?;
             let m = &this.mesh;
-            let result = kw.options(m, Target::Ratio(0.5)).and_then(|decimate| {
+            let result = kw.lod_options(m).and_then(|decimate| {
                 let o = LodOptions {
                     targets,
                     decimate,

@@ -146,8 +146,8 @@ impl PyMesh {
                 .map_err(|e| crate::errors::mesh_err(py, &slf.clone().unbind(), e))?;
             options.normals = Some(meshloom::algo::CornerNormalOptions {
                 weight: w,
-                crease_angle,
-                hard_edges: hard,
+                feature_angle: crease_angle,
+                features: hard,
             });
         } else {
             options.normals = None;

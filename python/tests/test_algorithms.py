@@ -74,8 +74,8 @@ def test_stored_normals_follow_edits():
 
 def test_flat_corner_normals_split_at_a_crease():
     mesh = icosahedron()
-    smooth = mesh.normals("corner", crease_angle=None)
-    flat = mesh.normals("corner", crease_angle=0.0)
+    smooth = mesh.normals("corner", feature_angle=None)
+    flat = mesh.normals("corner", feature_angle=0.0)
     faces = mesh.normals("face")
     face_of = {f: i for i, f in enumerate(mesh.faces)}
     for i, h in enumerate(mesh.halfedges):
@@ -199,24 +199,42 @@ def test_smoothing_flattens_a_bumpy_grid(method):
     assert "temperature" in mesh.attrs("vertex")
 
 
-def test_smoothing_with_a_mask_moves_only_the_mask():
+def test_smoothing_leaves_pinned_vertices_where_they_are():
+    mesh = tri_grid(6)
+    p0, _ = mesh.to_arrays()
+    free = np.zeros(mesh.vertex_count, bool)
+    free[[10, 11, 12]] = True
+    mesh.smooth("uniform", pinned=~free)
+    p1, _ = mesh.to_arrays()
+    moved = np.any(p0 != p1, axis=1)
+    assert moved[[10, 11, 12]].any() and not moved[~free].any()
+    assert "__meshloom_pinned" not in mesh.attrs("vertex")
+    # The same through a bool column.
+    mesh.add_vertex_attr("pin", bool)
+    mesh.set_attr_array("pin", ~free)
+    mesh.smooth("cotan", pinned="pin")
+    with pytest.raises(meshloom.UnsuitableError):
+        mesh.smooth("uniform", step=2.0)
+    with pytest.raises(meshloom.ColumnError):
+        mesh.smooth("uniform", pinned="nope")
+    with pytest.raises(ValueError):
+        mesh.smooth("uniform", boundary="locked")
+
+
+def test_smoothing_mask_is_a_deprecated_pinned_complement():
     mesh = tri_grid(6)
     p0, _ = mesh.to_arrays()
     mask = np.zeros(mesh.vertex_count, bool)
     mask[[10, 11, 12]] = True
-    mesh.smooth("uniform", mask=mask)
+    with pytest.warns(DeprecationWarning, match="mask is deprecated"):
+        mesh.smooth("uniform", mask=mask)
     p1, _ = mesh.to_arrays()
     moved = np.any(p0 != p1, axis=1)
     assert moved[[10, 11, 12]].any() and not moved[~mask].any()
-    assert "__meshloom_mask" not in mesh.attrs("vertex")
-    # The same through a bool column.
-    mesh.add_vertex_attr("sel", bool)
-    mesh.set_attr_array("sel", mask)
-    mesh.smooth("cotan", mask="sel")
-    with pytest.raises(meshloom.UnsuitableError):
-        mesh.smooth("uniform", step=2.0)
-    with pytest.raises(meshloom.ColumnError):
-        mesh.smooth("uniform", mask="nope")
+    assert "__meshloom_pinned" not in mesh.attrs("vertex")
+    with pytest.warns(DeprecationWarning, match="fix_boundary"):
+        report = mesh.smooth("uniform", fix_boundary=False)
+    assert report["fixed"] == 0
 
 
 def test_fair_a_region_and_refuse_a_closed_mesh():
@@ -248,8 +266,8 @@ def test_decimate_to_a_face_count_keeps_columns_and_boundary():
     report = mesh.decimate(faces=100)
     assert report["stopped_by"] == "target"
     assert mesh.face_count in (99, 100)
-    assert report["faces"] == mesh.face_count
-    assert report["faces_before"] == 288
+    assert report["output"]["faces"] == mesh.face_count
+    assert report["input"]["faces"] == 288
     assert mesh.hole_count == holes
     assert (mesh.attr_array("material", kind="face") == 3).all()
     t = mesh.attr_array("temperature")
@@ -262,12 +280,17 @@ def test_decimate_targets_and_errors():
     mesh.decimate(0.5)
     assert mesh.vertex_count == math.ceil(121 * 0.5)
     mesh = tri_grid(10)
-    mesh.decimate(vertices=40, keep_seams=False)
+    mesh.decimate(vertices=40, seams="free")
     assert mesh.vertex_count == 40
     # Locked boundary vertices never move.
     mesh = tri_grid(10)
     rim = {tuple(v.position) for v in mesh.vertices if v.is_boundary}
-    mesh.decimate(vertices=60, keep_boundary="lock")
+    mesh.decimate(vertices=60, boundary="lock")
+    assert rim == {tuple(v.position) for v in mesh.vertices if v.is_boundary}
+    # The old keyword means lock too, with a warning.
+    mesh = tri_grid(10)
+    with pytest.warns(DeprecationWarning, match="keep_boundary"):
+        mesh.decimate(vertices=60, keep_boundary=True)
     assert rim == {tuple(v.position) for v in mesh.vertices if v.is_boundary}
     with pytest.raises(ValueError):
         mesh.decimate(ratio=0.5, faces=10)
@@ -288,7 +311,7 @@ def test_lod_chain_levels_shrink_and_the_mesh_stays():
     assert counts[0] == math.ceil(169 * 0.5) and counts[1] == 30
     assert levels[2]["mesh"].face_count <= 20
     for lv in levels:
-        assert lv["report"]["vertices"] == lv["mesh"].vertex_count
+        assert lv["report"]["output"]["vertices"] == lv["mesh"].vertex_count
         assert "temperature" in lv["mesh"].attrs("vertex")
         lv["mesh"].validate()
     with pytest.raises(meshloom.UnsuitableError):
@@ -304,7 +327,7 @@ def test_remesh_evens_edge_lengths_keeps_columns_and_is_one_undo_unit():
     holes = mesh.hole_count
     report = mesh.remesh(target, iterations=5)
     assert report["target_length"] == pytest.approx(target)
-    assert report["faces"] == mesh.face_count
+    assert report["output"]["faces"] == mesh.face_count
     assert mesh.hole_count == holes
     assert (mesh.attr_array("material", kind="face") == 3).all()
     assert not np.isnan(mesh.attr_array("temperature")).any()

@@ -14,20 +14,24 @@
 //! new point's projection on the edge, and corner columns per wedge, so UVs,
 //! colours and material ids come out right without user code.
 //!
-//! **Constraints** ([`Keep`]). Boundary edges, UV seams (corners whose
-//! values differ across an edge, in any half-edge column), material
-//! boundaries (a face column, where asked) and feature edges (by dihedral
-//! angle or an edge column) are *lines*. A vertex on exactly two line edges
-//! may only collapse along one of them, and stays on it (its position is
-//! the best point on that edge), so a line keeps its place and its ends do
+//! **Constraints** (the shared vocabulary of
+//! [`constraints`](super::constraints): [`DecimateOptions::boundary`],
+//! `seams`, `feature_angle`, `features`, `pinned`). Boundary edges, UV
+//! seams (corners whose values differ across an edge, in any half-edge
+//! column) and material borders (a face column, where asked) are *lines*.
+//! With [`Keep::Slide`] (the default) a vertex on exactly two line edges
+//! may only collapse along one of them, into the neighbour there (whose
+//! position stays), so a line keeps the input's polyline and its ends do
 //! not slide off it (meshoptimizer's "border" and "seam" vertex kinds); a
 //! vertex at the end or crossing of lines, or where a line turns by more
-//! than 45° (the corner of a square), a locked vertex (mask) and one on a
-//! feature edge never moves. A kept boundary never loses a loop (an edge of
-//! a triangular hole is not collapsed; counted as a topology refusal). A
-//! free vertex collapsing into a
-//! constrained one takes its position. [`Keep::Lock`] locks every vertex of
-//! a kind of line instead.
+//! than the feature angle (45° without one: the corner of a square), never
+//! moves. With [`Keep::Lock`] every vertex of the line stays and so do its
+//! edges; with [`Keep::Free`] its edges are like any other. Feature edges
+//! (by dihedral angle or an edge column) are locked: their vertices never
+//! move; nor do pinned vertices. A kept boundary never loses a loop (an
+//! edge of a triangular hole is not collapsed; counted as a topology
+//! refusal). A free vertex collapsing into a constrained one takes its
+//! position.
 //!
 //! **Guards**, each an option of [`DecimateOptions`]: the largest turn of a
 //! face normal (flips are refused by default), the smallest triangle
@@ -83,6 +87,8 @@ mod setup;
 #[cfg(test)]
 mod tests;
 
+use super::constraints::{Constraints, EdgeBits, FIXED, FREE, LINE};
+use super::subdivision::Counts;
 use crate::attr::{EdgeAttr, VertexAttr};
 use crate::error::{Error, Result};
 use crate::layout::{Eid, Hid, Vid};
@@ -92,6 +98,8 @@ use attributes::AttrError;
 pub use lod::{lod_chain, replay, LodChain, LodLevel, LodOptions};
 use quadric::{Quadric, Q64};
 
+/// The line rule, shared by every algorithm: see [`Constraints`].
+pub use super::constraints::Keep;
 use super::progress::Progress;
 
 const ALGORITHM: &str = "decimate";
@@ -108,26 +116,6 @@ pub enum Target {
     /// No count: only [`DecimateOptions::max_error`] stops.
     None,
 }
-
-/// How a kind of line (boundary, seam, material boundary) is kept.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
-pub enum Keep {
-    /// Not kept: its edges are like any other (boundary vertices still
-    /// collapse only as the operator allows).
-    Free,
-    /// Kept as a line: its vertices move only along it, its corner
-    /// vertices not at all; planes across it hold it in place.
-    #[default]
-    Slide,
-    /// Every vertex on it stays where it is.
-    Lock,
-}
-
-crate::choice::choices!(Keep {
-    Free = "free",
-    Slide = "slide",
-    Lock = "lock",
-});
 
 /// A vertex or corner column that takes part in the error, with its weight
 /// (error per unit of value, against distance in mesh units).
@@ -162,21 +150,24 @@ pub struct DecimateOptions {
     /// Refuse a collapse that leaves a vertex with more neighbours than
     /// this. Default: none.
     pub max_valence: Option<usize>,
-    /// Boundary loops (default: [`Keep::Slide`]).
+    /// Boundary loops (default [`Keep::Slide`]; see [`Constraints`]).
     pub boundary: Keep,
-    /// UV seams and every other discontinuity of a half-edge column
-    /// (default: [`Keep::Slide`]).
+    /// UV seams and every other discontinuity of a half-edge column, and
+    /// the borders of [`DecimateOptions::material`] (default
+    /// [`Keep::Slide`]).
     pub seams: Keep,
-    /// A face column whose boundaries (edges between faces with different
-    /// values, such as a material id) are kept as seams are. Default: none.
-    pub material: Option<String>,
-    /// A vertex column: vertices whose value is `true` never move.
-    pub locked: Option<VertexAttr<bool>>,
     /// Edges whose faces meet at more than this dihedral angle (radians)
-    /// are feature edges: their vertices never move. Default: none.
+    /// are feature edges: their vertices never move. Also the turn that
+    /// makes a line's vertex a corner (45° without it). Default: none.
     pub feature_angle: Option<f64>,
     /// An edge column: edges whose value is `true` are feature edges.
-    pub feature_edges: Option<EdgeAttr<bool>>,
+    pub features: Option<EdgeAttr<bool>>,
+    /// A vertex column: vertices whose value is `true` are pinned (never
+    /// move).
+    pub pinned: Option<VertexAttr<bool>>,
+    /// A face column whose borders (edges between faces with different
+    /// values, such as a material id) are kept as seams are. Default: none.
+    pub material: Option<String>,
     /// Columns in the error (default: none, positions only).
     pub attributes: Vec<AttributeWeight>,
 }
@@ -191,10 +182,10 @@ impl Default for DecimateOptions {
             max_valence: None,
             boundary: Keep::Slide,
             seams: Keep::Slide,
-            material: None,
-            locked: None,
             feature_angle: None,
-            feature_edges: None,
+            features: None,
+            pinned: None,
+            material: None,
             attributes: Vec::new(),
         }
     }
@@ -206,6 +197,17 @@ impl DecimateOptions {
         DecimateOptions {
             target,
             ..DecimateOptions::default()
+        }
+    }
+
+    /// The constraints these options name.
+    pub fn constraints(&self) -> Constraints {
+        Constraints {
+            boundary: self.boundary,
+            seams: self.seams,
+            feature_angle: self.feature_angle,
+            features: self.features.clone(),
+            pinned: self.pinned.clone(),
         }
     }
 }
@@ -248,23 +250,19 @@ pub struct DecimateReport {
     /// The largest error of a collapse made (a distance in mesh units; see
     /// [`DecimateOptions::max_error`]).
     pub error: f64,
-    /// Vertices before.
-    pub vertices_before: usize,
-    /// Faces before.
-    pub faces_before: usize,
-    /// Vertices after.
-    pub vertices: usize,
-    /// Faces after.
-    pub faces: usize,
+    /// Counts of the input.
+    pub input: Counts,
+    /// Counts of the result (at a level of a chain: of that level).
+    pub output: Counts,
     /// Collapses made.
     pub collapses: usize,
     /// Passes over the candidates.
     pub passes: usize,
     /// Collapses refused, by guard.
     pub refused: Refused,
-    /// Vertices that could not move at the start (locked, feature, the
-    /// ends and crossings of kept lines).
-    pub fixed_vertices: usize,
+    /// Vertices that could not move at the start (pinned, on a feature or
+    /// a locked line, the corners, ends and crossings of sliding lines).
+    pub fixed: usize,
     /// Whether the run worked on a copy (a progress callback was given).
     pub on_copy: bool,
 }
@@ -431,10 +429,8 @@ pub(crate) fn run(
     }
 }
 
-/// Vertex kinds (low bits of the flag byte).
-const FREE: u8 = 0;
-const LINE: u8 = 1;
-const FIXED: u8 = 2;
+/// The vertex kind's bits of the flag byte ([`FREE`], [`LINE`],
+/// [`FIXED`]: the classifier's kinds).
 const KIND: u8 = 3;
 /// Set on a vertex whose quadric changed in this pass.
 const TOUCHED: u8 = 0x80;
@@ -449,7 +445,33 @@ struct Choice {
     err: f64,
 }
 
+/// The running state of [`Engine::run`]: the report so far, the error
+/// bound (squared, unit box), the worst error made and the progress total.
+struct Pass {
+    report: DecimateReport,
+    max_err: Option<f64>,
+    worst: f64,
+    total: u64,
+}
+
+impl Pass {
+    /// The report's error and counts as the mesh stands.
+    fn finish(&mut self, mesh: &Mesh, scale: f64) {
+        self.report.error = self.worst.sqrt() * scale;
+        self.report.output = Counts::of(mesh);
+    }
+}
+
+/// How a pass ended.
+enum PassEnd {
+    /// With this many collapses made.
+    Made(usize),
+    /// With the run over, for this reason.
+    Stop(StopReason),
+}
+
 /// Why a guard refused.
+#[derive(Copy, Clone)]
 enum Guard {
     Normal,
     Quality,
@@ -462,8 +484,8 @@ pub(crate) struct Engine {
     quadrics: Vec<Quadric>,
     /// Per vertex slot: kind and the touched bit.
     flags: Vec<u8>,
-    /// Per edge slot, one bit: the edge lies on a kept line.
-    lines: Vec<u64>,
+    /// Per edge slot, one bit: the edge lies on a sliding line.
+    lines: EdgeBits,
     /// Positions to the unit box: `(x − centre) · inv_scale`.
     centre: V3,
     inv_scale: f64,
@@ -481,8 +503,7 @@ impl Engine {
 
     #[inline(always)]
     fn on_line(&self, e: Eid) -> bool {
-        let i = e.index();
-        self.lines[i / 64] >> (i % 64) & 1 == 1
+        self.lines.get(e)
     }
 
     #[inline(always)]
@@ -544,9 +565,15 @@ impl Engine {
             (FREE, _) => (h0, pb, 1.0),
             (_, FREE) => (h1, pa, 1.0),
             (LINE, LINE) if self.on_line(e) => {
-                let t = q.best_on_segment(self.unit(pa), self.unit(pb));
-                let p = vec3::add(pa, vec3::scale(sub(pb, pa), t));
-                (h0, p, t)
+                // Along the line, onto the cheaper end: the survivor keeps
+                // a position of the input's line, so the line never leaves
+                // the input's polyline (a point between the ends would cut
+                // across a bend).
+                if q.eval(self.unit(pb)) <= q.eval(self.unit(pa)) {
+                    (h0, pb, 1.0)
+                } else {
+                    (h1, pa, 1.0)
+                }
             }
             (LINE, FIXED) if self.on_line(e) => (h0, pb, 1.0),
             (FIXED, LINE) if self.on_line(e) => (h1, pa, 1.0),
@@ -643,186 +670,221 @@ impl Engine {
         mut record: Option<&mut Vec<Collapse>>,
         on_copy: bool,
     ) -> Result<DecimateReport> {
-        let mut report = DecimateReport {
-            stopped_by: StopReason::NoCollapses,
-            error: 0.0,
-            vertices_before: mesh.vertex_count(),
-            faces_before: mesh.face_count(),
-            vertices: mesh.vertex_count(),
-            faces: mesh.face_count(),
-            collapses: 0,
-            passes: 0,
-            refused: Refused::default(),
-            fixed_vertices: self.fixed,
-            on_copy,
+        let mut state = Pass {
+            report: DecimateReport {
+                stopped_by: StopReason::NoCollapses,
+                error: 0.0,
+                input: Counts::of(mesh),
+                output: Counts::of(mesh),
+                collapses: 0,
+                passes: 0,
+                refused: Refused::default(),
+                fixed: self.fixed,
+                on_copy,
+            },
+            max_err: options
+                .max_error
+                .map(|e| (e * self.inv_scale) * (e * self.inv_scale)),
+            worst: 0.0,
+            total: stops.last().map_or(0, |s| s.remaining(mesh)).max(1) as u64,
         };
-        let max_err = options
-            .max_error
-            .map(|e| (e * self.inv_scale) * (e * self.inv_scale));
-        let mut worst = 0.0f64;
         let mut level = 0;
-        let total = stops.last().map_or(0, |s| s.remaining(mesh)).max(1) as u64;
         let mut cands: Vec<u64> = Vec::new();
-        let finish = |mesh: &Mesh, report: &mut DecimateReport, worst: f64, scale: f64| {
-            report.error = worst.sqrt() * scale;
-            report.vertices = mesh.vertex_count();
-            report.faces = mesh.face_count();
-        };
-        'passes: loop {
+        loop {
             // Levels reached (also before the first collapse).
             while level < stops.len() && stops[level].reached(mesh) {
-                finish(mesh, &mut report, worst, self.scale);
-                report.stopped_by = StopReason::Target;
-                on_level(mesh, level, &report);
+                state.finish(mesh, self.scale);
+                state.report.stopped_by = StopReason::Target;
+                on_level(mesh, level, &state.report);
                 level += 1;
             }
             if level == stops.len() {
                 break;
             }
-            let stop = stops[level];
-            // Score every edge; keep each vertex's cheapest.
-            let nv = mesh.v_slots.slot_count();
-            cands.clear();
-            cands.resize(nv, u64::MAX);
-            {
-                let pos = mesh.position_slots().ok_or(Error::NoPositions)?;
-                for e in mesh.e_slots.live_indices() {
-                    let e = Eid::new(e);
-                    let Some(c) = self.evaluate(mesh, pos, e) else {
-                        continue;
-                    };
-                    let key = (u64::from((c.err as f32).to_bits()) << 32) | u64::from(c.h.raw());
-                    let a = mesh.he[c.h].origin.index();
-                    let b = mesh.he[c.h.twin()].origin.index();
-                    cands[a] = cands[a].min(key);
-                    cands[b] = cands[b].min(key);
-                }
-            }
-            let mut n = 0;
-            for i in 0..cands.len() {
-                if cands[i] != u64::MAX {
-                    cands[n] = cands[i];
-                    n += 1;
-                }
-            }
-            cands.truncate(n);
-            cands.sort_unstable();
-            cands.dedup();
+            self.candidates(mesh, &mut cands)?;
             if cands.is_empty() {
-                report.stopped_by = StopReason::NoCollapses;
+                state.report.stopped_by = StopReason::NoCollapses;
                 break;
             }
-            report.passes += 1;
+            state.report.passes += 1;
             for f in &mut self.flags {
                 *f &= !TOUCHED;
             }
-            // The pass stops when errors climb well past the error at the
-            // rank the target needs (most candidates get locked by their
-            // neighbours' collapses, hence 1.5×), once a sixth of it is done.
-            let needed = stop.remaining(mesh).max(1);
-            let goal_err = cands
-                .get(needed - 1)
-                .map_or(f32::INFINITY, |&k| 1.5 * f32::from_bits((k >> 32) as u32));
-            let mut made = 0usize;
-            for &key in &cands {
-                let err32 = f32::from_bits((key >> 32) as u32);
-                if let Some(m) = max_err {
-                    if f64::from(err32) > m {
-                        if made == 0 {
-                            report.stopped_by = StopReason::MaxError;
-                            break 'passes;
-                        }
-                        break;
-                    }
-                }
-                if err32 > goal_err && f64::from(err32) > worst && made > needed / 6 {
+            let made = self.pass(
+                mesh,
+                options,
+                stops[level],
+                &cands,
+                &mut state,
+                &mut record,
+                progress,
+            )?;
+            match made {
+                PassEnd::Stop(why) => {
+                    state.report.stopped_by = why;
                     break;
                 }
-                let h = Hid::new(key as u32);
-                if !mesh.e_slots.is_live(h.edge().index()) {
-                    continue;
+                PassEnd::Made(0) => {
+                    state.report.stopped_by = StopReason::NoCollapses;
+                    break;
                 }
-                let (a, b) = (mesh.he[h].origin, mesh.he[h.twin()].origin);
-                if (self.flags[a.index()] | self.flags[b.index()]) & TOUCHED != 0 {
-                    continue;
-                }
-                let pos = mesh.position_slots().ok_or(Error::NoPositions)?;
-                let Some(c) = self.evaluate(mesh, pos, h.edge()) else {
-                    continue;
-                };
-                if let Some(m) = max_err {
-                    if c.err > m {
-                        continue;
-                    }
-                }
-                // A kept boundary never loses a loop: no collapse of an
-                // edge of a triangular hole (which would close it).
-                if options.boundary != Keep::Free && closes_hole(mesh, c.h) {
-                    report.refused.topology += 1;
-                    continue;
-                }
-                match self.guards(mesh, pos, &c, options) {
-                    Some(Guard::Normal) => {
-                        report.refused.normal += 1;
-                        continue;
-                    }
-                    Some(Guard::Quality) => {
-                        report.refused.quality += 1;
-                        continue;
-                    }
-                    Some(Guard::Valence) => {
-                        report.refused.valence += 1;
-                        continue;
-                    }
-                    None => {}
-                }
-                let (a, b) = (mesh.he[c.h].origin, mesh.he[c.h.twin()].origin);
-                let hk = mesh.hkey(c.h);
-                match crate::journal::journaled!(mesh.collapse_unvalidated(c.h, c.t, Some(c.p))) {
-                    Ok(_) => {}
-                    // A column's rule failed: so does the decimation.
-                    Err(e @ Error::Rule { .. }) => return Err(e),
-                    Err(_) => {
-                        report.refused.topology += 1;
-                        continue;
-                    }
-                }
-                let qa = self.quadrics[a.index()];
-                self.quadrics[b.index()].add_assign(&qa);
-                self.flags[b.index()] |= TOUCHED;
-                if let Some(at) = &mut self.attrs {
-                    at.after_collapse(mesh, a, b);
-                }
-                if let Some(r) = record.as_deref_mut() {
-                    r.push(Collapse {
-                        halfedge: hk,
-                        position: c.p,
-                    });
-                }
-                worst = worst.max(c.err);
-                made += 1;
-                report.collapses += 1;
-                if report.collapses % 4096 == 0 {
-                    let done = report.collapses as u64;
-                    progress.report(ALGORITHM, "collapses", done.min(total), total)?;
-                }
-                if stop.reached(mesh) {
-                    continue 'passes;
-                }
-            }
-            if made == 0 {
-                report.stopped_by = StopReason::NoCollapses;
-                break;
+                PassEnd::Made(_) => {}
             }
         }
-        finish(mesh, &mut report, worst, self.scale);
-        let done = report.collapses as u64;
-        progress.report(ALGORITHM, "collapses", done.min(total), total)?;
+        state.finish(mesh, self.scale);
+        let done = state.report.collapses as u64;
+        progress.report(ALGORITHM, "collapses", done.min(state.total), state.total)?;
         #[cfg(debug_assertions)]
         if let Err(e) = mesh.validate() {
             panic!("decimate broke the mesh: {e}");
         }
-        Ok(report)
+        Ok(state.report)
+    }
+
+    /// Score every edge and keep each vertex's cheapest: `cands` becomes
+    /// the sorted, distinct keys (error bits above the half-edge).
+    fn candidates(&self, mesh: &Mesh, cands: &mut Vec<u64>) -> Result<()> {
+        let nv = mesh.v_slots.slot_count();
+        cands.clear();
+        cands.resize(nv, u64::MAX);
+        let pos = mesh.position_slots().ok_or(Error::NoPositions)?;
+        for e in mesh.e_slots.live_indices() {
+            let e = Eid::new(e);
+            let Some(c) = self.evaluate(mesh, pos, e) else {
+                continue;
+            };
+            let key = (u64::from((c.err as f32).to_bits()) << 32) | u64::from(c.h.raw());
+            let a = mesh.he[c.h].origin.index();
+            let b = mesh.he[c.h.twin()].origin.index();
+            cands[a] = cands[a].min(key);
+            cands[b] = cands[b].min(key);
+        }
+        let mut n = 0;
+        for i in 0..cands.len() {
+            if cands[i] != u64::MAX {
+                cands[n] = cands[i];
+                n += 1;
+            }
+        }
+        cands.truncate(n);
+        cands.sort_unstable();
+        cands.dedup();
+        Ok(())
+    }
+
+    /// One pass: collapse the candidates in order until the stop is
+    /// reached, errors climb well past the error at the rank the target
+    /// needs (most candidates get locked by their neighbours' collapses,
+    /// hence 1.5×, once a sixth of it is done), or `max_error` stops.
+    #[allow(clippy::too_many_arguments)]
+    fn pass(
+        &mut self,
+        mesh: &mut Mesh,
+        options: &DecimateOptions,
+        stop: Stop,
+        cands: &[u64],
+        state: &mut Pass,
+        record: &mut Option<&mut Vec<Collapse>>,
+        progress: &mut Progress<'_>,
+    ) -> Result<PassEnd> {
+        let needed = stop.remaining(mesh).max(1);
+        let goal_err = cands
+            .get(needed - 1)
+            .map_or(f32::INFINITY, |&k| 1.5 * f32::from_bits((k >> 32) as u32));
+        let mut made = 0usize;
+        for &key in cands {
+            let err32 = f32::from_bits((key >> 32) as u32);
+            if let Some(m) = state.max_err {
+                if f64::from(err32) > m {
+                    if made == 0 {
+                        return Ok(PassEnd::Stop(StopReason::MaxError));
+                    }
+                    break;
+                }
+            }
+            if err32 > goal_err && f64::from(err32) > state.worst && made > needed / 6 {
+                break;
+            }
+            let Some(c) = self.try_collapse(mesh, options, Hid::new(key as u32), state)? else {
+                continue;
+            };
+            if let Some(r) = record.as_deref_mut() {
+                r.push(c);
+            }
+            made += 1;
+            state.report.collapses += 1;
+            if state.report.collapses % 4096 == 0 {
+                let done = state.report.collapses as u64;
+                progress.report(ALGORITHM, "collapses", done.min(state.total), state.total)?;
+            }
+            if stop.reached(mesh) {
+                break;
+            }
+        }
+        Ok(PassEnd::Made(made))
+    }
+
+    /// Collapse the candidate half-edge `h` if it is still live, untouched
+    /// this pass, within `max_error`, and passes the kept boundary, the
+    /// guards and the operator; counts the refusals.
+    fn try_collapse(
+        &mut self,
+        mesh: &mut Mesh,
+        options: &DecimateOptions,
+        h: Hid,
+        state: &mut Pass,
+    ) -> Result<Option<Collapse>> {
+        if !mesh.e_slots.is_live(h.edge().index()) {
+            return Ok(None);
+        }
+        let (a, b) = (mesh.he[h].origin, mesh.he[h.twin()].origin);
+        if (self.flags[a.index()] | self.flags[b.index()]) & TOUCHED != 0 {
+            return Ok(None);
+        }
+        let pos = mesh.position_slots().ok_or(Error::NoPositions)?;
+        let Some(c) = self.evaluate(mesh, pos, h.edge()) else {
+            return Ok(None);
+        };
+        if state.max_err.is_some_and(|m| c.err > m) {
+            return Ok(None);
+        }
+        // A kept boundary never loses a loop: no collapse of an edge of a
+        // triangular hole (which would close it).
+        if options.boundary != Keep::Free && closes_hole(mesh, c.h) {
+            state.report.refused.topology += 1;
+            return Ok(None);
+        }
+        if let Some(g) = self.guards(mesh, pos, &c, options) {
+            let r = &mut state.report.refused;
+            match g {
+                Guard::Normal => r.normal += 1,
+                Guard::Quality => r.quality += 1,
+                Guard::Valence => r.valence += 1,
+            }
+            return Ok(None);
+        }
+        let (a, b) = (mesh.he[c.h].origin, mesh.he[c.h.twin()].origin);
+        let hk = mesh.hkey(c.h);
+        match crate::journal::journaled!(mesh.collapse_unvalidated(c.h, c.t, Some(c.p))) {
+            Ok(_) => {}
+            // A column's rule failed: so does the decimation.
+            Err(e @ Error::Rule { .. }) => return Err(e),
+            Err(_) => {
+                state.report.refused.topology += 1;
+                return Ok(None);
+            }
+        }
+        let qa = self.quadrics[a.index()];
+        self.quadrics[b.index()].add_assign(&qa);
+        self.flags[b.index()] |= TOUCHED;
+        if let Some(at) = &mut self.attrs {
+            at.after_collapse(mesh, a, b);
+        }
+        state.worst = state.worst.max(c.err);
+        Ok(Some(Collapse {
+            halfedge: hk,
+            position: c.p,
+        }))
     }
 }
 

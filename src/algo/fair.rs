@@ -10,15 +10,30 @@
 //! move to the right-hand side and the system over the free vertices is
 //! positive definite as long as every part of the region reaches a fixed
 //! vertex, and is solved by one sparse Cholesky factorisation (faer) for the
-//! three coordinates. `L` and `M` are taken from the input positions.
+//! three coordinates. `L` and `M` are taken from the input positions (with
+//! any sliding line already spread along itself).
 //!
-//! **Which vertices move.** The vertices of [`FairOptions::region`] (all
-//! vertices by default), except boundary vertices and, for `k > 1`, the
-//! `k − 1` rings around the boundary (whose one-sided Laplacian would pull
-//! the boundary in), as pmp-library locks them. Every other vertex keeps
-//! its position bit for bit; the `k` rings of fixed vertices around the
-//! region are the boundary conditions: position (`k = 1`), position and
-//! tangent plane (`k = 2`), and curvature too (`k = 3`).
+//! **Which vertices move** (the shared vocabulary of
+//! [`constraints`](super::constraints)). The vertices of
+//! [`FairOptions::region`] (all vertices by default), except the held
+//! ones. With [`FairOptions::boundary`] [`Keep::Lock`] (the default) the
+//! boundary vertices and, for `k > 1`, the `k − 1` rings around the
+//! boundary (whose one-sided Laplacian would pull the boundary in) stay,
+//! as pmp-library locks them. With [`Keep::Slide`] the same rings stay,
+//! and the boundary vertices of the region move along the input's
+//! boundary: each piece of it between two corners (turns of more than the
+//! feature angle, 45° without one, or a vertex outside the region), or a
+//! whole loop, gets its vertices spread evenly by arc length on the
+//! input's polyline (the membrane energy of the line itself); the surface
+//! is then faired against them. With [`Keep::Free`] boundary vertices are
+//! solved for like any other (then something else must hold the region:
+//! pinned vertices, or vertices outside it). Seams
+//! ([`FairOptions::seams`], default free) and feature edges slide or lock
+//! the same way; pinned vertices ([`FairOptions::pinned`]) never move.
+//! Every other vertex keeps its position bit for bit; the `k` rings of
+//! fixed vertices around the region are the boundary conditions: position
+//! (`k = 1`), position and tangent plane (`k = 2`), and curvature too
+//! (`k = 3`).
 //!
 //! **Attributes.** Only the position column changes; no element is split
 //! or merged, so no rule runs and every other column keeps its values
@@ -61,12 +76,13 @@
 use std::collections::hash_map::Entry;
 use std::collections::{HashMap, HashSet};
 
+use super::constraints::{Classifier, Constraints, Keep, LineSources, Polylines, FREE, LINE};
 use super::laplacian::{
     laplacian_at, mass_matrix_at, polygon, positions, triangle, LaplaceWeights, LaplacianOptions,
 };
 use super::progress::Progress;
 use super::sparse::{solve_spd, LowerCsc, AVAILABLE};
-use crate::attr::VertexAttr;
+use crate::attr::{EdgeAttr, VertexAttr};
 use crate::error::{Error, Result};
 use crate::keys::VertexKey;
 use crate::layout::{IdVec, Vid};
@@ -97,6 +113,36 @@ pub struct FairOptions {
     pub order: u32,
     /// Cotangent (default) or uniform weights.
     pub weights: LaplaceWeights,
+    /// Boundary vertices (default [`Keep::Lock`]: they and the `k − 1`
+    /// rings around them stay; `Slide`: they are spread along the input's
+    /// boundary, the rings stay; `Free`: they are solved for). See
+    /// [`Constraints`].
+    pub boundary: Keep,
+    /// Seam vertices: where a corner column's values differ across an edge
+    /// (default [`Keep::Free`]: no constraint).
+    pub seams: Keep,
+    /// Edges whose faces meet at more than this dihedral angle (radians)
+    /// are feature edges, whose vertices slide along them; also the turn
+    /// that makes a line's vertex a corner (45° without it). Default: none.
+    pub feature_angle: Option<f64>,
+    /// An edge column: edges whose value is `true` are feature edges.
+    pub features: Option<EdgeAttr<bool>>,
+    /// A vertex column: vertices whose value is `true` are pinned (never
+    /// move).
+    pub pinned: Option<VertexAttr<bool>>,
+}
+
+impl FairOptions {
+    /// The constraints these options name.
+    pub fn constraints(&self) -> Constraints {
+        Constraints {
+            boundary: self.boundary,
+            seams: self.seams,
+            feature_angle: self.feature_angle,
+            features: self.features.clone(),
+            pinned: self.pinned.clone(),
+        }
+    }
 }
 
 impl Default for FairOptions {
@@ -105,6 +151,11 @@ impl Default for FairOptions {
             region: FairRegion::All,
             order: 2,
             weights: LaplaceWeights::Cotan,
+            boundary: Keep::Lock,
+            seams: Keep::Free,
+            feature_angle: None,
+            features: None,
+            pinned: None,
         }
     }
 }
@@ -112,7 +163,7 @@ impl Default for FairOptions {
 /// What [`fair`] did.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct FairReport {
-    /// Vertices that were solved for.
+    /// Vertices that moved: solved for, or spread along a sliding line.
     pub moved: usize,
     /// Fixed vertices that entered the system as boundary conditions.
     pub constraints: usize,
@@ -170,128 +221,179 @@ fn fair_run(
     if !super::sparse::AVAILABLE {
         return Err(unsuitable(None, super::sparse::UNAVAILABLE));
     }
+    let constraints = options.constraints();
+    constraints.check(ALGORITHM)?;
     let p = positions(mesh)?;
-    if options.region != FairRegion::All {
-        return fair_region(mesh, options, progress);
-    }
-    let free = free_vertices(mesh, &options.region, k)?;
-    let moved = free.iter().filter(|&&f| f).count();
-    if moved == 0 {
+    let (solve, slid) = {
+        let sources = LineSources::all_corner_columns(mesh, Keep::Slide, false);
+        let held = Classifier::new(mesh, p, &constraints, sources)?;
+        match &options.region {
+            FairRegion::All => whole_movers(mesh, p, &held, options.boundary, k),
+            region => region_movers(mesh, p, &held, region, options.boundary, k)?,
+        }
+    };
+    if solve.is_empty() && slid.is_empty() {
         return Err(unsuitable(None, "the region holds no vertex that may move"));
     }
-    if let Some(v) = unanchored(mesh, &free) {
+    let loose = if options.region == FairRegion::All {
+        let mut free = vec![false; mesh.v_halfedge.len()];
+        for v in &solve {
+            free[v.index()] = true;
+        }
+        unanchored(mesh, &free)
+    } else {
+        unanchored_part(mesh, &solve)
+    };
+    if let Some(v) = loose {
         return Err(unsuitable(
             Some(mesh.vkey(v)),
             "a connected part of the region touches no fixed vertex (nothing holds it in place)",
         ));
     }
-    progress.report(ALGORITHM, "matrices", 0, 3)?;
-    let l = laplacian_at(
-        mesh,
-        p,
-        &LaplacianOptions {
-            weights: options.weights,
-            clamp_negative: true,
-        },
-    );
-    let inv_mass: Vec<f64> = match options.weights {
-        LaplaceWeights::Uniform => vec![1.0; l.len()],
-        LaplaceWeights::Cotan => mass_matrix_at(mesh, p)
-            .into_iter()
-            .map(|a| if a > 0.0 { 1.0 / a } else { 0.0 })
-            .collect(),
+    // The positions the system reads: the input's, the slid lines moved.
+    let moved_p;
+    let q: &[V3] = if slid.is_empty() {
+        p
+    } else {
+        let mut x = p.to_vec();
+        for &(v, y) in &slid {
+            x[v.index()] = y;
+        }
+        moved_p = x;
+        &moved_p
     };
-    // Unknowns: the free vertices, numbered in slot order.
-    let nv = l.len();
-    let mut local: IdVec<Vid, u32> = IdVec::filled(u32::MAX, nv);
-    let mut slots: Vec<Vid> = Vec::with_capacity(moved);
-    for (i, &f) in free.iter().enumerate() {
-        if f {
-            let v = Vid::new(i as u32);
-            local[v] = slots.len() as u32;
-            slots.push(v);
+    let solution = if solve.is_empty() {
+        LocalSolution {
+            positions: Vec::new(),
+            constraints: 0,
         }
-    }
-    let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
-    let mut acc = Accumulator::new(nv);
-    let mut a = LowerCsc::with_capacity(slots.len(), slots.len() * (1 + 6 * k as usize));
-    let mut b: Vec<V3> = Vec::with_capacity(slots.len());
-    let mut column: Vec<(u32, f64)> = Vec::new();
-    let mut constrained = vec![false; nv];
-    let every = (slots.len() / 64).max(1);
-    for (n, &v) in slots.iter().enumerate() {
-        if n % every == 0 {
-            progress.report(ALGORITHM, "system", n as u64, slots.len() as u64)?;
-        }
-        // Row v of A: e_v, then L, then (M⁻¹ then L) k − 1 times.
-        acc.reset_to(v.index(), 1.0);
-        acc.apply(&l);
-        for _ in 1..k {
-            acc.scale(&inv_mass);
-            acc.apply(&l);
-        }
-        let me = local[v];
-        let mut rhs = [0.0; 3];
-        column.clear();
-        for &(j, val) in acc.entries() {
-            let w = sign * val;
-            let lj = local[Vid::new(j)];
-            if lj == u32::MAX {
-                // A fixed vertex: to the right-hand side.
-                let q = p[j as usize];
-                rhs = [rhs[0] - w * q[0], rhs[1] - w * q[1], rhs[2] - w * q[2]];
-                constrained[j as usize] |= w != 0.0;
-            } else if lj >= me {
-                column.push((lj, w));
-            }
-        }
-        column.sort_unstable_by_key(|&(j, _)| j);
-        for &(j, w) in &column {
-            a.push(j as usize, w);
-        }
-        a.end_column();
-        b.push(rhs);
-    }
-    progress.report(ALGORITHM, "solve", 1, 3)?;
-    solve_spd(&a, &mut b).map_err(|e| {
-        unsuitable(
-            None,
-            format!("{e} (does every part of the region reach a fixed vertex?)"),
-        )
-    })?;
+    } else if options.region == FairRegion::All {
+        solve_whole(mesh, q, &solve, options, &mut progress)?
+    } else {
+        progress.report(ALGORITHM, "matrices", 0, 3)?;
+        progress.report(ALGORITHM, "system", 1, 3)?;
+        progress.report(ALGORITHM, "solve", 2, 3)?;
+        solve_local(mesh, q, &solve, k, options.weights).map_err(not_held)?
+    };
     progress.report(ALGORITHM, "solve", 3, 3)?;
+    let moves: Vec<(Vid, V3)> = solve
+        .iter()
+        .copied()
+        .zip(solution.positions)
+        .chain(slid)
+        .collect();
+    let max_displacement = write_back(mesh, &moves)?;
+    Ok(FairReport {
+        moved: moves.len(),
+        constraints: solution.constraints,
+        max_displacement,
+    })
+}
+
+/// The error of a system that could not be solved.
+fn not_held(e: String) -> Error {
+    unsuitable(
+        None,
+        format!("{e} (does every part of the region reach a fixed vertex?)"),
+    )
+}
+
+/// Write the new positions `moves` once every one is finite; the largest
+/// displacement.
+fn write_back(mesh: &mut Mesh, moves: &[(Vid, V3)]) -> Result<f64> {
+    let p = positions(mesh)?;
     let mut max_d: f64 = 0.0;
-    for (&v, q) in slots.iter().zip(&b) {
+    for &(v, q) in moves {
         if !q.iter().all(|c| c.is_finite()) {
             return Err(unsuitable(
                 Some(mesh.vkey(v)),
                 "the faired position is not finite",
             ));
         }
-        max_d = max_d.max(norm(sub(*q, p[v.index()])));
+        max_d = max_d.max(norm(sub(q, p[v.index()])));
     }
     let out = mesh.position_slots_mut().ok_or(Error::NoPositions)?;
-    for (&v, q) in slots.iter().zip(&b) {
-        out[v.index()] = *q;
+    for &(v, q) in moves {
+        out[v.index()] = q;
     }
     mesh.debug_validate();
-    Ok(FairReport {
-        moved,
-        constraints: constrained.iter().filter(|&&c| c).count(),
-        max_displacement: max_d,
-    })
+    Ok(max_d)
 }
 
-/// [`fair`] for a [`FairRegion::Mask`] or [`FairRegion::Vertices`]: the
-/// region-local system of [`solve_local`] (the whole mesh's Laplacian is
-/// never built).
-fn fair_region(
-    mesh: &mut Mesh,
-    options: &FairOptions,
-    mut progress: Progress<'_>,
-) -> Result<FairReport> {
-    let k = options.order;
-    let mut free: Vec<Vid> = match &options.region {
+/// The whole mesh's movers: the free vertices to solve for (in slot
+/// order) and the sliding ones with their spread positions. Unless the
+/// boundary is free, the `k − 1` rings around it are held.
+fn whole_movers(
+    mesh: &Mesh,
+    p: &[V3],
+    held: &Classifier<'_>,
+    boundary: Keep,
+    k: u32,
+) -> (Vec<Vid>, Vec<(Vid, V3)>) {
+    let c = held.classify();
+    let mut free: Vec<bool> = c.kinds.iter().map(|&kind| kind == FREE).collect();
+    if boundary != Keep::Free {
+        for (f, near) in free.iter_mut().zip(boundary_rings(mesh, k)) {
+            *f &= !near;
+        }
+    }
+    let solve = mesh.vids().filter(|v| free[v.index()]).collect();
+    let slid = if c.kinds.contains(&LINE) {
+        let kinds = &c.kinds;
+        let lines = &c.lines;
+        Polylines::new(
+            mesh,
+            p,
+            mesh.vids().filter(|v| kinds[v.index()] == LINE),
+            |v| kinds[v.index()] == LINE,
+            |e| lines.get(e),
+        )
+        .spread()
+    } else {
+        Vec::new()
+    };
+    (solve, slid)
+}
+
+/// Per vertex slot: whether it lies within `k − 1` rings of the boundary
+/// (a breadth-first search from the boundary, `k − 1` steps deep).
+fn boundary_rings(mesh: &Mesh, k: u32) -> Vec<bool> {
+    let mut front: Vec<Vid> = mesh.vids().filter(|&v| mesh.on_boundary(v)).collect();
+    let mut near = vec![false; mesh.v_halfedge.len()];
+    for &v in &front {
+        near[v.index()] = true;
+    }
+    let mut next: Vec<Vid> = Vec::new();
+    for _ in 1..k {
+        next.clear();
+        for &v in &front {
+            for h in mesh.outgoing(v) {
+                let w = mesh.dest(h);
+                if !near[w.index()] {
+                    near[w.index()] = true;
+                    next.push(w);
+                }
+            }
+        }
+        std::mem::swap(&mut front, &mut next);
+    }
+    near
+}
+
+/// The vertices to solve for, and the held vertices with their positions.
+type Movers = (Vec<Vid>, Vec<(Vid, V3)>);
+
+/// A region's movers, as [`whole_movers`], visiting only the region and
+/// its neighbourhood (a mask is read once over all vertices).
+fn region_movers(
+    mesh: &Mesh,
+    p: &[V3],
+    held: &Classifier<'_>,
+    region: &FairRegion,
+    boundary: Keep,
+    k: u32,
+) -> Result<Movers> {
+    let region: Vec<Vid> = match region {
         FairRegion::All => mesh.vids().collect(),
         FairRegion::Mask(mask) => {
             let view = mesh.attr_view(mask)?;
@@ -310,127 +412,29 @@ fn fair_region(
             out
         }
     };
-    // The boundary and its k − 1 rings stay where they are.
-    free.retain(|&v| !near_boundary(mesh, v, k - 1));
-    if free.is_empty() {
-        return Err(unsuitable(None, "the region holds no vertex that may move"));
-    }
-    if let Some(v) = unanchored_part(mesh, &free) {
-        return Err(unsuitable(
-            Some(mesh.vkey(v)),
-            "a connected part of the region touches no fixed vertex (nothing holds it in place)",
-        ));
-    }
-    progress.report(ALGORITHM, "matrices", 0, 3)?;
-    progress.report(ALGORITHM, "system", 1, 3)?;
-    let p = positions(mesh)?;
-    progress.report(ALGORITHM, "solve", 2, 3)?;
-    let solution = solve_local(mesh, p, &free, k, options.weights).map_err(|e| {
-        unsuitable(
-            None,
-            format!("{e} (does every part of the region reach a fixed vertex?)"),
+    let kinds: Vec<u8> = region.iter().map(|&v| held.vertex(v)).collect();
+    let rings = boundary != Keep::Free;
+    let solve = region
+        .iter()
+        .zip(&kinds)
+        .filter(|&(&v, &kind)| kind == FREE && !(rings && near_boundary(mesh, v, k - 1)))
+        .map(|(&v, _)| v)
+        .collect();
+    let slid = if kinds.contains(&LINE) {
+        let in_region = |v: Vid| region.binary_search(&v).is_ok();
+        let starts = region.iter().zip(&kinds).filter(|&(_, &kind)| kind == LINE);
+        Polylines::new(
+            mesh,
+            p,
+            starts.map(|(&v, _)| v),
+            |v| in_region(v) && held.vertex(v) == LINE,
+            |e| held.edge(e).line,
         )
-    })?;
-    progress.report(ALGORITHM, "solve", 3, 3)?;
-    let mut max_d: f64 = 0.0;
-    for (&v, q) in free.iter().zip(&solution.positions) {
-        if !q.iter().all(|c| c.is_finite()) {
-            return Err(unsuitable(
-                Some(mesh.vkey(v)),
-                "the faired position is not finite",
-            ));
-        }
-        max_d = max_d.max(norm(sub(*q, p[v.index()])));
-    }
-    let out = mesh.position_slots_mut().ok_or(Error::NoPositions)?;
-    for (&v, q) in free.iter().zip(&solution.positions) {
-        out[v.index()] = *q;
-    }
-    mesh.debug_validate();
-    Ok(FairReport {
-        moved: free.len(),
-        constraints: solution.constraints,
-        max_displacement: max_d,
-    })
-}
-
-/// As [`unanchored`] for the free vertices `free` (sorted), visiting only
-/// them and their neighbours.
-fn unanchored_part(mesh: &Mesh, free: &[Vid]) -> Option<Vid> {
-    let is_free = |v: Vid| free.binary_search(&v).is_ok();
-    let mut seen: HashSet<Vid> = HashSet::with_capacity(free.len());
-    let mut stack: Vec<Vid> = Vec::new();
-    for &start in free {
-        if !seen.insert(start) {
-            continue;
-        }
-        stack.push(start);
-        let mut anchored = false;
-        while let Some(v) = stack.pop() {
-            for h in mesh.outgoing(v) {
-                let w = mesh.dest(h);
-                if !is_free(w) {
-                    anchored = true;
-                } else if seen.insert(w) {
-                    stack.push(w);
-                }
-            }
-        }
-        if !anchored {
-            return Some(start);
-        }
-    }
-    None
-}
-
-/// Whether each vertex slot is solved for: in the region, and not within
-/// `k − 1` rings of the boundary.
-fn free_vertices(mesh: &Mesh, region: &FairRegion, k: u32) -> Result<Vec<bool>> {
-    let nv = mesh.v_halfedge.len();
-    let mut free = vec![false; nv];
-    match region {
-        FairRegion::All => {
-            for v in mesh.vids() {
-                free[v.index()] = true;
-            }
-        }
-        FairRegion::Mask(mask) => {
-            let view = mesh.attr_view(mask)?;
-            for v in mesh.vertices() {
-                free[v.index()] = view.get(v) == Some(&true);
-            }
-        }
-        FairRegion::Vertices(keys) => {
-            for &key in keys {
-                free[mesh.check_vertex(key)?.index()] = true;
-            }
-        }
-    }
-    // Lock the boundary and its k − 1 rings: a breadth-first search from
-    // the boundary, k − 1 steps deep.
-    let mut front: Vec<Vid> = mesh.vids().filter(|&v| mesh.on_boundary(v)).collect();
-    let mut locked = vec![false; nv];
-    for &v in &front {
-        locked[v.index()] = true;
-    }
-    let mut next: Vec<Vid> = Vec::new();
-    for _ in 1..k {
-        next.clear();
-        for &v in &front {
-            for h in mesh.outgoing(v) {
-                let w = mesh.dest(h);
-                if !locked[w.index()] {
-                    locked[w.index()] = true;
-                    next.push(w);
-                }
-            }
-        }
-        std::mem::swap(&mut front, &mut next);
-    }
-    for (f, l) in free.iter_mut().zip(&locked) {
-        *f &= !*l;
-    }
-    Ok(free)
+        .spread()
+    } else {
+        Vec::new()
+    };
+    Ok((solve, slid))
 }
 
 /// A vertex of a connected part of the free vertices (joined by edges)
@@ -462,6 +466,115 @@ fn unanchored(mesh: &Mesh, free: &[bool]) -> Option<Vid> {
         }
     }
     None
+}
+
+/// As [`unanchored`] for the free vertices `free` (sorted), visiting only
+/// them and their neighbours.
+fn unanchored_part(mesh: &Mesh, free: &[Vid]) -> Option<Vid> {
+    let is_free = |v: Vid| free.binary_search(&v).is_ok();
+    let mut seen: HashSet<Vid> = HashSet::with_capacity(free.len());
+    let mut stack: Vec<Vid> = Vec::new();
+    for &start in free {
+        if !seen.insert(start) {
+            continue;
+        }
+        stack.push(start);
+        let mut anchored = false;
+        while let Some(v) = stack.pop() {
+            for h in mesh.outgoing(v) {
+                let w = mesh.dest(h);
+                if !is_free(w) {
+                    anchored = true;
+                } else if seen.insert(w) {
+                    stack.push(w);
+                }
+            }
+        }
+        if !anchored {
+            return Some(start);
+        }
+    }
+    None
+}
+
+/// The whole mesh's system (its Laplacian and masses built once) for the
+/// free vertices `free` (in slot order) at positions `p`.
+fn solve_whole(
+    mesh: &Mesh,
+    p: &[V3],
+    free: &[Vid],
+    options: &FairOptions,
+    progress: &mut Progress<'_>,
+) -> Result<LocalSolution> {
+    let k = options.order;
+    progress.report(ALGORITHM, "matrices", 0, 3)?;
+    let l = laplacian_at(
+        mesh,
+        p,
+        &LaplacianOptions {
+            weights: options.weights,
+            clamp_negative: true,
+        },
+    );
+    let inv_mass: Vec<f64> = match options.weights {
+        LaplaceWeights::Uniform => vec![1.0; l.len()],
+        LaplaceWeights::Cotan => mass_matrix_at(mesh, p)
+            .into_iter()
+            .map(|a| if a > 0.0 { 1.0 / a } else { 0.0 })
+            .collect(),
+    };
+    // Unknowns: the free vertices, numbered in slot order.
+    let nv = l.len();
+    let mut local: IdVec<Vid, u32> = IdVec::filled(u32::MAX, nv);
+    for (n, &v) in free.iter().enumerate() {
+        local[v] = n as u32;
+    }
+    let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+    let mut acc = Accumulator::new(nv);
+    let mut a = LowerCsc::with_capacity(free.len(), free.len() * (1 + 6 * k as usize));
+    let mut b: Vec<V3> = Vec::with_capacity(free.len());
+    let mut column: Vec<(u32, f64)> = Vec::new();
+    let mut constrained = vec![false; nv];
+    let every = (free.len() / 64).max(1);
+    for (n, &v) in free.iter().enumerate() {
+        if n % every == 0 {
+            progress.report(ALGORITHM, "system", n as u64, free.len() as u64)?;
+        }
+        // Row v of A: e_v, then L, then (M⁻¹ then L) k − 1 times.
+        acc.reset_to(v.index(), 1.0);
+        acc.apply(&l);
+        for _ in 1..k {
+            acc.scale(&inv_mass);
+            acc.apply(&l);
+        }
+        let me = local[v];
+        let mut rhs = [0.0; 3];
+        column.clear();
+        for &(j, val) in acc.entries() {
+            let w = sign * val;
+            let lj = local[Vid::new(j)];
+            if lj == u32::MAX {
+                // A fixed vertex: to the right-hand side.
+                let q = p[j as usize];
+                rhs = [rhs[0] - w * q[0], rhs[1] - w * q[1], rhs[2] - w * q[2]];
+                constrained[j as usize] |= w != 0.0;
+            } else if lj >= me {
+                column.push((lj, w));
+            }
+        }
+        column.sort_unstable_by_key(|&(j, _)| j);
+        for &(j, w) in &column {
+            a.push(j as usize, w);
+        }
+        a.end_column();
+        b.push(rhs);
+    }
+    progress.report(ALGORITHM, "solve", 1, 3)?;
+    solve_spd(&a, &mut b).map_err(|e| not_held(e.to_string()))?;
+    Ok(LocalSolution {
+        positions: b,
+        constraints: constrained.iter().filter(|&&c| c).count(),
+    })
 }
 
 /// A symmetric sparse matrix read row by row: the whole mesh's

@@ -3,6 +3,7 @@
 //!
 //! | module | what | results |
 //! |---|---|---|
+//! | [`constraints`] | what an algorithm keeps, in one vocabulary: boundary and seams free, slide or lock; feature edges; pinned vertices | [`Constraints`], [`Keep`] |
 //! | [`decimate`](mod@decimate) | quadric error edge collapse to a count, ratio or error, with guards and kept lines (boundaries, UV seams, materials, features) | [`DecimateReport`] |
 //! | [`progress`] | the progress-and-cancel callback every long algorithm takes | [`Progress`], [`Error::Cancelled`](crate::Error::Cancelled) |
 //! | [`laplacian`] | the cotangent (or uniform) Laplacian and the mixed-Voronoi mass matrix, the building blocks below | [`laplacian::Laplacian`] (sparse, by vertex slot), `Vec` of areas |
@@ -31,6 +32,7 @@
 //! the order of floating-point sums (see each function).
 
 pub mod catmull_clark;
+pub mod constraints;
 pub mod curvature;
 pub mod decimate;
 pub mod fair;
@@ -76,7 +78,8 @@ pub(crate) fn check_finite(mesh: &crate::Mesh, algorithm: &'static str) -> crate
     }
 }
 
-pub use decimate::{decimate, DecimateOptions, DecimateReport, Keep};
+pub use constraints::{Constraints, Keep};
+pub use decimate::{decimate, DecimateOptions, DecimateReport};
 pub use fill_hole::{fill_hole, fill_holes, FillHoleOptions, FillHoleReport};
 pub use loop_subdivision::loop_subdivide;
 pub use midpoint::{midpoint_subdivide, MidpointFaces, MidpointOptions};

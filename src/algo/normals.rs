@@ -11,8 +11,8 @@
 //! - **Corner normals** ([`corner_normals`]): one per half-edge, for the
 //!   corner at its origin in its face. The faces around a vertex are cut
 //!   into fans at *sharp* edges (a boundary, an edge whose two faces meet at
-//!   more than [`CornerNormalOptions::crease_angle`], or one flagged in the
-//!   boolean edge column [`CornerNormalOptions::hard_edges`]); the corners
+//!   more than [`CornerNormalOptions::feature_angle`], or one flagged in the
+//!   boolean edge column [`CornerNormalOptions::features`]); the corners
 //!   of one fan share the weighted sum of its faces' normals. Without sharp
 //!   edges a corner normal is its vertex normal; across a crease, each side
 //!   keeps its own.
@@ -111,21 +111,24 @@ pub struct VertexNormalOptions {
 pub struct CornerNormalOptions {
     /// How faces are weighted within a fan (default: by corner angle).
     pub weight: NormalWeight,
-    /// Two faces whose normals differ by more than this angle (radians) do
-    /// not share their corner normals across their common edge. `None`:
-    /// no crease by angle. Default: 30° (`30f64.to_radians()`).
-    pub crease_angle: Option<f64>,
-    /// A boolean edge column: edges whose value is `true` are hard (the
-    /// normals split there whatever the angle). Default: none.
-    pub hard_edges: Option<EdgeAttr<bool>>,
+    /// Edges whose faces meet at more than this angle (radians) are
+    /// feature edges (creases): the two faces do not share their corner
+    /// normals across them. `None`: none by angle. Default: 30°
+    /// (`30f64.to_radians()`). The word of
+    /// [`Constraints::feature_angle`](super::Constraints::feature_angle).
+    pub feature_angle: Option<f64>,
+    /// A boolean edge column: edges whose value is `true` are feature
+    /// (hard) edges: the normals split there whatever the angle. Default:
+    /// none.
+    pub features: Option<EdgeAttr<bool>>,
 }
 
 impl Default for CornerNormalOptions {
     fn default() -> Self {
         CornerNormalOptions {
             weight: NormalWeight::Angle,
-            crease_angle: Some(30f64.to_radians()),
-            hard_edges: None,
+            feature_angle: Some(30f64.to_radians()),
+            features: None,
         }
     }
 }
@@ -136,7 +139,7 @@ impl CornerNormalOptions {
     /// several holes touch).
     pub fn smooth() -> CornerNormalOptions {
         CornerNormalOptions {
-            crease_angle: None,
+            feature_angle: None,
             ..CornerNormalOptions::default()
         }
     }
@@ -145,7 +148,7 @@ impl CornerNormalOptions {
     /// normal.
     pub fn flat() -> CornerNormalOptions {
         CornerNormalOptions {
-            crease_angle: Some(0.0),
+            feature_angle: Some(0.0),
             ..CornerNormalOptions::default()
         }
     }
@@ -671,13 +674,13 @@ impl CornerInput<'_> {
 /// ```
 pub fn corner_normals(mesh: &Mesh, options: &CornerNormalOptions) -> Result<Vec<V3>> {
     let p = positions(mesh)?;
-    let hard = match &options.hard_edges {
+    let hard = match &options.features {
         Some(h) => Some(mesh.attr_view(h)?),
         None => None,
     };
     let weight = options.weight;
     let (vn, faces) = vertex_and_face_normals(mesh, weight, true)?;
-    let cos_crease = options.crease_angle.map(f64::cos);
+    let cos_crease = options.feature_angle.map(f64::cos);
     let [nv, nh, ne, nf] = mesh.slot_counts();
     // The vertices at a sharp edge (a boundary, a hard edge, a crease).
     let mut split = vec![false; nv];

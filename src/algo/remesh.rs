@@ -45,17 +45,21 @@
 //! ε, clamped to `[min, max]`; new vertices take the mean of their edge's
 //! ends and projected vertices the value interpolated on the input.
 //!
-//! **Kept lines.** Boundaries, feature edges (faces meeting at more than
-//! [`RemeshOptions::feature_angle`], or `true` in
-//! [`RemeshOptions::feature_edges`]) and the seams of the corner columns
-//! being resampled ([`RemeshOptions::seams`], UV seams) are *lines*: they are never flipped,
-//! split only into line edges, and collapsed only along themselves; a
+//! **Kept lines** (the shared vocabulary of
+//! [`constraints`](super::constraints)). Boundaries, feature edges (faces
+//! meeting at more than [`RemeshOptions::feature_angle`], or `true` in
+//! [`RemeshOptions::features`]) and the seams of the corner columns being
+//! resampled ([`RemeshOptions::seams`], UV seams) are *lines*. A sliding
+//! line ([`Keep::Slide`], the default; feature lines always) is never
+//! flipped, split only into line edges, and collapsed only along itself; a
 //! vertex on exactly two line edges slides along its line (relaxed along
 //! it, then projected onto the input's lines), and a vertex where lines
 //! meet, end, or turn by more than the feature angle (45° without one),
-//! the corner of a cube or a square, never moves, nor does a vertex in
-//! [`RemeshOptions::locked`] (whose edges are not split either).
-//! [`BoundaryMode::Fixed`] keeps every boundary vertex and edge as it is.
+//! the corner of a cube or a square, never moves. A locked line
+//! ([`Keep::Lock`]) keeps every vertex and edge as it is; a free one
+//! ([`Keep::Free`]) is like any other edge. A pinned vertex
+//! ([`RemeshOptions::pinned`]) never moves and its edges are neither split
+//! nor collapsed.
 //!
 //! **Attributes.** Every column follows the operators' rules (splits
 //! interpolate, collapses merge into the survivor, flips copy corners), so
@@ -107,6 +111,10 @@
 
 mod bvh;
 
+/// The line rule, shared by every algorithm: see [`Constraints`].
+pub use super::constraints::Keep;
+use super::constraints::{Classifier, Constraints, LineSources, FIXED, FREE, LINE};
+use super::subdivision::Counts;
 use crate::attr::{EdgeAttr, VertexAttr};
 use crate::error::{Error, Result};
 use crate::layout::{Eid, Fid, Hid, Vid};
@@ -144,18 +152,6 @@ pub enum Sizing {
     },
 }
 
-/// How boundaries are treated.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
-pub enum BoundaryMode {
-    /// Boundary edges are split and collapsed along the boundary; boundary
-    /// vertices slide along the input's boundary; corners (turns of more
-    /// than the feature angle, 45° without one) stay (default).
-    #[default]
-    Slide,
-    /// Boundary vertices and edges are kept as they are.
-    Fixed,
-}
-
 /// Which vertex and corner columns are resampled from the input at the end.
 #[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub enum Resample {
@@ -181,20 +177,25 @@ pub struct RemeshOptions {
     pub smoothing_steps: usize,
     /// Project moved vertices back onto the input surface (default true).
     pub project: bool,
-    /// Boundaries slide (default) or stay.
-    pub boundary: BoundaryMode,
+    /// Boundary loops (default [`Keep::Slide`]: boundary edges are split
+    /// and collapsed along the boundary, boundary vertices slide along the
+    /// input's boundary and corners stay; [`Keep::Lock`]: boundary vertices
+    /// and edges stay as they are; [`Keep::Free`]: no constraint). See
+    /// [`Constraints`].
+    pub boundary: Keep,
+    /// The seams of the corner columns being resampled (edges across which
+    /// their values differ: UV seams), default [`Keep::Slide`]: each seam
+    /// keeps its place and its polyline.
+    pub seams: Keep,
     /// Edges whose faces meet at more than this dihedral angle (radians)
-    /// are feature edges. Default: none.
+    /// are feature edges, kept as sliding lines; also the turn that makes a
+    /// line's vertex a corner (45° without it). Default: none.
     pub feature_angle: Option<f64>,
     /// An edge column: edges whose value is `true` are feature edges.
-    pub feature_edges: Option<EdgeAttr<bool>>,
-    /// Keep the seams of the corner columns being resampled (edges across
-    /// which their values differ: UV seams) as lines (default true), so
-    /// each seam keeps its place and its polyline.
-    pub seams: bool,
-    /// A vertex column: vertices whose value is `true` never move, and
-    /// their edges are never split or collapsed.
-    pub locked: Option<VertexAttr<bool>>,
+    pub features: Option<EdgeAttr<bool>>,
+    /// A vertex column: vertices whose value is `true` are pinned: they
+    /// never move, and their edges are never split or collapsed.
+    pub pinned: Option<VertexAttr<bool>>,
     /// Which columns are resampled from the input (default: every linear
     /// vertex and corner column).
     pub resample: Resample,
@@ -212,6 +213,19 @@ pub struct RemeshOptions {
     pub max_faces: usize,
 }
 
+impl RemeshOptions {
+    /// The constraints these options name.
+    pub fn constraints(&self) -> Constraints {
+        Constraints {
+            boundary: self.boundary,
+            seams: self.seams,
+            feature_angle: self.feature_angle,
+            features: self.features.clone(),
+            pinned: self.pinned.clone(),
+        }
+    }
+}
+
 impl Default for RemeshOptions {
     fn default() -> Self {
         RemeshOptions {
@@ -219,11 +233,11 @@ impl Default for RemeshOptions {
             iterations: 10,
             smoothing_steps: 5,
             project: true,
-            boundary: BoundaryMode::Slide,
+            boundary: Keep::Slide,
+            seams: Keep::Slide,
             feature_angle: None,
-            feature_edges: None,
-            seams: true,
-            locked: None,
+            features: None,
+            pinned: None,
             resample: Resample::Linear,
             remove_caps: true,
             max_faces: crate::algo::DEFAULT_MAX_FACES,
@@ -264,19 +278,15 @@ pub struct RemeshReport {
     /// The uniform target length, or the mean of the adaptive targets over
     /// the input's vertices.
     pub target_length: f64,
-    /// Vertices before.
-    pub vertices_before: usize,
-    /// Faces before.
-    pub faces_before: usize,
-    /// Vertices after.
-    pub vertices: usize,
-    /// Faces after.
-    pub faces: usize,
+    /// Counts of the input.
+    pub input: Counts,
+    /// Counts of the result.
+    pub output: Counts,
     /// Feature edges found in the input (by angle or column).
     pub feature_edges: usize,
-    /// Input vertices that could not move (corners, locked, fixed
-    /// boundary).
-    pub fixed_vertices: usize,
+    /// Input vertices that could not move (pinned, corners, a locked
+    /// boundary or seam).
+    pub fixed: usize,
     /// The columns resampled from the input.
     pub resampled: Vec<String>,
     /// Edge lengths of the result.
@@ -336,16 +346,15 @@ fn remesh_run(
     let setup = Setup::new(mesh, options)?;
     setup.check_size(mesh, options.max_faces)?;
     let mut report = RemeshReport {
-        vertices_before: mesh.vertex_count(),
-        faces_before: mesh.face_count(),
+        input: Counts::of(mesh),
+        output: Counts::of(mesh),
         target_length: setup.target_length,
         feature_edges: setup.feature_edges,
-        fixed_vertices: setup.fixed,
+        fixed: setup.fixed,
         resampled: setup.resample.iter().map(|c| c.name.clone()).collect(),
         ..RemeshReport::default()
     };
     if mesh.face_count() == 0 {
-        report.vertices = mesh.vertex_count();
         return Ok(report);
     }
     let mut work = mesh.clone();
@@ -374,8 +383,7 @@ fn remesh_run(
     )?;
     engine.resample(mesh, &mut work);
     work.debug_validate();
-    report.vertices = work.vertex_count();
-    report.faces = work.face_count();
+    report.output = Counts::of(&work);
     report.edge_lengths = engine.edge_lengths(&work);
     crate::algo::check_finite(&work, ALGORITHM)?;
     mesh.replace_with(work);
@@ -389,11 +397,6 @@ fn unsuitable(key: Option<crate::keys::AnyKey>, reason: String) -> Error {
         reason,
     }
 }
-
-/// Vertex kinds.
-const FREE: u8 = 0;
-const LINE: u8 = 1;
-const FIXED: u8 = 2;
 
 /// Edge flags.
 const E_LINE: u8 = 1;
@@ -458,193 +461,128 @@ impl Setup {
 
     fn new(mesh: &Mesh, options: &RemeshOptions) -> Result<Setup> {
         let pos = mesh.position_slots().ok_or(Error::NoPositions)?;
-        for f in mesh.fids() {
-            if mesh.is_hole(f) {
-                continue;
-            }
-            let h = mesh.face_halfedge(f);
-            if mesh.next(mesh.next(mesh.next(h))) != h {
-                return Err(unsuitable(
-                    Some(mesh.fkey(f).into()),
-                    format!(
-                        "face {} has {} sides; remeshing needs triangles (triangulate first)",
-                        mesh.fkey(f),
-                        mesh.face_degree(f)
-                    ),
-                ));
-            }
-        }
-        if let Some(a) = options.feature_angle {
-            if !a.is_finite() {
-                return Err(unsuitable(None, format!("feature_angle {a} is not finite")));
-            }
-        }
-        let positive = |name: &str, x: f64| {
-            if x.is_finite() && x > 0.0 {
-                Ok(x)
-            } else {
-                Err(unsuitable(
-                    None,
-                    format!("{name} {x} is not a positive finite number"),
-                ))
-            }
-        };
-        let [nv, _, ne, _] = mesh.slot_counts();
-        let mean = mean_edge_length(mesh, pos);
-        let need_mean = |what: &str| {
-            if mean > 0.0 && mean.is_finite() {
-                Ok(mean)
-            } else {
-                Err(unsuitable(
-                    None,
-                    format!("the input has no edge of positive length to take the {what} from"),
-                ))
-            }
-        };
-        let mut edges = vec![0u8; ne];
-        let mut line_count = vec![0u8; nv];
-        let mut fixed = vec![false; nv];
-        let mut locked = vec![false; nv];
-        // Features.
-        let feature_col = match &options.feature_edges {
-            None => None,
-            Some(h) => Some(mesh.attr_view(h)?),
-        };
-        let cos_feature = options.feature_angle.map(f64::cos);
+        check_triangles(mesh)?;
+        let constraints = options.constraints();
+        constraints.check(ALGORITHM)?;
         let resample = resample_columns(mesh, &options.resample)?;
-        let seam_cols: Vec<&dyn crate::store::ErasedColumn> = if options.seams {
-            resample
+        // The seams are those of the corner columns being resampled.
+        let sources = LineSources {
+            seam_columns: resample
                 .iter()
                 .filter(|c| c.corner)
                 .map(|c| &*mesh.attrs.halfedge.cols[c.index].1)
-                .collect()
-        } else {
-            Vec::new()
+                .collect(),
+            material: None,
+            features: Keep::Slide,
+            edge_bits: true,
         };
-        let mut feature_edges = 0;
+        let classified = Classifier::new(mesh, pos, &constraints, sources)?.classify();
+        let mut edges = vec![0u8; mesh.slot_counts()[2]];
         for e in mesh.eids() {
-            let [h, t] = e.halfedges();
-            let (a, b) = (mesh.origin(h), mesh.origin(t));
-            let boundary = mesh.in_hole(h) || mesh.in_hole(t);
-            let mut line = false;
-            if boundary {
-                match options.boundary {
-                    BoundaryMode::Slide => line = true,
-                    BoundaryMode::Fixed => {
-                        edges[e.index()] |= E_LOCKED;
-                        fixed[a.index()] = true;
-                        fixed[b.index()] = true;
-                    }
-                }
+            let line = if classified.lines.get(e) { E_LINE } else { 0 };
+            let locked = if classified.locked.get(e) {
+                E_LOCKED
             } else {
-                let mut feature = feature_col
-                    .as_ref()
-                    .is_some_and(|c| c.get(mesh.ekey(e)).copied() == Some(true));
-                if let Some(cf) = cos_feature {
-                    let n = |x: Hid| triangle_normal(mesh, pos, x);
-                    let (nh, nt) = (n(h), n(t));
-                    let l = (dot(nh, nh) * dot(nt, nt)).sqrt();
-                    if l > 0.0 && dot(nh, nt) < cf * l {
-                        feature = true;
-                    }
-                }
-                if feature {
-                    feature_edges += 1;
-                    line = true;
-                }
-                let seam = seam_cols.iter().any(|c| {
-                    !c.same(h.index(), mesh.next(t).index())
-                        || !c.same(mesh.next(h).index(), t.index())
-                });
-                line |= seam;
-            }
-            if line {
-                edges[e.index()] |= E_LINE;
-                line_count[a.index()] = line_count[a.index()].saturating_add(1);
-                line_count[b.index()] = line_count[b.index()].saturating_add(1);
-            }
-        }
-        if let Some(h) = &options.locked {
-            let view = mesh.attr_view(h)?;
-            for v in mesh.vids() {
-                if view.get(mesh.vkey(v)).copied() == Some(true) {
-                    fixed[v.index()] = true;
-                    locked[v.index()] = true;
-                }
-            }
-            for e in mesh.eids() {
-                let [h, t] = e.halfedges();
-                if locked[mesh.origin(h).index()] || locked[mesh.origin(t).index()] {
-                    edges[e.index()] |= E_LOCKED;
-                }
-            }
-        }
-        let corner_cos = options
-            .feature_angle
-            .unwrap_or(std::f64::consts::FRAC_PI_4)
-            .cos();
-        let mut kinds = vec![FIXED; nv];
-        let mut n_fixed = 0;
-        for v in mesh.vids() {
-            let i = v.index();
-            kinds[i] = if fixed[i] {
-                FIXED
-            } else {
-                match line_count[i] {
-                    0 => FREE,
-                    2 if !line_corner(mesh, pos, &edges, v, corner_cos) => LINE,
-                    _ => FIXED,
-                }
+                0
             };
-            n_fixed += usize::from(kinds[i] == FIXED);
+            edges[e.index()] = line | locked;
         }
-        // Sizing.
-        let (sizing, uniform, target_length) = match options.sizing {
-            Sizing::MeanEdgeLength => {
-                let l = need_mean("mean edge length")?;
-                (vec![l; nv], true, l)
-            }
-            Sizing::Uniform(l) => {
-                let l = positive("the target edge length", l)?;
-                (vec![l; nv], true, l)
-            }
-            Sizing::Adaptive {
-                tolerance,
-                min_length,
-                max_length,
-            } => {
-                let tol = positive("the tolerance", tolerance)?;
-                let lo = match min_length {
-                    Some(x) => positive("min_length", x)?,
-                    None => 0.25 * need_mean("default min_length")?,
-                };
-                let hi = match max_length {
-                    Some(x) => positive("max_length", x)?,
-                    None => 4.0 * need_mean("default max_length")?,
-                };
-                if lo > hi {
-                    return Err(unsuitable(
-                        None,
-                        format!("min_length {lo} is greater than max_length {hi}"),
-                    ));
-                }
-                let s = adaptive_sizing(mesh, &kinds, tol, lo, hi)?;
-                let n = mesh.vertex_count().max(1) as f64;
-                let avg = mesh.vids().map(|v| s[v.index()]).sum::<f64>() / n;
-                (s, false, avg)
-            }
-        };
+        let (sizing, uniform, target_length) =
+            sizing(mesh, pos, options.sizing, &classified.kinds)?;
         Ok(Setup {
             sizing,
             uniform,
             target_length,
-            kinds,
+            kinds: classified.kinds,
             edges,
-            feature_edges,
-            fixed: n_fixed,
+            feature_edges: classified.feature_edges,
+            fixed: classified.fixed,
             resample,
         })
     }
+}
+
+/// Refuse a face that is not a triangle, naming it.
+fn check_triangles(mesh: &Mesh) -> Result<()> {
+    for f in mesh.fids() {
+        if mesh.is_hole(f) {
+            continue;
+        }
+        let h = mesh.face_halfedge(f);
+        if mesh.next(mesh.next(mesh.next(h))) != h {
+            return Err(unsuitable(
+                Some(mesh.fkey(f).into()),
+                format!(
+                    "face {} has {} sides; remeshing needs triangles (triangulate first)",
+                    mesh.fkey(f),
+                    mesh.face_degree(f)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Per input vertex slot, the target length; whether it is uniform; the
+/// uniform length or the mean of the adaptive ones.
+fn sizing(mesh: &Mesh, pos: &[V3], sizing: Sizing, kinds: &[u8]) -> Result<(Vec<f64>, bool, f64)> {
+    let positive = |name: &str, x: f64| {
+        if x.is_finite() && x > 0.0 {
+            Ok(x)
+        } else {
+            Err(unsuitable(
+                None,
+                format!("{name} {x} is not a positive finite number"),
+            ))
+        }
+    };
+    let nv = mesh.slot_counts()[0];
+    let mean = mean_edge_length(mesh, pos);
+    let need_mean = |what: &str| {
+        if mean > 0.0 && mean.is_finite() {
+            Ok(mean)
+        } else {
+            Err(unsuitable(
+                None,
+                format!("the input has no edge of positive length to take the {what} from"),
+            ))
+        }
+    };
+    Ok(match sizing {
+        Sizing::MeanEdgeLength => {
+            let l = need_mean("mean edge length")?;
+            (vec![l; nv], true, l)
+        }
+        Sizing::Uniform(l) => {
+            let l = positive("the target edge length", l)?;
+            (vec![l; nv], true, l)
+        }
+        Sizing::Adaptive {
+            tolerance,
+            min_length,
+            max_length,
+        } => {
+            let tol = positive("the tolerance", tolerance)?;
+            let lo = match min_length {
+                Some(x) => positive("min_length", x)?,
+                None => 0.25 * need_mean("default min_length")?,
+            };
+            let hi = match max_length {
+                Some(x) => positive("max_length", x)?,
+                None => 4.0 * need_mean("default max_length")?,
+            };
+            if lo > hi {
+                return Err(unsuitable(
+                    None,
+                    format!("min_length {lo} is greater than max_length {hi}"),
+                ));
+            }
+            let s = adaptive_sizing(mesh, kinds, tol, lo, hi)?;
+            let n = mesh.vertex_count().max(1) as f64;
+            let avg = mesh.vids().map(|v| s[v.index()]).sum::<f64>() / n;
+            (s, false, avg)
+        }
+    })
 }
 
 /// The columns `what` names, checked.
@@ -753,29 +691,6 @@ fn mean_edge_length(mesh: &Mesh, pos: &[V3]) -> f64 {
     } else {
         sum / n as f64
     }
-}
-
-/// Whether the two line edges at `v` turn by more than the corner angle.
-fn line_corner(mesh: &Mesh, pos: &[V3], edges: &[u8], v: Vid, corner_cos: f64) -> bool {
-    let p = pos[v.index()];
-    let mut dirs = [[0.0; 3]; 2];
-    let mut n = 0;
-    for o in mesh.outgoing(v) {
-        if edges[o.edge().index()] & E_LINE != 0 {
-            if n == 2 {
-                return true;
-            }
-            dirs[n] = sub(pos[mesh.dest(o).index()], p);
-            n += 1;
-        }
-    }
-    if n < 2 {
-        return true;
-    }
-    let (a, b) = (dirs[0], dirs[1]);
-    let l = (dot(a, a) * dot(b, b)).sqrt();
-    // Straight on: the directions point opposite ways (turn 0).
-    l.is_nan() || l <= 0.0 || -dot(a, b) < corner_cos * l
 }
 
 /// Target lengths from curvature (see the module docs).
@@ -1438,17 +1353,32 @@ impl Engine {
             return;
         }
         self.fit(work);
-        let reference = &self.reference;
         let pos = positions(work).to_vec();
         // Each vertex's triangle and barycentric coordinates.
         let nv = work.slot_counts()[0];
         let mut at: Vec<(u32, [f64; 3])> = vec![(u32::MAX, [0.0; 3]); nv];
         for v in work.vids() {
             let i = v.index();
-            if let Some(hit) = reference.tris.closest(pos[i], Some(self.hint[i])) {
+            if let Some(hit) = self.reference.tris.closest(pos[i], Some(self.hint[i])) {
                 at[i] = (hit.prim, hit.bary);
             }
         }
+        self.resample_vertex_columns(input, work, &at);
+        let corner_cols: Vec<usize> = self
+            .resample
+            .iter()
+            .filter(|c| c.corner)
+            .map(|c| c.index)
+            .collect();
+        if !corner_cols.is_empty() {
+            self.resample_corner_columns(input, work, &pos, &at, &corner_cols);
+        }
+    }
+
+    /// The vertex columns: each vertex's value interpolated on the input
+    /// triangle under it (`at`).
+    fn resample_vertex_columns(&self, input: &Mesh, work: &mut Mesh, at: &[(u32, [f64; 3])]) {
+        let reference = &self.reference;
         let tri_vertices = |t: u32| reference.corners[t as usize].map(|h| input.origin(h));
         for col in &self.resample {
             if col.corner {
@@ -1470,15 +1400,20 @@ impl Engine {
                 dst.interpolate_from(src, v as usize, &inputs);
             }
         }
-        let corner_cols: Vec<usize> = self
-            .resample
-            .iter()
-            .filter(|c| c.corner)
-            .map(|c| c.index)
-            .collect();
-        if corner_cols.is_empty() {
-            return;
-        }
+    }
+
+    /// The corner columns `cols`: each corner's value interpolated on the
+    /// input triangle under its vertex, on its own face's side of the
+    /// column's seams.
+    fn resample_corner_columns(
+        &self,
+        input: &Mesh,
+        work: &mut Mesh,
+        pos: &[V3],
+        at: &[(u32, [f64; 3])],
+        cols: &[usize],
+    ) {
+        let reference = &self.reference;
         // Per face of the result: the triangle under its centroid.
         let faces: Vec<(Fid, [Hid; 3])> = work
             .fids()
@@ -1501,9 +1436,8 @@ impl Engine {
                     .map_or(u32::MAX, |hit| hit.prim)
             })
             .collect();
-        for ci in corner_cols {
+        for &ci in cols {
             let islands = reference.islands(input, ci);
-            let src = &*input.attrs.halfedge.cols[ci].1;
             let mut writes: Vec<(Hid, u32, [f64; 3])> = Vec::with_capacity(3 * faces.len());
             for ((_, hs), &tf) in faces.iter().zip(&under_face) {
                 if tf == u32::MAX {
@@ -1528,6 +1462,7 @@ impl Engine {
                     writes.push((h, t, b));
                 }
             }
+            let src = &*input.attrs.halfedge.cols[ci].1;
             let dst = &mut work.attrs.halfedge.cols[ci].1;
             for (h, t, b) in writes {
                 let cs = reference.corners[t as usize];

@@ -14,17 +14,24 @@
 //! factorisation (faer). The explicit updates are Jacobi steps (every vertex
 //! from the previous positions).
 //!
-//! **Which vertices move.** Boundary vertices stay where they are unless
-//! [`SmoothOptions::fix_boundary`] is `false`; with a
-//! [`SmoothOptions::mask`] (a `bool` vertex column) only vertices whose value
-//! is `true` move. Every other vertex keeps its position bit for bit (the
-//! smoothed positions are written back only for the moving ones), and a
-//! fixed vertex still pulls on its moving neighbours. Vertices whose faces
-//! all lack area have no cotangent weight and stay too.
-//! [`SmoothOptions::rescale`] (implicit only) then restores the surface area
-//! and area-weighted centroid of the input by a similarity transform of the
-//! whole mesh, as pmp-library does; it moves every vertex, so it is refused
-//! together with a mask.
+//! **Which vertices move** (the shared vocabulary of
+//! [`constraints`](super::constraints)). With [`SmoothOptions::boundary`]
+//! [`Keep::Lock`] (the default) boundary vertices stay where they are; with
+//! [`Keep::Slide`] they move but stay on the input's boundary: after every
+//! step each is put back on the closest point of its own piece of the
+//! input's boundary polyline (between two corners, or around its loop), and
+//! the corners (turns of more than the feature angle, 45° without one)
+//! stay; with [`Keep::Free`] they move as any other vertex. Seams
+//! ([`SmoothOptions::seams`], default free) and feature edges slide or
+//! lock the same way. Pinned vertices ([`SmoothOptions::pinned`]) never
+//! move. Every vertex held keeps its position bit for bit (the smoothed
+//! positions are written back only for the moving ones), and still pulls
+//! on its moving neighbours. Vertices whose faces all lack area have no
+//! cotangent weight and stay too. [`SmoothOptions::rescale`] (implicit
+//! only) then restores the surface area and area-weighted centroid of the
+//! input by a similarity transform of the whole mesh, as pmp-library does:
+//! it moves every vertex, the boundary too, so it is refused with pinned
+//! vertices.
 //!
 //! **Attributes.** Only the position column changes: no element is split or
 //! merged, so no rule runs and every other column keeps its values. Columns
@@ -53,12 +60,13 @@
 //! # Ok::<(), meshloom::Error>(())
 //! ```
 
+use super::constraints::{Classifier, Constraints, Keep, LineSources, Polylines, FIXED, LINE};
 use super::laplacian::{
     as_triangle, laplacian_at, live_faces, mass_matrix_at, positions, Laplacian, LaplacianOptions,
 };
 use super::progress::Progress;
 use super::sparse::{solve_spd, LowerCsc};
-use crate::attr::VertexAttr;
+use crate::attr::{EdgeAttr, VertexAttr};
 use crate::circulate::VertexNeighbors;
 use crate::error::{Error, Result};
 use crate::keys::ElementKind;
@@ -96,12 +104,25 @@ pub struct SmoothOptions {
     /// Taubin's `μ` (must be below `−λ`); `None` takes the pass band
     /// `k = 0.1`: `μ = 1 / (k − 1/λ)` (−0.526 for λ = 0.5).
     pub taubin_mu: Option<f64>,
-    /// Keep boundary vertices where they are (default `true`).
-    pub fix_boundary: bool,
-    /// Move only the vertices where this `bool` vertex column is `true`.
-    pub mask: Option<VertexAttr<bool>>,
+    /// Boundary vertices (default [`Keep::Lock`]: they stay; `Slide`: they
+    /// stay on the input's boundary; `Free`: they move as any other). See
+    /// [`Constraints`].
+    pub boundary: Keep,
+    /// Seam vertices: where a corner column's values differ across an edge
+    /// (default [`Keep::Free`]: no constraint).
+    pub seams: Keep,
+    /// Edges whose faces meet at more than this dihedral angle (radians)
+    /// are feature edges, whose vertices slide along them; also the turn
+    /// that makes a line's vertex a corner (45° without it). Default: none.
+    pub feature_angle: Option<f64>,
+    /// An edge column: edges whose value is `true` are feature edges.
+    pub features: Option<EdgeAttr<bool>>,
+    /// A vertex column: vertices whose value is `true` are pinned (never
+    /// move). To move only a region, pin its complement.
+    pub pinned: Option<VertexAttr<bool>>,
     /// Implicit only: restore the input's surface area and centroid
-    /// afterwards (default `false`; refused with a mask).
+    /// afterwards, moving every vertex (default `false`; refused with
+    /// pinned vertices).
     pub rescale: bool,
 }
 
@@ -112,8 +133,11 @@ impl Default for SmoothOptions {
             iterations: 10,
             step: None,
             taubin_mu: None,
-            fix_boundary: true,
-            mask: None,
+            boundary: Keep::Lock,
+            seams: Keep::Free,
+            feature_angle: None,
+            features: None,
+            pinned: None,
             rescale: false,
         }
     }
@@ -132,6 +156,17 @@ impl SmoothOptions {
             ..SmoothOptions::default()
         }
     }
+
+    /// The constraints these options name.
+    pub fn constraints(&self) -> Constraints {
+        Constraints {
+            boundary: self.boundary,
+            seams: self.seams,
+            feature_angle: self.feature_angle,
+            features: self.features.clone(),
+            pinned: self.pinned.clone(),
+        }
+    }
 }
 
 /// What [`smooth`] did.
@@ -139,7 +174,8 @@ impl SmoothOptions {
 pub struct SmoothReport {
     /// Vertices that were free to move.
     pub moved: usize,
-    /// Vertices kept in place (boundary, outside the mask, no area).
+    /// Vertices kept in place (pinned, on a locked line, line corners,
+    /// no area).
     pub fixed: usize,
     /// Iterations run.
     pub iterations: u32,
@@ -192,60 +228,37 @@ fn smooth_run(
         return Err(unsuitable(super::sparse::UNAVAILABLE));
     }
     let p0 = positions(mesh)?;
-    let step = options.step.unwrap_or(if explicit { 0.5 } else { 0.001 });
-    if explicit && !(step > 0.0 && step <= 1.0) {
-        return Err(unsuitable(format!("step {step} is not in (0, 1]")));
-    }
-    if !(explicit || step > 0.0 && step.is_finite()) {
-        return Err(unsuitable(format!(
-            "time step {step} is not positive and finite"
-        )));
-    }
-    let mu = match options.taubin_mu {
-        Some(mu) => mu,
-        None => 1.0 / (0.1 - 1.0 / step),
-    };
-    if options.method == SmoothMethod::Taubin && !(mu < -step && mu.is_finite()) {
-        return Err(unsuitable(format!(
-            "Taubin mu {mu} is not below -lambda = {}",
-            -step
-        )));
-    }
-    if options.rescale && (explicit || options.mask.is_some()) {
-        return Err(unsuitable(
-            "rescale applies to implicit smoothing without a mask (it moves every vertex)",
-        ));
-    }
-    let mask = mask_slots(mesh, options)?;
+    let (step, mu) = steps(options)?;
+    let mut held = Held::of(mesh, p0, options)?;
     let n = options.iterations;
     // `moves`: the slots to write back; `None` for the uniform steps, whose
     // buffer holds every other slot's position bit for bit, so it is
     // copied whole.
     let (x, moved, max_d, moves) = match options.method {
         SmoothMethod::Uniform | SmoothMethod::Taubin => {
-            let rings = FreeRings::of(mesh, options.fix_boundary, mask.as_deref());
-            check_mask_selects(options, rings.moving)?;
+            let rings = FreeRings::of(mesh, &held.kinds);
+            check_selects(options, rings.moving)?;
             let steps: &[f64] = if options.method == SmoothMethod::Taubin {
                 &[step, mu]
             } else {
                 &[step]
             };
-            let x = rings.run(p0, steps, n, &mut progress)?;
+            let x = rings.run(p0, steps, n, &mut held, &mut progress)?;
             let moving = rings.degree.iter().map(|&d| d > 0);
             let max_d = checked_displacement(mesh, p0, &x, moving)?;
             (x, rings.moving, max_d, None)
         }
         SmoothMethod::Cotan => {
-            let free = free_vertices(mesh, options.fix_boundary, mask.as_deref());
-            let moved = check_mask_selects(options, free.iter().filter(|&&f| f).count())?;
-            let x = cotan_run(mesh, p0, &free, n, step, &mut progress)?;
+            let free = held.free();
+            let moved = check_selects(options, free.iter().filter(|&&f| f).count())?;
+            let x = cotan_run(mesh, p0, &free, n, step, &mut held, &mut progress)?;
             let max_d = checked_displacement(mesh, p0, &x, free.iter().copied())?;
             (x, moved, max_d, Some(free))
         }
         SmoothMethod::Implicit => {
-            let free = free_vertices(mesh, options.fix_boundary, mask.as_deref());
-            let moved = check_mask_selects(options, free.iter().filter(|&&f| f).count())?;
-            let x = implicit_run(mesh, p0, &free, n, step, &mut progress)?;
+            let free = held.free();
+            let moved = check_selects(options, free.iter().filter(|&&f| f).count())?;
+            let x = implicit_run(mesh, p0, &free, n, step, &mut held, &mut progress)?;
             let (x, moves) = if options.rescale {
                 // A rescale moves every vertex.
                 let live = (0..x.len()).map(|i| mesh.v_slots.is_live(i)).collect();
@@ -280,6 +293,76 @@ fn smooth_run(
     })
 }
 
+/// The step (`λ` or the time step) and Taubin's `μ`, checked; and
+/// `rescale` refused where it does not apply.
+fn steps(options: &SmoothOptions) -> Result<(f64, f64)> {
+    let explicit = options.method != SmoothMethod::Implicit;
+    let step = options.step.unwrap_or(if explicit { 0.5 } else { 0.001 });
+    if explicit && !(step > 0.0 && step <= 1.0) {
+        return Err(unsuitable(format!("step {step} is not in (0, 1]")));
+    }
+    if !(explicit || step > 0.0 && step.is_finite()) {
+        return Err(unsuitable(format!(
+            "time step {step} is not positive and finite"
+        )));
+    }
+    let mu = match options.taubin_mu {
+        Some(mu) => mu,
+        None => 1.0 / (0.1 - 1.0 / step),
+    };
+    if options.method == SmoothMethod::Taubin && !(mu < -step && mu.is_finite()) {
+        return Err(unsuitable(format!(
+            "Taubin mu {mu} is not below -lambda = {}",
+            -step
+        )));
+    }
+    if options.rescale && (explicit || options.pinned.is_some()) {
+        return Err(unsuitable(
+            "rescale applies to implicit smoothing without pinned vertices (it moves every vertex)",
+        ));
+    }
+    Ok((step, mu))
+}
+
+/// What holds the vertices: each one's kind (the shared classifier), and
+/// the input's lines for those that slide.
+struct Held {
+    kinds: Vec<u8>,
+    lines: Option<Polylines>,
+}
+
+impl Held {
+    fn of(mesh: &Mesh, p0: &[V3], options: &SmoothOptions) -> Result<Held> {
+        let constraints = options.constraints();
+        constraints.check(ALGORITHM)?;
+        let sources = LineSources::all_corner_columns(mesh, Keep::Slide, false);
+        let c = Classifier::new(mesh, p0, &constraints, sources)?.classify();
+        let kinds = c.kinds;
+        let lines = kinds.contains(&LINE).then(|| {
+            Polylines::new(
+                mesh,
+                p0,
+                mesh.vids().filter(|v| kinds[v.index()] == LINE),
+                |v| kinds[v.index()] == LINE,
+                |e| c.lines.get(e),
+            )
+        });
+        Ok(Held { kinds, lines })
+    }
+
+    /// Whether each vertex slot may move.
+    fn free(&self) -> Vec<bool> {
+        self.kinds.iter().map(|&k| k != FIXED).collect()
+    }
+
+    /// Put the sliding vertices of `x` back on their lines.
+    fn slide(&mut self, x: &mut [V3]) {
+        if let Some(lines) = &mut self.lines {
+            lines.project_all(x);
+        }
+    }
+}
+
 /// `n` explicit cotangent steps from `p0` (weights from the current
 /// positions each step).
 fn cotan_run(
@@ -288,6 +371,7 @@ fn cotan_run(
     free: &[bool],
     n: u32,
     step: f64,
+    held: &mut Held,
     progress: &mut Progress<'_>,
 ) -> Result<Vec<V3>> {
     let mut x: Vec<V3> = p0.to_vec();
@@ -296,6 +380,7 @@ fn cotan_run(
         progress.report(ALGORITHM, "iterations", u64::from(it), u64::from(n))?;
         let l = laplacian_at(mesh, &x, &LaplacianOptions::default());
         explicit_step(&l, free, &x, &mut next, step);
+        held.slide(&mut next);
         std::mem::swap(&mut x, &mut next);
     }
     Ok(x)
@@ -308,12 +393,14 @@ fn implicit_run(
     free: &[bool],
     n: u32,
     t: f64,
+    held: &mut Held,
     progress: &mut Progress<'_>,
 ) -> Result<Vec<V3>> {
     let mut x: Vec<V3> = p0.to_vec();
     for it in 0..n {
         progress.report(ALGORITHM, "implicit steps", u64::from(it), u64::from(n))?;
         implicit_step(mesh, free, &mut x, t)?;
+        held.slide(&mut x);
     }
     Ok(x)
 }
@@ -335,43 +422,15 @@ fn rescaled(mesh: &Mesh, p0: &[V3], mut x: Vec<V3>) -> Vec<V3> {
     x
 }
 
-/// The mask column as one `bool` per vertex slot (`true`: may move), if
-/// the options give one.
-fn mask_slots(mesh: &Mesh, options: &SmoothOptions) -> Result<Option<Vec<bool>>> {
-    let Some(mask) = &options.mask else {
-        return Ok(None);
-    };
-    let view = mesh.attr_view(mask)?;
-    let mut marked = vec![false; mesh.v_halfedge.len()];
-    for v in mesh.vertices() {
-        marked[v.index()] = view.get(v) == Some(&true);
-    }
-    Ok(Some(marked))
-}
-
-/// With a mask, refuse a run that would move nothing; else pass the count.
-fn check_mask_selects(options: &SmoothOptions, moving: usize) -> Result<usize> {
-    if options.mask.is_some() && moving == 0 {
-        return Err(unsuitable("the mask selects no vertex that may move"));
+/// With pinned vertices, refuse a run that would move nothing; else pass
+/// the count.
+fn check_selects(options: &SmoothOptions, moving: usize) -> Result<usize> {
+    if options.pinned.is_some() && moving == 0 {
+        return Err(unsuitable(
+            "no vertex may move: every one is pinned or held by a line",
+        ));
     }
     Ok(moving)
-}
-
-/// Whether vertex `v` may move: marked in `mask` (if there is one) and,
-/// with `fix_boundary`, off the boundary.
-#[inline]
-fn may_move(mesh: &Mesh, v: Vid, fix_boundary: bool, mask: Option<&[bool]>) -> bool {
-    mask.is_none_or(|m| m[v.index()]) && !(fix_boundary && mesh.on_boundary(v))
-}
-
-/// Whether each vertex slot may move.
-fn free_vertices(mesh: &Mesh, fix_boundary: bool, mask: Option<&[bool]>) -> Vec<bool> {
-    let mut free = vec![false; mesh.v_halfedge.len()];
-    for v in mesh.vids() {
-        let i = v.index();
-        free[i] = may_move(mesh, v, fix_boundary, mask);
-    }
-    free
 }
 
 /// The largest displacement of a moving vertex, or an error naming the
@@ -430,9 +489,9 @@ struct FreeRings {
 }
 
 impl FreeRings {
-    /// The rings of the vertices that move: those in `mask` (every vertex
-    /// without one) and, with `fix_boundary`, off the boundary.
-    fn of(mesh: &Mesh, fix_boundary: bool, mask: Option<&[bool]>) -> FreeRings {
+    /// The rings of the vertices that move: those whose kind is not
+    /// fixed.
+    fn of(mesh: &Mesh, kinds: &[u8]) -> FreeRings {
         let mut rings = FreeRings {
             degree: vec![0; mesh.v_halfedge.len()],
             many: Vec::new(),
@@ -441,7 +500,7 @@ impl FreeRings {
         };
         for v in mesh.vids() {
             let i = v.index();
-            if !may_move(mesh, v, fix_boundary, mask) {
+            if kinds[i] == FIXED {
                 continue;
             }
             let start = rings.cols.len();
@@ -469,6 +528,7 @@ impl FreeRings {
         p0: &[V3],
         steps: &[f64],
         iterations: u32,
+        held: &mut Held,
         progress: &mut Progress<'_>,
     ) -> Result<Vec<V3>> {
         let mut x: Vec<V3> = Vec::new();
@@ -487,6 +547,7 @@ impl FreeRings {
                     next = vec![[0.0; 3]; p0.len()];
                 }
                 self.uniform_step(if x.is_empty() { p0 } else { &x }, &mut next, s);
+                held.slide(&mut next);
                 std::mem::swap(&mut x, &mut next);
             }
         }

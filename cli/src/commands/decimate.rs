@@ -8,24 +8,39 @@ use meshloom::algo::decimate::{
     decimate as run_decimate, lod_chain, DecimateOptions, DecimateReport, Keep, LodOptions, Target,
 };
 use meshloom::algo::{Flow, ProgressInfo};
+use meshloom::Mesh;
 use serde_json::json;
 
-use crate::cli::{DecimateArgs, LodArgs};
+use crate::cli::{ConstraintArgs, DecimateArgs, LodArgs};
+use crate::commands::constraints::{self, Temps};
 use crate::output::{self, to_json};
 use crate::progress::Progress;
 use crate::{input, Failure};
 
-/// The library's options from the flags shared by both commands.
-fn options(keep_boundary: bool, keep_seams: bool) -> DecimateOptions {
-    DecimateOptions {
-        boundary: if keep_boundary {
-            Keep::Lock
-        } else {
-            Keep::Slide
-        },
-        seams: if keep_seams { Keep::Lock } else { Keep::Slide },
-        ..DecimateOptions::default()
+/// The library's options from the flags shared by both commands (the old
+/// `--keep-boundary` and `--keep-seams` mean lock, with a warning).
+fn options(
+    mesh: &mut Mesh,
+    keep: &ConstraintArgs,
+    keep_boundary: bool,
+    keep_seams: bool,
+) -> Result<(DecimateOptions, Temps), Failure> {
+    let mut o = DecimateOptions::default();
+    let (c, temps) = constraints::resolve(mesh, keep, o.constraints(), None)?;
+    o.boundary = c.boundary;
+    o.seams = c.seams;
+    o.feature_angle = c.feature_angle;
+    o.features = c.features;
+    o.pinned = c.pinned;
+    if keep_boundary {
+        constraints::deprecated("--keep-boundary", "--boundary lock");
+        o.boundary = Keep::Lock;
     }
+    if keep_seams {
+        constraints::deprecated("--keep-seams", "--seams lock");
+        o.seams = Keep::Lock;
+    }
+    Ok((o, temps))
 }
 
 fn summary(r: &DecimateReport) -> String {
@@ -41,24 +56,24 @@ fn summary(r: &DecimateReport) -> String {
     format!(
         "{} vertices, {} faces -> {} vertices, {} faces ({} collapses; {why}); largest error {:.4e}\n\
          refused: {} by topology, {} by normal deviation, {} by quality, {} by valence; {} vertices fixed\n",
-        r.vertices_before,
-        r.faces_before,
-        r.vertices,
-        r.faces,
+        r.input.vertices,
+        r.input.faces,
+        r.output.vertices,
+        r.output.faces,
         r.collapses,
         r.error,
         r.refused.topology,
         r.refused.normal,
         r.refused.quality,
         r.refused.valence,
-        r.fixed_vertices
+        r.fixed
     )
 }
 
 /// Read, decimate, write.
 pub fn decimate(args: &DecimateArgs) -> Result<(), Failure> {
     let (mut mesh, _) = input::read(&args.input, args.read, false)?;
-    let mut opts = options(args.keep_boundary, args.keep_seams);
+    let (mut opts, temps) = options(&mut mesh, &args.keep, args.keep_boundary, args.keep_seams)?;
     opts.target = match (args.ratio, args.vertices, args.faces) {
         (Some(r), _, _) => Target::Ratio(r),
         (_, Some(n), _) => Target::Vertices(n),
@@ -76,6 +91,7 @@ pub fn decimate(args: &DecimateArgs) -> Result<(), Failure> {
         run_decimate(&mut mesh, &opts, meshloom::algo::Progress::new(&mut cb))
             .map_err(Failure::input)?
     };
+    temps.remove(&mut mesh);
     input::write(&mesh, &args.output, false, false)?;
     if args.json {
         return output::json(&json!({
@@ -107,10 +123,11 @@ pub fn level_path(prefix: &Path, level: usize) -> PathBuf {
 
 /// Read, decimate through every ratio, write each level.
 pub fn lod(args: &LodArgs) -> Result<(), Failure> {
-    let (mesh, _) = input::read(&args.input, args.read, false)?;
+    let (mut mesh, _) = input::read(&args.input, args.read, false)?;
+    let (decimate, temps) = options(&mut mesh, &args.keep, args.keep_boundary, args.keep_seams)?;
     let opts = LodOptions {
         targets: args.ratios.iter().map(|&r| Target::Ratio(r)).collect(),
-        decimate: options(args.keep_boundary, args.keep_seams),
+        decimate,
         meshes: true,
         record: false,
     };
@@ -125,16 +142,17 @@ pub fn lod(args: &LodArgs) -> Result<(), Failure> {
     };
     let mut levels = Vec::new();
     let mut text = String::new();
-    for (i, (level, ratio)) in chain.levels.iter().zip(&args.ratios).enumerate() {
+    for (i, (mut level, ratio)) in chain.levels.into_iter().zip(&args.ratios).enumerate() {
         let path = level_path(&args.output_prefix, i + 1);
-        if let Some(m) = &level.mesh {
+        if let Some(m) = &mut level.mesh {
+            temps.clone().remove(m);
             input::write(m, &path, false, false)?;
         }
         text.push_str(&format!(
             "level {} (ratio {ratio}): {} vertices, {} faces, largest error {:.4e}; wrote {}\n",
             i + 1,
-            level.report.vertices,
-            level.report.faces,
+            level.report.output.vertices,
+            level.report.output.faces,
             level.report.error,
             path.display()
         ));

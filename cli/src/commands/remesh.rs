@@ -1,17 +1,21 @@
 //! `meshloom remesh IN OUT [--edge-length L | --adaptive TOL]
-//! [--iterations N] [--feature-angle DEG]`: isotropic remeshing.
+//! [--iterations N] [--boundary free|slide|lock] [--feature-angle DEG]`:
+//! isotropic remeshing.
 
-use meshloom::algo::remesh::{remesh, BoundaryMode, RemeshOptions, RemeshReport, Sizing};
+use meshloom::algo::remesh::{remesh, Keep, RemeshOptions, RemeshReport, Sizing};
 use meshloom::algo::{Flow, ProgressInfo};
+use meshloom::Mesh;
 use serde_json::json;
 
 use crate::cli::RemeshArgs;
+use crate::commands::constraints::{self, Temps};
 use crate::output::{self, to_json};
 use crate::progress::Progress;
 use crate::{input, Failure};
 
-/// The library's options from the flags.
-fn options(args: &RemeshArgs) -> RemeshOptions {
+/// The library's options from the flags (the old `--keep-boundary` means
+/// lock, with a warning).
+fn options(mesh: &mut Mesh, args: &RemeshArgs) -> Result<(RemeshOptions, Temps), Failure> {
     let sizing = match (args.edge_length, args.adaptive) {
         (Some(l), _) => Sizing::Uniform(l),
         (None, Some(tolerance)) => Sizing::Adaptive {
@@ -21,18 +25,23 @@ fn options(args: &RemeshArgs) -> RemeshOptions {
         },
         (None, None) => Sizing::MeanEdgeLength,
     };
-    RemeshOptions {
+    let mut o = RemeshOptions {
         sizing,
         iterations: args.iterations,
-        feature_angle: args.feature_angle.map(f64::to_radians),
-        boundary: if args.keep_boundary {
-            BoundaryMode::Fixed
-        } else {
-            BoundaryMode::Slide
-        },
         max_faces: args.max_faces,
         ..RemeshOptions::default()
+    };
+    let (c, temps) = constraints::resolve(mesh, &args.keep, o.constraints(), None)?;
+    o.boundary = c.boundary;
+    o.seams = c.seams;
+    o.feature_angle = c.feature_angle;
+    o.features = c.features;
+    o.pinned = c.pinned;
+    if args.keep_boundary {
+        constraints::deprecated("--keep-boundary", "--boundary lock");
+        o.boundary = Keep::Lock;
     }
+    Ok((o, temps))
 }
 
 fn summary(r: &RemeshReport) -> String {
@@ -41,10 +50,10 @@ fn summary(r: &RemeshReport) -> String {
         "{} vertices, {} faces -> {} vertices, {} faces ({} iterations: {} splits, {} collapses, {} flips)\n\
          target length {:.6}; edge lengths {:.6} to {:.6}, mean {:.6}; {:.1}% within [4/5, 4/3] of the target\n\
          {} feature edges, {} vertices fixed{}\n",
-        r.vertices_before,
-        r.faces_before,
-        r.vertices,
-        r.faces,
+        r.input.vertices,
+        r.input.faces,
+        r.output.vertices,
+        r.output.faces,
         r.iterations,
         r.splits,
         r.collapses,
@@ -55,7 +64,7 @@ fn summary(r: &RemeshReport) -> String {
         l.mean,
         100.0 * l.within,
         r.feature_edges,
-        r.fixed_vertices,
+        r.fixed,
         if r.resampled.is_empty() {
             String::new()
         } else {
@@ -67,7 +76,7 @@ fn summary(r: &RemeshReport) -> String {
 /// Read, remesh, write.
 pub fn run(args: &RemeshArgs) -> Result<(), Failure> {
     let (mut mesh, _) = input::read(&args.input, args.read, false)?;
-    let opts = options(args);
+    let (opts, temps) = options(&mut mesh, args)?;
     let report = {
         let bar = Progress::bar("remeshing", args.iterations);
         let mut cb = |p: &ProgressInfo<'_>| {
@@ -77,6 +86,7 @@ pub fn run(args: &RemeshArgs) -> Result<(), Failure> {
         };
         remesh(&mut mesh, &opts, meshloom::algo::Progress::new(&mut cb)).map_err(Failure::input)?
     };
+    temps.remove(&mut mesh);
     input::write(&mesh, &args.output, false, false)?;
     if args.json {
         return output::json(&json!({

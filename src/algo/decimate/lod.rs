@@ -74,7 +74,7 @@ pub struct LodChain {
 /// use meshloom::algo::Progress;
 /// let mesh = meshloom::shapes::icosphere(3); // 642 vertices
 /// let chain = lod_chain(&mesh, &LodOptions::default(), Progress::none())?;
-/// let counts: Vec<usize> = chain.levels.iter().map(|l| l.report.vertices).collect();
+/// let counts: Vec<usize> = chain.levels.iter().map(|l| l.report.output.vertices).collect();
 /// assert_eq!(counts, [321, 161, 65]);
 /// // Replaying the record up to a level gives that level's mesh.
 /// let mut again = mesh.clone();

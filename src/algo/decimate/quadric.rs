@@ -4,7 +4,7 @@
 //! box before they become quadrics, so `f32` keeps about seven digits of the
 //! mesh's extent.
 
-use crate::vec3::{dot, sub, V3};
+use crate::vec3::{dot, V3};
 
 /// `a00 a11 a22 a01 a02 a12 b0 b1 b2 c`.
 #[derive(Copy, Clone, Debug, Default, PartialEq)]
@@ -123,30 +123,12 @@ impl Q64 {
         ];
         x.iter().all(|c| c.is_finite()).then_some(x)
     }
-
-    /// The parameter in `0..=1` of the best point on the segment `a → b`.
-    #[inline(always)]
-    pub(super) fn best_on_segment(&self, a: V3, b: V3) -> f64 {
-        let d = sub(b, a);
-        let ad = self.a_mul(d);
-        let den = dot(d, ad);
-        if den.is_nan() || den <= 0.0 {
-            return 0.5;
-        }
-        let q = &self.0;
-        let num = dot(a, ad) + q[6] * d[0] + q[7] * d[1] + q[8] * d[2];
-        let t = -num / den;
-        if t.is_finite() {
-            t.clamp(0.0, 1.0)
-        } else {
-            0.5
-        }
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::vec3::sub;
 
     #[test]
     fn three_planes_meet_at_their_corner() {
@@ -161,12 +143,9 @@ mod tests {
     }
 
     #[test]
-    fn a_plane_alone_is_singular_and_the_segment_search_finds_it() {
+    fn a_plane_alone_is_singular() {
         let q = Q64::plane([0.0, 0.0, 1.0], 0.0, 1.0);
         assert!(q.minimiser().is_none());
-        let t = q.best_on_segment([0.0, 0.0, -1.0], [0.0, 0.0, 3.0]);
-        assert!((t - 0.25).abs() < 1e-12);
-        assert_eq!(q.best_on_segment([0.0, 0.0, 1.0], [0.0, 0.0, 3.0]), 0.0);
         let narrowed = q.narrow().wide();
         assert_eq!(narrowed.0, q.0);
     }

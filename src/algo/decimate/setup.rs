@@ -1,13 +1,15 @@
 //! Before the first collapse: check the input, classify every vertex and
-//! edge, fill the quadrics. Nothing here changes the mesh; every error the
+//! edge (the shared classifier of [`constraints`](crate::algo::constraints)),
+//! fill the quadrics. Nothing here changes the mesh; every error the
 //! decimator can return (but cancellation) comes from here.
 
 use super::attributes::AttrError;
 use super::quadric::{Quadric, Q64};
-use super::{DecimateOptions, Engine, Keep, ALGORITHM, FIXED, FREE, LINE};
+use super::{DecimateOptions, Engine, Keep, ALGORITHM};
+use crate::algo::constraints::{Classified, Classifier, EdgeBits, LineSources};
 use crate::error::{Error, Result};
 use crate::keys::{AnyKey, ElementKind};
-use crate::layout::{Eid, Hid, Vid};
+use crate::layout::Eid;
 use crate::mesh::Mesh;
 use crate::vec3::{add, cross, dot, scale, sub, V3};
 
@@ -35,7 +37,28 @@ fn unit_normal(a: V3, b: V3, c: V3) -> (V3, f64) {
 
 pub(super) fn prepare(mesh: &Mesh, options: &DecimateOptions) -> Result<Engine> {
     let pos = mesh.position_slots().ok_or(Error::NoPositions)?;
-    // Triangles only.
+    check_triangles(mesh)?;
+    check_numbers(options)?;
+    let (centre, scale_) = unit_box(mesh, pos);
+    let inv = 1.0 / scale_;
+    let unit = |p: V3| scale(sub(p, centre), inv);
+    let classified = classify(mesh, pos, options)?;
+    let quadrics = quadrics(mesh, pos, &unit, &classified.lines);
+    let attrs = AttrError::new(mesh, &options.attributes, &unit)?;
+    Ok(Engine {
+        quadrics,
+        flags: classified.kinds,
+        lines: classified.lines,
+        centre,
+        inv_scale: inv,
+        scale: scale_,
+        attrs,
+        fixed: classified.fixed,
+    })
+}
+
+/// Refuse a face that is not a triangle, naming it.
+fn check_triangles(mesh: &Mesh) -> Result<()> {
     for f in mesh.fids() {
         if mesh.is_hole(f) {
             continue;
@@ -52,6 +75,12 @@ pub(super) fn prepare(mesh: &Mesh, options: &DecimateOptions) -> Result<Engine> 
             ));
         }
     }
+    Ok(())
+}
+
+/// Refuse a `max_error` below zero and a guard or feature angle that is
+/// not finite.
+fn check_numbers(options: &DecimateOptions) -> Result<()> {
     if let Some(e) = options.max_error {
         if e.is_nan() || e < 0.0 {
             return Err(unsuitable(
@@ -63,7 +92,6 @@ pub(super) fn prepare(mesh: &Mesh, options: &DecimateOptions) -> Result<Engine> 
     for (name, v) in [
         ("max_normal_deviation", options.max_normal_deviation),
         ("min_quality", options.min_quality),
-        ("feature_angle", options.feature_angle),
     ] {
         if let Some(x) = v {
             if !x.is_finite() {
@@ -71,8 +99,13 @@ pub(super) fn prepare(mesh: &Mesh, options: &DecimateOptions) -> Result<Engine> 
             }
         }
     }
-    let [nv, _, ne, _] = mesh.slot_counts();
-    // The unit box.
+    options.constraints().check(ALGORITHM)
+}
+
+/// The centre of the bounding box and its largest extent (1 for an empty
+/// or flat-to-a-point mesh): positions go to the unit box as
+/// `(x − centre) / extent`.
+fn unit_box(mesh: &Mesh, pos: &[V3]) -> (V3, f64) {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for v in mesh.vids() {
@@ -88,19 +121,18 @@ pub(super) fn prepare(mesh: &Mesh, options: &DecimateOptions) -> Result<Engine> 
     } else {
         ([0.0; 3], 1.0)
     };
-    let scale_ = if extent > 0.0 && extent.is_finite() {
+    let extent = if extent > 0.0 && extent.is_finite() {
         extent
     } else {
         1.0
     };
-    let inv = 1.0 / scale_;
-    let unit = |p: V3| scale(sub(p, centre), inv);
+    (centre, extent)
+}
 
-    // Lines and locks.
-    let mut lines = vec![0u64; ne.div_ceil(64)];
-    let mut count = vec![0u8; nv];
-    let mut fixed = vec![false; nv];
-    let seam_cols = &mesh.attrs.halfedge.cols;
+/// The vertex kinds and sliding lines: the shared classifier, with every
+/// corner column's discontinuities and the material column's borders as
+/// seams, and feature lines locked.
+fn classify(mesh: &Mesh, pos: &[V3], options: &DecimateOptions) -> Result<Classified> {
     let material = match &options.material {
         None => None,
         Some(name) => Some(
@@ -113,94 +145,15 @@ pub(super) fn prepare(mesh: &Mesh, options: &DecimateOptions) -> Result<Engine> 
                 })?,
         ),
     };
-    let feature_col = match &options.feature_edges {
-        None => None,
-        Some(h) => Some(mesh.attr_view(h)?),
-    };
-    let cos_feature = options.feature_angle.map(f64::cos);
-    for e in mesh.eids() {
-        let [h, t] = e.halfedges();
-        let (hole_h, hole_t) = (mesh.in_hole(h), mesh.in_hole(t));
-        let (a, b) = (mesh.origin(h), mesh.origin(t));
-        let mut line = None;
-        if hole_h || hole_t {
-            line = Some(options.boundary);
-        } else {
-            let seam = options.seams != Keep::Free
-                && seam_cols.iter().any(|(_, c)| {
-                    !c.same(h.index(), mesh.next(t).index())
-                        || !c.same(mesh.next(h).index(), t.index())
-                });
-            let mat = material.is_some_and(|i| {
-                !mesh.attrs.face.cols[i]
-                    .1
-                    .same(mesh.face_of(h).index(), mesh.face_of(t).index())
-            });
-            if seam || mat {
-                line = Some(options.seams);
-            }
-            let mut feature = feature_col
-                .as_ref()
-                .is_some_and(|c| c.get(mesh.ekey(e)).copied() == Some(true));
-            if let Some(cf) = cos_feature {
-                let tri = |x: Hid| {
-                    let n = mesh.next(x);
-                    unit_normal(
-                        pos[mesh.origin(x).index()],
-                        pos[mesh.origin(n).index()],
-                        pos[mesh.origin(mesh.next(n)).index()],
-                    )
-                    .0
-                };
-                if dot(tri(h), tri(t)) < cf {
-                    feature = true;
-                }
-            }
-            if feature {
-                fixed[a.index()] = true;
-                fixed[b.index()] = true;
-            }
-        }
-        match line {
-            None | Some(Keep::Free) => {}
-            Some(Keep::Lock) => {
-                fixed[a.index()] = true;
-                fixed[b.index()] = true;
-            }
-            Some(Keep::Slide) => {
-                let i = e.index();
-                lines[i / 64] |= 1 << (i % 64);
-                count[a.index()] = count[a.index()].saturating_add(1);
-                count[b.index()] = count[b.index()].saturating_add(1);
-            }
-        }
-    }
-    if let Some(locked) = &options.locked {
-        let view = mesh.attr_view(locked)?;
-        for v in mesh.vids() {
-            if view.get(mesh.vkey(v)).copied() == Some(true) {
-                fixed[v.index()] = true;
-            }
-        }
-    }
-    let mut flags = vec![FIXED; nv];
-    let mut n_fixed = 0;
-    for v in mesh.vids() {
-        let i = v.index();
-        flags[i] = if fixed[i] {
-            FIXED
-        } else {
-            match count[i] {
-                0 => FREE,
-                2 if !line_corner(mesh, pos, &lines, v) => LINE,
-                _ => FIXED,
-            }
-        };
-        n_fixed += usize::from(flags[i] == FIXED);
-    }
+    let mut sources = LineSources::all_corner_columns(mesh, Keep::Lock, true);
+    sources.material = material.map(|i| &*mesh.attrs.face.cols[i].1);
+    Ok(Classifier::new(mesh, pos, &options.constraints(), sources)?.classify())
+}
 
-    // Quadrics: each face's plane, weighted by its area, at its corners.
-    let mut quadrics = vec![Quadric::default(); nv];
+/// Each face's plane, weighted by its area, at its corners; and planes
+/// across the sliding lines.
+fn quadrics(mesh: &Mesh, pos: &[V3], unit: &dyn Fn(V3) -> V3, lines: &EdgeBits) -> Vec<Quadric> {
+    let mut quadrics = vec![Quadric::default(); mesh.slot_counts()[0]];
     for f in mesh.fids() {
         if mesh.is_hole(f) {
             continue;
@@ -222,54 +175,11 @@ pub(super) fn prepare(mesh: &Mesh, options: &DecimateOptions) -> Result<Engine> 
     // Planes across kept lines, through the edge and perpendicular to each
     // face beside it, weighted by the squared length.
     for e in mesh.eids() {
-        let i = e.index();
-        if lines[i / 64] >> (i % 64) & 1 == 0 {
-            continue;
-        }
-        add_line_planes(mesh, pos, &unit, e, &mut quadrics);
-    }
-
-    let attrs = AttrError::new(mesh, &options.attributes, &unit)?;
-    Ok(Engine {
-        quadrics,
-        flags,
-        lines,
-        centre,
-        inv_scale: inv,
-        scale: scale_,
-        attrs,
-        fixed: n_fixed,
-    })
-}
-
-/// A line turning by more than this at a vertex (cosine of 45°) makes the
-/// vertex a corner of the line, which never moves.
-const CORNER_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
-
-/// Whether the two kept-line edges at `v` turn by more than 45° there (the
-/// corner of a square's boundary): such a vertex is fixed, so the line's
-/// corners stay sharp.
-fn line_corner(mesh: &Mesh, pos: &[[f64; 3]], lines: &[u64], v: Vid) -> bool {
-    let p = pos[v.index()];
-    let mut dirs = [[0.0; 3]; 2];
-    let mut n = 0;
-    for o in mesh.outgoing(v) {
-        let i = o.edge().index();
-        if lines[i / 64] >> (i % 64) & 1 == 1 {
-            if n == 2 {
-                return true;
-            }
-            dirs[n] = sub(pos[mesh.dest(o).index()], p);
-            n += 1;
+        if lines.get(e) {
+            add_line_planes(mesh, pos, unit, e, &mut quadrics);
         }
     }
-    if n < 2 {
-        return true;
-    }
-    // Straight on: the two directions point opposite ways.
-    let (a, b) = (dirs[0], dirs[1]);
-    let l = (dot(a, a) * dot(b, b)).sqrt();
-    l.is_nan() || l <= 0.0 || -dot(a, b) < CORNER_COS * l
+    quadrics
 }
 
 fn add_line_planes(

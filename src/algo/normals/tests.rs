@@ -83,7 +83,7 @@ fn cube_corners_split_at_right_angles_and_not_without_crease() {
     assert_eq!(corners, 24);
     // A crease angle just above 90° keeps the cube smooth.
     let wide = CornerNormalOptions {
-        crease_angle: Some(91f64.to_radians()),
+        feature_angle: Some(91f64.to_radians()),
         ..CornerNormalOptions::default()
     };
     let n = corner_normals(&cube, &wide).unwrap();
@@ -120,7 +120,7 @@ fn a_hard_edge_splits_whatever_the_angle() {
     mesh.fill_attr(&hard, false).unwrap();
     mesh.set_attr(&hard, shared, true).unwrap();
     let opts = CornerNormalOptions {
-        hard_edges: Some(hard.clone()),
+        features: Some(hard.clone()),
         ..CornerNormalOptions::default()
     };
     let n = corner_normals(&mesh, &opts).unwrap();
