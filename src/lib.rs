@@ -35,6 +35,7 @@
 #![forbid(unsafe_code)]
 
 pub mod algo;
+mod any_error;
 #[cfg(feature = "quickcheck")]
 pub mod arbitrary;
 pub mod attr;
@@ -65,7 +66,8 @@ pub mod validate;
 pub mod view;
 
 pub use build::{Built, IndexMaps, Polygons, PolygonsRef, VertexIndex};
-pub use error::{AnyError, BuildError, Error, Refusal, Result};
+pub use any_error::AnyError;
+pub use error::{BuildError, Error, Refusal, Result};
 pub use keys::{AnyKey, EdgeKey, ElementKey, ElementKind, FaceKey, HalfedgeKey, VertexKey};
 pub use mesh::Mesh;
 pub use stats::{ComponentStats, Stats};
