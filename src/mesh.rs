@@ -17,7 +17,6 @@
 //! generations are checked once, at the public door.
 
 use crate::error::{Error, Result};
-use crate::iter::{Edges, Faces, Halfedges, Vertices};
 use crate::journal::{Journaling, Recorded, Recorder};
 use crate::keys::{AnyKey, EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 pub(crate) use crate::layout::HalfedgeRecord;
@@ -154,51 +153,6 @@ impl Mesh {
             + self.f_halfedge.capacity() * std::mem::size_of::<FaceLink>()
             + self.f_slots.heap_bytes()
             + self.attrs.heap_bytes()
-    }
-
-    // ----- element iterators (keys, in slot order) -------------------------
-
-    /// Every vertex key, in slot order; `len()` is exact.
-    #[inline]
-    pub fn vertices(&self) -> Vertices<'_> {
-        Vertices::new(self)
-    }
-
-    /// Every half-edge key, in slot order (twins adjacent); `len()` is
-    /// exact.
-    #[inline]
-    pub fn halfedges(&self) -> Halfedges<'_> {
-        Halfedges::new(self)
-    }
-
-    /// Every edge key, in slot order; `len()` is exact.
-    #[inline]
-    pub fn edges(&self) -> Edges<'_> {
-        Edges::new(self)
-    }
-
-    /// Every face key, holes excluded, in slot order; `len()` is exact.
-    ///
-    /// ```
-    /// let cube = meshloom::shapes::cube();
-    /// let faces = cube.faces();
-    /// assert_eq!(faces.len(), cube.face_count());
-    /// ```
-    #[inline]
-    pub fn faces(&self) -> Faces<'_> {
-        Faces::not_holes(self)
-    }
-
-    /// Every hole face key, in slot order; `len()` is exact.
-    #[inline]
-    pub fn holes(&self) -> Faces<'_> {
-        Faces::holes(self)
-    }
-
-    /// Every face key, holes included, in slot order; `len()` is exact.
-    #[inline]
-    pub fn faces_and_holes(&self) -> Faces<'_> {
-        Faces::both(self)
     }
 
     // ----- keys by slot (for walking while editing) --------------------------
