@@ -54,6 +54,7 @@ pub mod link;
 pub mod map;
 mod mesh;
 pub mod ops;
+mod record;
 pub mod repair;
 #[cfg(feature = "serde")]
 mod serde_impl;

@@ -17,13 +17,16 @@
 //! generations are checked once, at the public door.
 
 use crate::error::{Error, Result};
-use crate::journal::{Journaling, Recorded, Recorder};
 use crate::keys::{AnyKey, EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 pub(crate) use crate::layout::HalfedgeRecord;
 use crate::layout::{Eid, FaceLink, Fid, Hid, LinkVec, Vid};
+use crate::record::{Journaling, Recorded, Recorder};
 use crate::slots::Slots;
 use crate::store::rules::Interpolate;
 use crate::store::{AttrStore, Column, POSITION};
+
+mod hooks;
+mod recording;
 
 /// A polygon mesh stored as a half-edge graph.
 ///
@@ -78,7 +81,7 @@ impl Clone for Mesh {
             rec: None,
         };
         if let Some(r) = &self.rec {
-            r.release_held_into(&mut m);
+            r.release_held_into([&mut m.v_slots, &mut m.e_slots, &mut m.f_slots]);
         }
         m
     }

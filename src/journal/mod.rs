@@ -4,7 +4,7 @@
 //! Three services share one recorder, which is off until one of them is
 //! asked for (then [`Mesh`] carries it). With it off, the journal costs
 //! one test per operator call: the operator then runs a body compiled
-//! without any recording hook (see `hooks.rs`), the same code as if the
+//! without any recording hook (see `mesh/hooks.rs`), the same code as if the
 //! journal did not exist:
 //!
 //! - **Transactions.** [`Mesh::transaction`] runs a closure; if it returns
@@ -26,6 +26,11 @@
 //! - **Change tracking.** [`Mesh::take_changes`] reports which vertices,
 //!   edges, faces and attribute columns were created, removed or modified
 //!   since the last call, after edits, transactions, undos and redos.
+//!
+//! The recorder and its step log belong to the storage (`record`, a layer
+//! under the mesh: the mesh holds the recorder, and its link mutators and
+//! column setters write it); this module is the layer above the mesh that
+//! applies them: undo, redo, transactions and change reports.
 //!
 //! # What is one edit
 //!
@@ -90,7 +95,7 @@
 //! saves the slot's old value only when the merged value differs from it
 //! ([`Attribute::same_value`](crate::attr::Attribute::same_value)), and
 //! writes to slots the running operator allocated itself record nothing
-//! (`fresh_he_mut` and its siblings in `hooks.rs`). Tried and not kept:
+//! (`fresh_he_mut` and its siblings in `mesh/hooks.rs`). Tried and not kept:
 //! encoding the half-edge records a page at a time through a stack buffer
 //! (more instructions).
 //!
@@ -123,7 +128,7 @@
 //! pass, not once per element; for a few elements use
 //! [`Mesh::set_position`] or [`Mesh::set_attr`], which save one value.
 //! Inside the crate, every link write goes through the mutators in
-//! `journal/hooks.rs` (the link arrays have no `IndexMut`), every column
+//! `mesh/hooks.rs` (the link arrays have no `IndexMut`), every column
 //! write through the `Columns` rule methods, which save first; a slot born
 //! in the open step needs no saving (undo makes it vacant).
 //!
@@ -189,14 +194,11 @@
 //! [`RawEdit`]: crate::link::RawEdit
 //! [`RawEdit::finish`]: crate::link::RawEdit::finish
 
-mod codec;
-mod hooks;
-mod pages;
-mod recorder;
+mod apply;
 
-pub(crate) use hooks::{journaled, Journaling, Recorded, Unrecorded};
-use recorder::Dir;
-pub(crate) use recorder::Recorder;
+// The operators name their journaling mode by these paths.
+pub(crate) use crate::record::{journaled, Journaling, Unrecorded};
+use apply::Dir;
 
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
 
@@ -331,7 +333,7 @@ impl Mesh {
         r.history = true;
         r.max_units = limits.max_steps;
         r.max_bytes = limits.max_bytes;
-        self.trim();
+        self.r().trim();
     }
 
     /// Turn the undo history off and drop it (undo and redo logs).
@@ -471,7 +473,7 @@ impl Mesh {
         if r.group_depth == 0 {
             r.group_started = false;
             r.group_name = None;
-            self.trim();
+            self.r().trim();
         }
         self.maybe_stop();
     }
@@ -563,7 +565,7 @@ impl Mesh {
             r.undo = Default::default();
         }
         if r.group_depth == 0 {
-            self.trim();
+            self.r().trim();
         }
         self.maybe_stop();
         if failed {
@@ -713,7 +715,6 @@ impl Mesh {
         s.generation(slot as usize).unwrap_or(0)
     }
 
-    /// Close the open step if a recorder is on.
     /// Run `f` (an algorithm, a composite operator) as one undo unit named
     /// `name` while a journal records; with none, just run it (nothing
     /// else: the check is one test). The run's edits share one open step
@@ -731,80 +732,11 @@ impl Mesh {
         }
     }
 
+    /// Close the open step if a recorder is on.
     #[inline]
     fn seal_if_on(&mut self) {
         if self.rec.is_some() {
             self.seal();
-        }
-    }
-
-    /// Before a column's structure changes (added, removed): close the
-    /// open step, then record `side` as a step of its own.
-    pub(crate) fn journal_column_added(&mut self, kind: ElementKind, col: usize) {
-        if self.rec.is_none() {
-            return;
-        }
-        self.push_structure(recorder::Side::Added {
-            set: kind as u8,
-            col: col as u32,
-        });
-    }
-
-    /// Record a removed column (the journal keeps it for undo). Returns
-    /// `None` with no journal (the caller drops the column).
-    pub(crate) fn journal_column_removed(&mut self, kind: ElementKind, col: usize) -> bool {
-        if self.rec.is_none() {
-            return false;
-        }
-        self.seal();
-        let position = kind == ElementKind::Vertex && self.attrs.position == Some(col);
-        let (name, column, meta) = self.attrs.take_column(kind as usize, col);
-        self.push_structure(recorder::Side::Removed {
-            set: kind as u8,
-            col: col as u32,
-            name,
-            column,
-            meta,
-            position,
-        });
-        true
-    }
-
-    fn push_structure(&mut self, s: recorder::Side) {
-        self.r_mut().side.push(s);
-        self.seal();
-    }
-
-    fn r_mut(&mut self) -> &mut Recorder {
-        self.rec.as_deref_mut().expect("recorder")
-    }
-
-    /// Save a column's values of every slot for a raw mutable view (see
-    /// the module docs).
-    pub(crate) fn journal_bulk(&mut self, kind: ElementKind, col: usize) {
-        if self.rec.is_some() {
-            let n = self.slot_counts()[kind as usize];
-            self.save_bulk(kind as usize, col, 0..n);
-        }
-    }
-
-    /// The position column, mutably, over `range` of slots, saved first
-    /// while a journal records.
-    pub(crate) fn bulk_positions_mut(
-        &mut self,
-        range: std::ops::Range<usize>,
-    ) -> Option<&mut [[f64; 3]]> {
-        let p = self.attrs.position?;
-        if self.rec.is_some() {
-            self.save_bulk(0, p, range);
-        }
-        self.attrs.positions_mut().map(|c| c.raw_mut())
-    }
-
-    /// Save slot `i` of column `col` of `kind` before a single write.
-    pub(crate) fn journal_attr_write(&mut self, kind: ElementKind, col: usize, i: usize) {
-        if self.rec.is_some() {
-            self.attrs.columns_mut(kind).save_one(col, i);
         }
     }
 }

@@ -1,0 +1,120 @@
+//! The journal's storage part: the record of old values a mesh keeps while
+//! undo history, a transaction or change tracking is on, and the step log
+//! it seals them into.
+//!
+//! This layer sits under [`Mesh`](crate::Mesh), beside the slots and the
+//! attribute columns it records: it knows the storage (link arrays,
+//! [`Slots`], [`AttrStore`]), never the mesh. The mesh holds a
+//! [`Recorder`] while a journal is on and lends it its storage
+//! ([`Storage`]) to seal a step; the mesh's link mutators call the
+//! recorder's save primitives before each write. Undo, redo, transactions
+//! and change reports, which apply records back to a mesh, are the
+//! [`journal`](crate::journal), one layer up.
+//!
+//! | file | holds |
+//! |---|---|
+//! | `recorder.rs` | [`Recorder`] (the open step, the undo and redo logs, change tracking), its side records, and the save primitives the mesh's mutators call |
+//! | `seal.rs` | closing the open step: the changed links and column values onto the undo log, change tracking, the log's limits |
+//! | `pages.rs` | copy-on-first-touch pages of a link array |
+//! | `codec.rs` | the byte form of a sealed step |
+//!
+//! Whether an operator writes the record at all is chosen once per call,
+//! by the [`Journaling`] mode it is compiled in (see `mesh/hooks.rs`): with
+//! no recorder, the operator runs a body in which every hook compiles
+//! away.
+
+mod codec;
+mod pages;
+mod recorder;
+mod seal;
+
+pub(crate) use codec::{decode, encode, last_step, SlotEvent, Step, FACE, NEXT, ORIGIN};
+pub(crate) use recorder::{for_born, Recorder, Side, SET_ARENA};
+pub(crate) use seal::step_touches;
+
+use crate::layout::{FaceLink, Fid, HalfedgeRecord, Hid, LinkVec, Vid};
+use crate::slots::Slots;
+use crate::store::AttrStore;
+
+/// Whether an operator's writes are recorded: [`Recorded`] or
+/// [`Unrecorded`], picked once per call (see `mesh/hooks.rs`).
+pub(crate) trait Journaling {
+    /// Whether the hooks look for a recorder at all.
+    const ON: bool;
+}
+
+/// Writes record their old values while a recorder exists (one test of
+/// the mesh's recorder pointer per write).
+pub(crate) enum Recorded {}
+
+/// No recorder exists: the hooks compile to nothing.
+pub(crate) enum Unrecorded {}
+
+impl Journaling for Recorded {
+    const ON: bool = true;
+}
+
+impl Journaling for Unrecorded {
+    const ON: bool = false;
+}
+
+/// Run an operator body generic over [`Journaling`] in the mode the mesh
+/// is in: `journaled!(self.body(args..))` calls `self.body::<Recorded>`
+/// while a recorder exists, `self.body::<Unrecorded>` otherwise.
+macro_rules! journaled {
+    ($m:ident . $body:ident ( $($arg:expr),* $(,)? )) => {
+        if $m.rec.is_some() {
+            $m.$body::<$crate::record::Recorded>($($arg),*)
+        } else {
+            $m.$body::<$crate::record::Unrecorded>($($arg),*)
+        }
+    };
+}
+pub(crate) use journaled;
+
+/// A mesh's storage, lent to its [`Recorder`]: what opening and sealing a
+/// step read (the link arrays, the hole count) and write (the slots' free
+/// lists, the columns' saved values).
+pub(crate) struct Storage<'a> {
+    pub(crate) v_halfedge: &'a LinkVec<Vid, Hid>,
+    pub(crate) he: &'a LinkVec<Hid, HalfedgeRecord>,
+    pub(crate) f_halfedge: &'a LinkVec<Fid, FaceLink>,
+    /// The vertex, edge and face arenas.
+    pub(crate) slots: [&'a mut Slots; 3],
+    pub(crate) holes: usize,
+    pub(crate) attrs: &'a mut AttrStore,
+}
+
+impl Storage<'_> {
+    /// Slots allocated in each column set (vertex, half-edge, edge, face).
+    pub(crate) fn slot_counts(&self) -> [usize; 4] {
+        [
+            self.slots[0].slot_count(),
+            self.he.len(),
+            self.slots[1].slot_count(),
+            self.slots[2].slot_count(),
+        ]
+    }
+
+    /// The generation of slot `i` of arena `a` (0: never allocated).
+    pub(crate) fn generation(&self, a: usize, i: u32) -> u32 {
+        self.slots[a].generation(i as usize).unwrap_or(0)
+    }
+}
+
+/// A whole mesh's storage, kept by a step that rebuilt the mesh wholesale
+/// (applying the step swaps it with the mesh's; see
+/// `Mesh::swap_storage`).
+#[derive(Debug)]
+pub(crate) struct Snapshot {
+    pub(crate) v_halfedge: LinkVec<Vid, Hid>,
+    pub(crate) v_slots: Slots,
+    pub(crate) he: LinkVec<Hid, HalfedgeRecord>,
+    pub(crate) e_slots: Slots,
+    pub(crate) f_halfedge: LinkVec<Fid, FaceLink>,
+    pub(crate) f_slots: Slots,
+    pub(crate) holes: usize,
+    pub(crate) attrs: AttrStore,
+    /// Heap bytes it holds (the mesh's `heap_bytes` when it was taken).
+    pub(crate) bytes: usize,
+}
