@@ -200,6 +200,7 @@ mod apply;
 pub(crate) use crate::record::{journaled, Journaling, Unrecorded};
 use apply::Dir;
 
+use std::collections::HashMap;
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
 
 use crate::error::Result;
@@ -608,15 +609,39 @@ impl Mesh {
             return Changes::default();
         }
         self.seal();
-        let r = self.rec.as_deref_mut().expect("recorder");
+        let r = self.r();
         let touched = std::mem::take(&mut r.touched);
         let cols = std::mem::take(&mut r.cols);
         let rebuilt = std::mem::take(&mut r.rebuilt);
-        let mut out = Changes {
+        let [lv, le, lf] = self.element_changes(&touched);
+        let vk = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Vid::new(s).key(g)).collect();
+        let ek = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Eid::new(s).key(g)).collect();
+        let fk = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Fid::new(s).key(g)).collect();
+        Changes {
+            vertices: ElementChanges {
+                created: vk(&lv[0]),
+                removed: vk(&lv[1]),
+                modified: vk(&lv[2]),
+            },
+            edges: ElementChanges {
+                created: ek(&le[0]),
+                removed: ek(&le[1]),
+                modified: ek(&le[2]),
+            },
+            faces: ElementChanges {
+                created: fk(&lf[0]),
+                removed: fk(&lf[1]),
+                modified: fk(&lf[2]),
+            },
+            columns: self.column_changes(cols),
             rebuilt,
-            ..Changes::default()
-        };
-        // Per arena: (created, removed, modified) as (slot, generation).
+        }
+    }
+
+    /// Per arena, the (created, removed, modified) slots as (slot,
+    /// generation), sorted, from the slots written since the last take
+    /// (`touched`: slot -> generation then).
+    fn element_changes(&self, touched: &[HashMap<u32, u32>; 3]) -> [[Vec<(u32, u32)>; 3]; 3] {
         let mut lists: [[Vec<(u32, u32)>; 3]; 3] = Default::default();
         for (a, map) in touched.iter().enumerate() {
             for (&slot, &g0) in map {
@@ -666,25 +691,12 @@ impl Mesh {
             l.sort_unstable();
             l.dedup();
         }
-        let [lv, le, lf] = lists;
-        let vk = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Vid::new(s).key(g)).collect();
-        let ek = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Eid::new(s).key(g)).collect();
-        let fk = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Fid::new(s).key(g)).collect();
-        out.vertices = ElementChanges {
-            created: vk(&lv[0]),
-            removed: vk(&lv[1]),
-            modified: vk(&lv[2]),
-        };
-        out.edges = ElementChanges {
-            created: ek(&le[0]),
-            removed: ek(&le[1]),
-            modified: ek(&le[2]),
-        };
-        out.faces = ElementChanges {
-            created: fk(&lf[0]),
-            removed: fk(&lf[1]),
-            modified: fk(&lf[2]),
-        };
+        lists
+    }
+
+    /// The columns touched since the last take (`(set, id) -> (existed
+    /// then, name then)`), as they stand now, sorted by arena and name.
+    fn column_changes(&self, cols: HashMap<(u8, u64), (bool, String)>) -> Vec<ColumnChange> {
         let mut columns: Vec<ColumnChange> = cols
             .into_iter()
             .filter_map(|((set, id), (existed, name))| {
@@ -702,8 +714,7 @@ impl Mesh {
             })
             .collect();
         columns.sort_by(|a, b| (a.kind as u8, &a.name).cmp(&(b.kind as u8, &b.name)));
-        out.columns = columns;
-        out
+        columns
     }
 
     fn gen_now(&self, a: usize, slot: u32) -> u32 {
