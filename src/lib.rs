@@ -34,6 +34,19 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+// Layers, lowest first. A module may use (by `crate::` paths, outside
+// `#[cfg(test)]` code) only the modules named before it here, so imports
+// run one way and never form a cycle; tests/layers.rs checks it.
+//
+// - core: choice keys layout map slots store error record
+// - mesh: mesh
+// - access: circulate iter traverse validate view link stats attr geometry serde_impl
+// - editing: journal ops
+// - building: build shapes repair arbitrary
+// - algorithms: algo
+// - exchange: buffers io
+// - umbrella: any_error
+
 pub mod algo;
 mod any_error;
 #[cfg(feature = "quickcheck")]
@@ -66,8 +79,8 @@ pub mod traverse;
 pub mod validate;
 pub mod view;
 
-pub use build::{Built, IndexMaps, Polygons, PolygonsRef, VertexIndex};
 pub use any_error::AnyError;
+pub use build::{Built, IndexMaps, Polygons, PolygonsRef, VertexIndex};
 pub use error::{BuildError, Error, Refusal, Result};
 pub use keys::{AnyKey, EdgeKey, ElementKey, ElementKind, FaceKey, HalfedgeKey, VertexKey};
 pub use mesh::Mesh;
