@@ -20,7 +20,7 @@ use crate::error::{Error, Result};
 use crate::keys::{AnyKey, EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 pub(crate) use crate::layout::HalfedgeRecord;
 use crate::layout::{Eid, FaceLink, Fid, Hid, LinkVec, Vid};
-use crate::record::{Journaling, Recorded, Recorder};
+use crate::record::{Arena, Journaling, PerArena, Recorded, Recorder};
 use crate::slots::Slots;
 use crate::store::rules::Interpolate;
 use crate::store::{AttrStore, Column, POSITION};
@@ -81,7 +81,7 @@ impl Clone for Mesh {
             rec: None,
         };
         if let Some(r) = &self.rec {
-            r.release_held_into([&mut m.v_slots, &mut m.e_slots, &mut m.f_slots]);
+            r.release_held_into(PerArena([&mut m.v_slots, &mut m.e_slots, &mut m.f_slots]));
         }
         m
     }
@@ -444,7 +444,7 @@ impl Mesh {
         } else {
             self.set_vertex_halfedge::<J>(v, Hid::NONE);
             if let Some(r) = self.recorder::<J>() {
-                r.reused(0, i, g);
+                r.reused(Arena::Vertex, i, g);
                 self.attrs.vertex.reset(v.index());
             }
         }
@@ -464,7 +464,7 @@ impl Mesh {
                 self.set_he::<J>(h, HalfedgeRecord::VACANT);
             }
             if let Some(r) = self.recorder::<J>() {
-                r.reused(1, i, g);
+                r.reused(Arena::Edge, i, g);
                 self.attrs.edge.reset(e.index());
                 for h in e.halfedges() {
                     self.attrs.halfedge.reset(h.index());
@@ -489,7 +489,7 @@ impl Mesh {
         } else {
             self.set_face_link_raw::<J>(f, link);
             if let Some(r) = self.recorder::<J>() {
-                r.reused(2, i, g);
+                r.reused(Arena::Face, i, g);
                 self.attrs.face.reset(f.index());
             }
         }
@@ -506,7 +506,7 @@ impl Mesh {
     pub(crate) fn free_vertex<J: Journaling>(&mut self, v: Vid) {
         let generation = self.v_slots.generation_of(v.raw());
         if let Some(r) = self.recorder::<J>() {
-            r.died(0, v.raw(), generation);
+            r.died(Arena::Vertex, v.raw(), generation);
         } else {
             self.attrs.vertex.clear(v.index());
             *self.v_halfedge.unlogged_mut(v) = Hid::NONE;
@@ -519,7 +519,7 @@ impl Mesh {
     pub(crate) fn free_edge<J: Journaling>(&mut self, e: Eid) {
         let generation = self.e_slots.generation_of(e.raw());
         if let Some(r) = self.recorder::<J>() {
-            r.died(1, e.raw(), generation);
+            r.died(Arena::Edge, e.raw(), generation);
         } else {
             self.attrs.edge.clear(e.index());
             for h in e.halfedges() {
@@ -538,7 +538,7 @@ impl Mesh {
         }
         let generation = self.f_slots.generation_of(f.raw());
         if let Some(r) = self.recorder::<J>() {
-            r.died(2, f.raw(), generation);
+            r.died(Arena::Face, f.raw(), generation);
         } else {
             self.attrs.face.clear(f.index());
             *self.f_halfedge.unlogged_mut(f) = FaceLink::unset(false);

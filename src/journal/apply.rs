@@ -6,8 +6,9 @@
 //! swapped step onto the redo log. Redo is the same the other way. A
 //! transaction rolls back by undoing to a mark and dropping what it undid.
 
+use crate::keys::ElementKind;
 use crate::mesh::Mesh;
-use crate::record::{self, for_born, Recorder, Side, SlotEvent, Step, FACE, NEXT, ORIGIN};
+use crate::record::{self, for_born, Arena, Recorder, Side, SlotEvent, Step, FACE, NEXT, ORIGIN};
 use crate::slots::Slots;
 
 /// Direction of an application.
@@ -17,11 +18,11 @@ pub(crate) enum Dir {
     Redo,
 }
 
-fn slots_of_mut(m: &mut Mesh, a: usize) -> &mut Slots {
+fn slots_of_mut(m: &mut Mesh, a: Arena) -> &mut Slots {
     match a {
-        0 => &mut m.v_slots,
-        1 => &mut m.e_slots,
-        _ => &mut m.f_slots,
+        Arena::Vertex => &mut m.v_slots,
+        Arena::Edge => &mut m.e_slots,
+        Arena::Face => &mut m.f_slots,
     }
 }
 
@@ -66,16 +67,14 @@ impl Mesh {
         for s in side {
             match s {
                 Side::Col { set, col, rec } => {
-                    let (a, shift) = record::SET_ARENA[*set as usize];
+                    let (a, shift) = Arena::of_set(*set);
                     touches.extend(rec.slots().map(|i| (a, i >> shift)));
-                    let cols = self.attrs.all_mut();
-                    let c = &cols[*set as usize];
+                    let c = self.attrs.columns(*set);
                     let (id, name) = (c.meta[*col as usize].id, c.cols[*col as usize].0.clone());
                     self.r().touch_col(*set, id, true, &name);
                 }
                 Side::Added { set, col } => {
-                    let cols = self.attrs.all_mut();
-                    let c = &cols[*set as usize];
+                    let c = self.attrs.columns(*set);
                     let (id, name) = (c.meta[*col as usize].id, c.cols[*col as usize].0.clone());
                     self.r().touch_col(*set, id, true, &name);
                 }
@@ -116,7 +115,7 @@ impl Mesh {
         self.apply_step(&mut step, &mut side, dir);
         if discard {
             // The births this undo took back will never be redone.
-            for a in 0..3 {
+            for a in Arena::ALL {
                 let (s, c) = step.births[a];
                 for i in (s..s + c).rev() {
                     slots_of_mut(self, a).release(i);
@@ -155,7 +154,7 @@ impl Mesh {
                 }
             }
         }
-        for a in 0..3 {
+        for a in Arena::ALL {
             let slots = slots_of_mut(self, a);
             match dir {
                 Dir::Undo => undo_slots(slots, step, a),
@@ -194,13 +193,14 @@ impl Mesh {
     fn apply_side(&mut self, s: &mut Side) {
         match s {
             Side::Col { set, col, rec } => {
-                let set = &mut self.attrs.all_mut()[*set as usize];
+                let set = self.attrs.columns_mut(*set);
                 let ok = set.cols[*col as usize].1.apply_record(rec.as_mut());
                 debug_assert!(ok, "a column record of another type");
             }
             Side::Added { set, col } => {
                 let (set_i, col_i) = (*set, *col);
-                let position = set_i == 0 && self.attrs.position == Some(col_i as usize);
+                let position =
+                    set_i == ElementKind::Vertex && self.attrs.position == Some(col_i as usize);
                 let (name, column, meta) = self.attrs.take_column(set_i as usize, col_i as usize);
                 *s = Side::Removed {
                     set: set_i,
@@ -219,7 +219,13 @@ impl Mesh {
                     column,
                     meta,
                     position,
-                } = std::mem::replace(s, Side::Added { set: 0, col: 0 })
+                } = std::mem::replace(
+                    s,
+                    Side::Added {
+                        set: ElementKind::Vertex,
+                        col: 0,
+                    },
+                )
                 else {
                     unreachable!()
                 };
@@ -244,7 +250,7 @@ impl Mesh {
                     self.f_slots.highest_issued(),
                 ];
                 self.swap_storage(m);
-                for (a, h) in highs.into_iter().enumerate() {
+                for (a, h) in Arena::ALL.into_iter().zip(highs) {
                     let slots = slots_of_mut(self, a);
                     if h >= slots.base() {
                         slots.raise_fresh(h.saturating_add(2));
@@ -299,7 +305,7 @@ impl Mesh {
 }
 
 /// Undo arena `a`'s slot events of `step`.
-fn undo_slots(slots: &mut Slots, step: &Step, a: usize) {
+fn undo_slots(slots: &mut Slots, step: &Step, a: Arena) {
     let (start, count) = step.births[a];
     let runs = &step.born_live[a];
     if !runs.is_empty() {
@@ -324,7 +330,7 @@ fn undo_slots(slots: &mut Slots, step: &Step, a: usize) {
 }
 
 /// Redo arena `a`'s slot events of `step`.
-fn redo_slots(slots: &mut Slots, step: &Step, a: usize) {
+fn redo_slots(slots: &mut Slots, step: &Step, a: Arena) {
     let (start, count) = step.births[a];
     let runs = &step.born_live[a];
     for_born(start, count, runs, |i, live| {

@@ -207,6 +207,7 @@ use crate::error::Result;
 use crate::keys::{EdgeKey, ElementKind, FaceKey, VertexKey};
 use crate::layout::{Eid, Fid, Vid};
 use crate::mesh::Mesh;
+use crate::record::{Arena, PerArena};
 
 /// Bounds on the undo history. `None`: unbounded.
 ///
@@ -305,13 +306,6 @@ impl Changes {
             && !self.rebuilt
     }
 }
-
-const KINDS: [ElementKind; 4] = [
-    ElementKind::Vertex,
-    ElementKind::Halfedge,
-    ElementKind::Edge,
-    ElementKind::Face,
-];
 
 impl Mesh {
     /// Turn the undo history on (or change its limits). Edits from now on
@@ -613,7 +607,7 @@ impl Mesh {
         let touched = std::mem::take(&mut r.touched);
         let cols = std::mem::take(&mut r.cols);
         let rebuilt = std::mem::take(&mut r.rebuilt);
-        let [lv, le, lf] = self.element_changes(&touched);
+        let PerArena([lv, le, lf]) = self.element_changes(&touched);
         let vk = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Vid::new(s).key(g)).collect();
         let ek = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Eid::new(s).key(g)).collect();
         let fk = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Fid::new(s).key(g)).collect();
@@ -641,9 +635,12 @@ impl Mesh {
     /// Per arena, the (created, removed, modified) slots as (slot,
     /// generation), sorted, from the slots written since the last take
     /// (`touched`: slot -> generation then).
-    fn element_changes(&self, touched: &[HashMap<u32, u32>; 3]) -> [[Vec<(u32, u32)>; 3]; 3] {
-        let mut lists: [[Vec<(u32, u32)>; 3]; 3] = Default::default();
-        for (a, map) in touched.iter().enumerate() {
+    fn element_changes(
+        &self,
+        touched: &PerArena<HashMap<u32, u32>>,
+    ) -> PerArena<[Vec<(u32, u32)>; 3]> {
+        let mut lists: PerArena<[Vec<(u32, u32)>; 3]> = Default::default();
+        for (a, map) in Arena::ALL.into_iter().zip(touched.iter()) {
             for (&slot, &g0) in map {
                 let now = self.gen_now(a, slot);
                 let (live0, live1) = (g0 & 1 == 1, now & 1 == 1);
@@ -662,9 +659,9 @@ impl Mesh {
         // Faces and vertices around a written live edge changed too.
         let mut extra_f = Vec::new();
         let mut extra_v = Vec::new();
-        for (&slot, _) in touched[1].iter() {
+        for (&slot, _) in touched[Arena::Edge].iter() {
             let e = Eid::new(slot);
-            if self.gen_now(1, slot) & 1 == 0 {
+            if self.gen_now(Arena::Edge, slot) & 1 == 0 {
                 continue;
             }
             for h in e.halfedges() {
@@ -677,7 +674,7 @@ impl Mesh {
                 }
             }
         }
-        for (a, extra) in [(2usize, extra_f), (0usize, extra_v)] {
+        for (a, extra) in [(Arena::Face, extra_f), (Arena::Vertex, extra_v)] {
             for slot in extra {
                 if !touched[a].contains_key(&slot) {
                     let g = self.gen_now(a, slot);
@@ -696,11 +693,13 @@ impl Mesh {
 
     /// The columns touched since the last take (`(set, id) -> (existed
     /// then, name then)`), as they stand now, sorted by arena and name.
-    fn column_changes(&self, cols: HashMap<(u8, u64), (bool, String)>) -> Vec<ColumnChange> {
+    fn column_changes(
+        &self,
+        cols: HashMap<(ElementKind, u64), (bool, String)>,
+    ) -> Vec<ColumnChange> {
         let mut columns: Vec<ColumnChange> = cols
             .into_iter()
-            .filter_map(|((set, id), (existed, name))| {
-                let kind = KINDS[set as usize];
+            .filter_map(|((kind, id), (existed, name))| {
                 let cols = self.attrs.columns(kind);
                 let now = cols.meta.iter().position(|m| m.id == id);
                 let change = match (existed, now) {
@@ -717,11 +716,11 @@ impl Mesh {
         columns
     }
 
-    fn gen_now(&self, a: usize, slot: u32) -> u32 {
+    fn gen_now(&self, a: Arena, slot: u32) -> u32 {
         let s = match a {
-            0 => &self.v_slots,
-            1 => &self.e_slots,
-            _ => &self.f_slots,
+            Arena::Vertex => &self.v_slots,
+            Arena::Edge => &self.e_slots,
+            Arena::Face => &self.f_slots,
         };
         s.generation(slot as usize).unwrap_or(0)
     }

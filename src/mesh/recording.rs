@@ -7,7 +7,7 @@
 
 use super::Mesh;
 use crate::keys::ElementKind;
-use crate::record::{Recorder, Side, Snapshot, Step, Storage};
+use crate::record::{PerArena, Recorder, Side, Snapshot, Step, Storage};
 
 impl Mesh {
     /// The recorder and the storage it records, borrowed apart (`None`
@@ -30,7 +30,7 @@ impl Mesh {
             v_halfedge,
             he,
             f_halfedge,
-            slots: [v_slots, e_slots, f_slots],
+            slots: PerArena([v_slots, e_slots, f_slots]),
             holes: *holes,
             attrs,
         };
@@ -78,7 +78,7 @@ impl Mesh {
         let (r, mut s) = self.recording().expect("no recorder");
         if r.tracking {
             r.rebuilt = true;
-            for t in &mut r.touched {
+            for t in r.touched.iter_mut() {
                 t.clear();
             }
             r.cols.clear();
@@ -151,7 +151,7 @@ impl Mesh {
     /// Save a column's values in `range` for a bulk writer (a raw mutable
     /// view), if a journal is on: the open step closes first, the writes
     /// become a step of their own at the next edit.
-    fn save_bulk(&mut self, set: usize, col: usize, range: std::ops::Range<usize>) {
+    fn save_bulk(&mut self, set: ElementKind, col: usize, range: std::ops::Range<usize>) {
         if let Some((r, mut s)) = self.recording() {
             r.save_bulk(&mut s, set, col, range);
         }
@@ -164,7 +164,7 @@ impl Mesh {
             return;
         }
         self.push_structure(Side::Added {
-            set: kind as u8,
+            set: kind,
             col: col as u32,
         });
     }
@@ -179,7 +179,7 @@ impl Mesh {
         let position = kind == ElementKind::Vertex && self.attrs.position == Some(col);
         let (name, column, meta) = self.attrs.take_column(kind as usize, col);
         self.push_structure(Side::Removed {
-            set: kind as u8,
+            set: kind,
             col: col as u32,
             name,
             column,
@@ -199,7 +199,7 @@ impl Mesh {
     pub(crate) fn journal_bulk(&mut self, kind: ElementKind, col: usize) {
         if self.rec.is_some() {
             let n = self.slot_counts()[kind as usize];
-            self.save_bulk(kind as usize, col, 0..n);
+            self.save_bulk(kind, col, 0..n);
         }
     }
 
@@ -211,7 +211,7 @@ impl Mesh {
     ) -> Option<&mut [[f64; 3]]> {
         let p = self.attrs.position?;
         if self.rec.is_some() {
-            self.save_bulk(0, p, range);
+            self.save_bulk(ElementKind::Vertex, p, range);
         }
         self.attrs.positions_mut().map(|c| c.raw_mut())
     }

@@ -22,6 +22,7 @@
 //! undo step. The slot events are the forward history in both logs; the
 //! direction of application decides what they do.
 
+use super::{Arena, PerArena};
 use crate::layout::{FaceLink, Fid, HalfedgeRecord, Hid, Vid};
 use crate::slots::State;
 
@@ -60,19 +61,19 @@ pub(crate) struct Step {
     pub(crate) vh: Vec<(Vid, Hid)>,
     pub(crate) fl: Vec<(Fid, FaceLink)>,
     /// Per arena (vertex, edge, face): new slots at the end, `(start, count)`.
-    pub(crate) births: [(u32, u32); 3],
+    pub(crate) births: PerArena<(u32, u32)>,
     /// Per arena: which of the new slots were live when the step was
     /// sealed, as run lengths over `births` alternating live, vacant,
     /// live, ... (the first run may be empty). Empty: all live. A new slot
     /// that died (or died and was reused) in the step has no event: this
     /// and the slot's generation say all that undo and redo need.
-    pub(crate) born_live: [Vec<u32>; 3],
+    pub(crate) born_live: PerArena<Vec<u32>>,
     /// Per arena: deaths and reuses of slots older than the step, in order.
-    pub(crate) events: [Vec<SlotEvent>; 3],
+    pub(crate) events: PerArena<Vec<SlotEvent>>,
     /// Hole count after minus before.
     pub(crate) holes: i64,
     /// Per arena: the fast-path state before and after, where it changed.
-    pub(crate) states: [Option<(State, State)>; 3],
+    pub(crate) states: PerArena<Option<(State, State)>>,
     /// Side records of the step.
     pub(crate) side: u32,
 }
@@ -84,15 +85,15 @@ impl Step {
         self.he.clear();
         self.vh.clear();
         self.fl.clear();
-        self.births = [(0, 0); 3];
-        for r in &mut self.born_live {
+        self.births = PerArena::default();
+        for r in self.born_live.iter_mut() {
             r.clear();
         }
-        for e in &mut self.events {
+        for e in self.events.iter_mut() {
             e.clear();
         }
         self.holes = 0;
-        self.states = [None; 3];
+        self.states = PerArena::default();
         self.side = 0;
     }
 
@@ -296,10 +297,10 @@ fn encode_body(step: &Step, body: &mut Vec<u8>, direct: Option<DirectHe<'_>>) {
     }
     if step.states.iter().any(Option::is_some) {
         let mut bits = 0u64;
-        for (a, s) in step.states.iter().enumerate() {
-            if let Some((before, after)) = s {
-                let b = 1 | state_bits(*before) << 1 | state_bits(*after) << 3;
-                bits |= b << (5 * a);
+        for a in Arena::ALL {
+            if let Some((before, after)) = step.states[a] {
+                let b = 1 | state_bits(before) << 1 | state_bits(after) << 3;
+                bits |= b << (5 * a.index());
             }
         }
         put(body, bits);
@@ -355,19 +356,20 @@ fn encode_links(step: &Step, body: &mut Vec<u8>) {
 /// deaths and reuses of older slots, per arena.
 fn encode_slots(step: &Step, body: &mut Vec<u8>) {
     let mut mask = 0u64;
-    for a in 0..3 {
+    for a in Arena::ALL {
+        let i = a.index();
         if step.births[a].1 > 0 {
-            mask |= 1 << a;
+            mask |= 1 << i;
         }
         if !step.events[a].is_empty() {
-            mask |= 8 << a;
+            mask |= 8 << i;
         }
         if step.births[a].1 > 0 && !step.born_live[a].is_empty() {
-            mask |= 64 << a;
+            mask |= 64 << i;
         }
     }
     put(body, mask);
-    for (&(start, count), runs) in step.births.iter().zip(&step.born_live) {
+    for (&(start, count), runs) in step.births.iter().zip(step.born_live.iter()) {
         if count > 0 {
             put(body, u64::from(count));
             put(body, u64::from(start));
@@ -380,7 +382,7 @@ fn encode_slots(step: &Step, body: &mut Vec<u8>) {
             }
         }
     }
-    for events in &step.events {
+    for events in step.events.iter() {
         if events.is_empty() {
             continue;
         }
@@ -505,8 +507,8 @@ pub(crate) fn decode(body: &[u8], step: &mut Step) {
     }
     if flags & STATES != 0 {
         let bits = r.get();
-        for a in 0..3 {
-            let b = bits >> (5 * a);
+        for a in Arena::ALL {
+            let b = bits >> (5 * a.index());
             if b & 1 == 1 {
                 step.states[a] = Some((bits_state(b >> 1), bits_state(b >> 3)));
             }
@@ -547,12 +549,12 @@ fn decode_halfedges(r: &mut Reader<'_>, step: &mut Step) {
 /// The slots part (see [`encode_slots`]).
 fn decode_slots(r: &mut Reader<'_>, step: &mut Step) {
     let mask = r.get();
-    for a in 0..3 {
-        if mask & (1 << a) != 0 {
+    for a in Arena::ALL {
+        if mask & (1 << a.index()) != 0 {
             let count = r.get32();
             let start = r.get32();
             step.births[a] = (start, count);
-            if mask & (64 << a) != 0 {
+            if mask & (64 << a.index()) != 0 {
                 let n = r.get() as usize;
                 let runs = &mut step.born_live[a];
                 let mut left = count;
@@ -565,8 +567,8 @@ fn decode_slots(r: &mut Reader<'_>, step: &mut Step) {
             }
         }
     }
-    for a in 0..3 {
-        if mask & (8 << a) == 0 {
+    for a in Arena::ALL {
+        if mask & (8 << a.index()) == 0 {
             continue;
         }
         let n = r.get() as usize;
@@ -615,22 +617,22 @@ mod tests {
         s.vh.push((Vid::new(7), Hid::NONE));
         s.vh.push((Vid::new(8), Hid::new(0)));
         s.fl.push((Fid::new(2), FaceLink::new(Hid::new(5), true)));
-        s.births = [(10, 2), (0, 0), (100_000, 7)];
-        s.born_live[2] = vec![0, 3, 2, 2];
-        s.events[1].push(SlotEvent::Death {
+        s.births = PerArena([(10, 2), (0, 0), (100_000, 7)]);
+        s.born_live[Arena::Face] = vec![0, 3, 2, 2];
+        s.events[Arena::Edge].push(SlotEvent::Death {
             slot: 5,
             generation: 3,
         });
-        s.events[1].push(SlotEvent::Reuse {
+        s.events[Arena::Edge].push(SlotEvent::Reuse {
             slot: 5,
             generation: 7,
         });
-        s.events[1].push(SlotEvent::Death {
+        s.events[Arena::Edge].push(SlotEvent::Death {
             slot: 1,
             generation: u32::MAX - 2,
         });
         s.holes = -2;
-        s.states[2] = Some((State::Intact, State::Mixed));
+        s.states[Arena::Face] = Some((State::Intact, State::Mixed));
         s.side = 3;
         s
     }

@@ -29,12 +29,83 @@ mod recorder;
 mod seal;
 
 pub(crate) use codec::{decode, encode, last_step, SlotEvent, Step, FACE, NEXT, ORIGIN};
-pub(crate) use recorder::{for_born, Recorder, Side, SET_ARENA};
+pub(crate) use recorder::{for_born, Recorder, Side};
 pub(crate) use seal::step_touches;
 
+use std::ops::{Index, IndexMut};
+
+use crate::keys::ElementKind;
 use crate::layout::{FaceLink, Fid, HalfedgeRecord, Hid, LinkVec, Vid};
 use crate::slots::Slots;
 use crate::store::AttrStore;
+
+/// One of the three slot arenas a step records births and deaths in
+/// (half-edges live in their edge's slot).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub(crate) enum Arena {
+    Vertex,
+    Edge,
+    Face,
+}
+
+impl Arena {
+    /// The arenas, in the order of every per-arena record.
+    pub(crate) const ALL: [Arena; 3] = [Arena::Vertex, Arena::Edge, Arena::Face];
+
+    /// Its position in per-arena records (and its bit in the codec's masks).
+    #[inline]
+    pub(crate) const fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The arena whose slots a column set's slots live in, and the shift
+    /// from a column slot to an arena slot (a half-edge's edge is half its
+    /// slot).
+    pub(crate) const fn of_set(set: ElementKind) -> (Arena, u32) {
+        match set {
+            ElementKind::Vertex => (Arena::Vertex, 0),
+            ElementKind::Halfedge => (Arena::Edge, 1),
+            ElementKind::Edge => (Arena::Edge, 0),
+            ElementKind::Face => (Arena::Face, 0),
+        }
+    }
+}
+
+/// One value per [`Arena`], indexed by it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct PerArena<T>(pub(crate) [T; 3]);
+
+impl<T> PerArena<T> {
+    /// `f` of every arena, in [`Arena::ALL`] order.
+    pub(crate) fn from_fn(mut f: impl FnMut(Arena) -> T) -> Self {
+        PerArena(Arena::ALL.map(&mut f))
+    }
+
+    /// The values, in [`Arena::ALL`] order.
+    pub(crate) fn iter(&self) -> std::slice::Iter<'_, T> {
+        self.0.iter()
+    }
+
+    /// The values, mutably, in [`Arena::ALL`] order.
+    pub(crate) fn iter_mut(&mut self) -> std::slice::IterMut<'_, T> {
+        self.0.iter_mut()
+    }
+}
+
+impl<T> Index<Arena> for PerArena<T> {
+    type Output = T;
+    #[inline]
+    fn index(&self, a: Arena) -> &T {
+        &self.0[a.index()]
+    }
+}
+
+impl<T> IndexMut<Arena> for PerArena<T> {
+    #[inline]
+    fn index_mut(&mut self, a: Arena) -> &mut T {
+        &mut self.0[a.index()]
+    }
+}
 
 /// Whether an operator's writes are recorded: [`Recorded`] or
 /// [`Unrecorded`], picked once per call (see `mesh/hooks.rs`).
@@ -79,8 +150,7 @@ pub(crate) struct Storage<'a> {
     pub(crate) v_halfedge: &'a LinkVec<Vid, Hid>,
     pub(crate) he: &'a LinkVec<Hid, HalfedgeRecord>,
     pub(crate) f_halfedge: &'a LinkVec<Fid, FaceLink>,
-    /// The vertex, edge and face arenas.
-    pub(crate) slots: [&'a mut Slots; 3],
+    pub(crate) slots: PerArena<&'a mut Slots>,
     pub(crate) holes: usize,
     pub(crate) attrs: &'a mut AttrStore,
 }
@@ -89,15 +159,15 @@ impl Storage<'_> {
     /// Slots allocated in each column set (vertex, half-edge, edge, face).
     pub(crate) fn slot_counts(&self) -> [usize; 4] {
         [
-            self.slots[0].slot_count(),
+            self.slots[Arena::Vertex].slot_count(),
             self.he.len(),
-            self.slots[1].slot_count(),
-            self.slots[2].slot_count(),
+            self.slots[Arena::Edge].slot_count(),
+            self.slots[Arena::Face].slot_count(),
         ]
     }
 
     /// The generation of slot `i` of arena `a` (0: never allocated).
-    pub(crate) fn generation(&self, a: usize, i: u32) -> u32 {
+    pub(crate) fn generation(&self, a: Arena, i: u32) -> u32 {
         self.slots[a].generation(i as usize).unwrap_or(0)
     }
 }

@@ -18,25 +18,25 @@ use std::collections::{HashMap, VecDeque};
 
 use super::codec::{SlotEvent, Step, FACE, NEXT, ORIGIN};
 use super::pages::PageLog;
-use super::Snapshot;
+use super::{Arena, PerArena, Snapshot};
+use crate::keys::ElementKind;
 use crate::layout::{FaceLink, Fid, HalfedgeRecord, Hid, Vid};
 use crate::slots::State;
 use crate::store::{ColumnMeta, ErasedColumn, Record};
 
 /// A record kept beside a step's bytes.
 pub(crate) enum Side {
-    /// Values of one column: `set` in [`ElementKind`](crate::keys::ElementKind)
-    /// order, column index.
+    /// Values of column `col` of set `set`.
     Col {
-        set: u8,
+        set: ElementKind,
         col: u32,
         rec: Box<dyn Record>,
     },
     /// A column was added at `col` (applying it removes the column).
-    Added { set: u8, col: u32 },
+    Added { set: ElementKind, col: u32 },
     /// A column was removed from `col` (applying it puts it back).
     Removed {
-        set: u8,
+        set: ElementKind,
         col: u32,
         name: String,
         column: Box<dyn ErasedColumn>,
@@ -134,19 +134,19 @@ pub(crate) struct Recorder {
     pub(crate) group_name: Option<String>,
     // ----- the open step
     /// Slot counts (vertex, edge, face) when it began.
-    pub(crate) start: [u32; 3],
+    pub(crate) start: PerArena<u32>,
     /// Old links of the pages the open step wrote (half-edge, vertex,
     /// face arrays), copied on the first write to each page; slots born in
     /// the open step are never saved (undo makes them vacant).
     pub(crate) he: PageLog<HalfedgeRecord>,
     pub(crate) vh: PageLog<Hid>,
     pub(crate) fl: PageLog<FaceLink>,
-    pub(crate) events: [Vec<SlotEvent>; 3],
+    pub(crate) events: PerArena<Vec<SlotEvent>>,
     /// Per arena: deaths of slots born in the open step (0: all of them
     /// are live, the seal need not look).
-    pub(crate) born_deaths: [u32; 3],
+    pub(crate) born_deaths: PerArena<u32>,
     pub(crate) holes0: usize,
-    pub(crate) states0: [State; 3],
+    pub(crate) states0: PerArena<State>,
     pub(crate) side: Vec<Side>,
     /// Bulk writers saved column values (sealed as a step of their own).
     pub(crate) bulk: bool,
@@ -156,9 +156,9 @@ pub(crate) struct Recorder {
     // ----- tracking
     /// Per arena: slot -> generation at the last `take_changes` (even:
     /// vacant or not yet allocated).
-    pub(crate) touched: [HashMap<u32, u32>; 3],
+    pub(crate) touched: PerArena<HashMap<u32, u32>>,
     /// `(set, column id) -> (existed at the last take, name)`.
-    pub(crate) cols: HashMap<(u8, u64), (bool, String)>,
+    pub(crate) cols: HashMap<(ElementKind, u64), (bool, String)>,
     pub(crate) rebuilt: bool,
     // ----- scratch
     pub(crate) step: Step,
@@ -175,36 +175,32 @@ impl std::fmt::Debug for Recorder {
     }
 }
 
-/// Which arena a column set's slots belong to, and the shift from slot to
-/// arena slot (half-edge columns share their edge's arena).
-pub(crate) const SET_ARENA: [(usize, u32); 4] = [(0, 0), (1, 1), (1, 0), (2, 0)];
-
 impl Recorder {
     /// Record `h`'s links before a write to them: the first write to each
     /// page of slots that existed when the open step began copies the page
     /// (the oldest values are the ones to put back).
     #[inline(always)]
     pub(crate) fn save_he(&mut self, h: Hid, live: &[HalfedgeRecord]) {
-        self.he.save(h.raw(), self.start[1] * 2, live);
+        self.he.save(h.raw(), self.start[Arena::Edge] * 2, live);
     }
 
     /// Record `v`'s half-edge before a write (first write per page).
     #[inline(always)]
     pub(crate) fn save_vh(&mut self, v: Vid, live: &[Hid]) {
-        self.vh.save(v.raw(), self.start[0], live);
+        self.vh.save(v.raw(), self.start[Arena::Vertex], live);
     }
 
     /// Record `f`'s link before a write (first write per page).
     #[inline(always)]
     pub(crate) fn save_fl(&mut self, f: Fid, live: &[FaceLink]) {
-        self.fl.save(f.raw(), self.start[2], live);
+        self.fl.save(f.raw(), self.start[Arena::Face], live);
     }
 
     /// A vacant slot of arena `a` was taken from the free list. A slot
     /// born in the open step records nothing: the seal reads whether it is
     /// live from the arena (see [`Step::born_live`]).
     #[inline]
-    pub(crate) fn reused(&mut self, a: usize, slot: u32, generation: u32) {
+    pub(crate) fn reused(&mut self, a: Arena, slot: u32, generation: u32) {
         if slot < self.start[a] {
             self.events[a].push(SlotEvent::Reuse { slot, generation });
         }
@@ -214,7 +210,7 @@ impl Recorder {
     /// For a slot born in the open step only a count goes up (the seal
     /// then looks at which new slots are vacant).
     #[inline]
-    pub(crate) fn died(&mut self, a: usize, slot: u32, generation: u32) {
+    pub(crate) fn died(&mut self, a: Arena, slot: u32, generation: u32) {
         if slot < self.start[a] {
             self.events[a].push(SlotEvent::Death { slot, generation });
         } else {
@@ -227,13 +223,13 @@ impl Recorder {
         self.history || self.tx_depth > 0
     }
 
-    pub(crate) fn touch(&mut self, a: usize, slot: u32, baseline: u32) {
+    pub(crate) fn touch(&mut self, a: Arena, slot: u32, baseline: u32) {
         if self.tracking {
             self.touched[a].entry(slot).or_insert(baseline);
         }
     }
 
-    pub(crate) fn touch_col(&mut self, set: u8, id: u64, existed: bool, name: &str) {
+    pub(crate) fn touch_col(&mut self, set: ElementKind, id: u64, existed: bool, name: &str) {
         if self.tracking {
             self.cols
                 .entry((set, id))

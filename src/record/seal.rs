@@ -6,8 +6,9 @@
 //! (`Mesh::seal` and its siblings in `mesh/recording.rs`).
 
 use super::codec::{self, SlotEvent, Step};
-use super::recorder::{changed_fields, Log, Recorder, Side, SET_ARENA};
-use super::Storage;
+use super::recorder::{changed_fields, Log, Recorder, Side};
+use super::{Arena, PerArena, Storage};
+use crate::keys::ElementKind;
 use crate::layout::{Fid, Hid, Vid};
 use crate::slots::Slots;
 use crate::store::AttrStore;
@@ -20,9 +21,9 @@ impl Recorder {
         s.attrs.halfedge.log_below = sc[1];
         s.attrs.edge.log_below = sc[2];
         s.attrs.face.log_below = sc[3];
-        self.start = s.slots.each_ref().map(|a| a.slot_count() as u32);
+        self.start = PerArena::from_fn(|a| s.slots[a].slot_count() as u32);
         self.holes0 = s.holes;
-        self.states0 = s.slots.each_ref().map(|a| a.state());
+        self.states0 = PerArena::from_fn(|a| s.slots[a].state());
     }
 
     /// Close the open step: encode it onto the undo log (while steps are
@@ -56,7 +57,7 @@ impl Recorder {
             }
         }
         // Give the event lists back (their capacity) and open the next step.
-        for a in 0..3 {
+        for a in Arena::ALL {
             std::mem::swap(&mut step.events[a], &mut self.events[a]);
             self.events[a].clear();
         }
@@ -67,7 +68,7 @@ impl Recorder {
     /// The vertex and face links the open step saved and changed, in
     /// `step`, ascending by slot.
     fn seal_links(&mut self, s: &Storage<'_>, step: &mut Step) {
-        let [v0, _, f0] = self.start;
+        let (v0, f0) = (self.start[Arena::Vertex], self.start[Arena::Face]);
         // Room for every saved slot at once (no regrowth of a large step).
         step.vh.reserve(self.vh.saved_slots());
         step.fl.reserve(self.fl.saved_slots());
@@ -87,7 +88,7 @@ impl Recorder {
         step.he.reserve(self.he.saved_slots());
         let live = s.he;
         self.he
-            .drain_changed(self.start[1] * 2, live.as_slice(), |h, old| {
+            .drain_changed(self.start[Arena::Edge] * 2, live.as_slice(), |h, old| {
                 let h = Hid::new(h);
                 if let Some(mask) = changed_fields(live[h], old) {
                     step.he.push((h, mask, old));
@@ -98,7 +99,7 @@ impl Recorder {
     /// Per arena: the new slots (and which of them are live), the deaths
     /// and reuses of older ones, the fast-path state; and the hole count.
     fn seal_slots(&mut self, s: &Storage<'_>, step: &mut Step) {
-        for a in 0..3 {
+        for a in Arena::ALL {
             let slots = &*s.slots[a];
             let count = slots.slot_count() as u32;
             if count > self.start[a] {
@@ -121,11 +122,11 @@ impl Recorder {
     fn seal_bulk(&mut self, s: &mut Storage<'_>) {
         self.bulk = false;
         let mut side = Vec::new();
-        for (set_i, set) in s.attrs.all_mut().into_iter().enumerate() {
+        for (kind, set) in KINDS.into_iter().zip(s.attrs.all_mut()) {
             for (ci, (_, c)) in set.cols.iter_mut().enumerate() {
                 if let Some(rec) = c.seal_bulk() {
                     side.push(Side::Col {
-                        set: set_i as u8,
+                        set: kind,
                         col: ci as u32,
                         rec,
                     });
@@ -174,7 +175,7 @@ impl Recorder {
             self.group_started = true;
         }
         if direct {
-            let e0 = self.start[1] * 2;
+            let e0 = self.start[Arena::Edge] * 2;
             let pages = &mut self.he;
             let live = s.he;
             let max = pages.saved_slots();
@@ -262,8 +263,8 @@ impl Recorder {
     }
 
     /// Put the slots the redo log holds vacant back on the free lists of
-    /// `slots` (vertex, edge, face): a copy of the mesh has no redo log.
-    pub(crate) fn release_held_into(&self, slots: [&mut Slots; 3]) {
+    /// `slots`: a copy of the mesh has no redo log.
+    pub(crate) fn release_held_into(&self, mut slots: PerArena<&mut Slots>) {
         if self.redo.is_empty() {
             return;
         }
@@ -278,12 +279,12 @@ impl Recorder {
     pub(crate) fn save_bulk(
         &mut self,
         s: &mut Storage<'_>,
-        set: usize,
+        set: ElementKind,
         col: usize,
         range: std::ops::Range<usize>,
     ) {
         self.seal(s);
-        s.attrs.all_mut()[set].cols[col].1.save_bulk(range);
+        s.attrs.columns_mut(set).cols[col].1.save_bulk(range);
         self.bulk = true;
     }
 
@@ -317,10 +318,18 @@ impl Recorder {
     }
 }
 
+/// The column sets in [`AttrStore::all_mut`] order.
+const KINDS: [ElementKind; 4] = [
+    ElementKind::Vertex,
+    ElementKind::Halfedge,
+    ElementKind::Edge,
+    ElementKind::Face,
+];
+
 /// Every column's saved values (a set whose columns saved nothing is
 /// passed over), as side records.
 fn seal_columns(attrs: &mut AttrStore, side: &mut Vec<Side>) {
-    for (set_i, set) in attrs.all_mut().into_iter().enumerate() {
+    for (kind, set) in KINDS.into_iter().zip(attrs.all_mut()) {
         if !set.dirty {
             continue;
         }
@@ -328,7 +337,7 @@ fn seal_columns(attrs: &mut AttrStore, side: &mut Vec<Side>) {
         for (ci, (_, c)) in set.cols.iter_mut().enumerate() {
             if let Some(rec) = c.seal_saved() {
                 side.push(Side::Col {
-                    set: set_i as u8,
+                    set: kind,
                     col: ci as u32,
                     rec,
                 });
@@ -338,12 +347,12 @@ fn seal_columns(attrs: &mut AttrStore, side: &mut Vec<Side>) {
 }
 
 /// The `(arena, slot)`s whose links or slot a step touched.
-pub(crate) fn step_touches(step: &Step) -> Vec<(usize, u32)> {
-    let mut touches: Vec<(usize, u32)> = Vec::new();
-    touches.extend(step.he.iter().map(|e| (1, e.0.edge().raw())));
-    touches.extend(step.vh.iter().map(|e| (0, e.0.raw())));
-    touches.extend(step.fl.iter().map(|e| (2, e.0.raw())));
-    for a in 0..3 {
+pub(crate) fn step_touches(step: &Step) -> Vec<(Arena, u32)> {
+    let mut touches: Vec<(Arena, u32)> = Vec::new();
+    touches.extend(step.he.iter().map(|e| (Arena::Edge, e.0.edge().raw())));
+    touches.extend(step.vh.iter().map(|e| (Arena::Vertex, e.0.raw())));
+    touches.extend(step.fl.iter().map(|e| (Arena::Face, e.0.raw())));
+    for a in Arena::ALL {
         let (s, c) = step.births[a];
         touches.extend((s..s + c).map(|i| (a, i)));
         touches.extend(step.events[a].iter().map(|e| match *e {
@@ -356,25 +365,23 @@ pub(crate) fn step_touches(step: &Step) -> Vec<(usize, u32)> {
 /// The slots a forward step's side records wrote (added to `touches`), and
 /// the columns they touched: `(set, column id, existed before, name)`.
 fn side_touches(
-    attrs: &mut AttrStore,
+    attrs: &AttrStore,
     side: &[Side],
-    touches: &mut Vec<(usize, u32)>,
-) -> Vec<(u8, u64, bool, String)> {
+    touches: &mut Vec<(Arena, u32)>,
+) -> Vec<(ElementKind, u64, bool, String)> {
     let mut col_touch = Vec::new();
     for s in side {
         match s {
             Side::Col { set, col, rec } => {
-                let (a, shift) = SET_ARENA[*set as usize];
+                let (a, shift) = Arena::of_set(*set);
                 touches.extend(rec.slots().map(|i| (a, i >> shift)));
-                let cols = attrs.all_mut();
-                let c = &cols[*set as usize];
+                let c = attrs.columns(*set);
                 if let Some(m) = c.meta.get(*col as usize) {
                     col_touch.push((*set, m.id, true, c.cols[*col as usize].0.clone()));
                 }
             }
             Side::Added { set, col } => {
-                let cols = attrs.all_mut();
-                let c = &cols[*set as usize];
+                let c = attrs.columns(*set);
                 col_touch.push((
                     *set,
                     c.meta[*col as usize].id,
@@ -396,7 +403,7 @@ fn side_touches(
 /// The slots a redo log holds vacant in the mesh as it is: births of the
 /// steps it would redo first, down to the first wholesale step (those
 /// below it are slots of another mesh, which that step holds).
-fn held_births(log: &Log) -> Vec<(usize, u32)> {
+fn held_births(log: &Log) -> Vec<(Arena, u32)> {
     let mut out = Vec::new();
     let mut d = Step::default();
     let mut end = log.bytes.len();
@@ -413,7 +420,7 @@ fn held_births(log: &Log) -> Vec<(usize, u32)> {
             break;
         }
         side -= n;
-        for a in 0..3 {
+        for a in Arena::ALL {
             let (s0, count) = d.births[a];
             out.extend((s0..s0 + count).rev().map(|i| (a, i)));
         }
