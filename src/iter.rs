@@ -22,6 +22,53 @@ use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 use crate::layout::{Eid, Fid};
 use crate::mesh::Mesh;
 
+/// The element iterators (keys, in slot order). They live here, beside
+/// the iterator types, so that `mesh.rs` does not import this module.
+impl Mesh {
+    /// Every vertex key, in slot order; `len()` is exact.
+    #[inline]
+    pub fn vertices(&self) -> Vertices<'_> {
+        Vertices::new(self)
+    }
+
+    /// Every half-edge key, in slot order (twins adjacent); `len()` is
+    /// exact.
+    #[inline]
+    pub fn halfedges(&self) -> Halfedges<'_> {
+        Halfedges::new(self)
+    }
+
+    /// Every edge key, in slot order; `len()` is exact.
+    #[inline]
+    pub fn edges(&self) -> Edges<'_> {
+        Edges::new(self)
+    }
+
+    /// Every face key, holes excluded, in slot order; `len()` is exact.
+    ///
+    /// ```
+    /// let cube = meshloom::shapes::cube();
+    /// let faces = cube.faces();
+    /// assert_eq!(faces.len(), cube.face_count());
+    /// ```
+    #[inline]
+    pub fn faces(&self) -> Faces<'_> {
+        Faces::not_holes(self)
+    }
+
+    /// Every hole face key, in slot order; `len()` is exact.
+    #[inline]
+    pub fn holes(&self) -> Faces<'_> {
+        Faces::holes(self)
+    }
+
+    /// Every face key, holes included, in slot order; `len()` is exact.
+    #[inline]
+    pub fn faces_and_holes(&self) -> Faces<'_> {
+        Faces::both(self)
+    }
+}
+
 /// Which faces a face iterator yields.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Which {
@@ -39,7 +86,7 @@ pub struct Vertices<'m> {
 }
 
 impl<'m> Vertices<'m> {
-    pub(crate) fn new(mesh: &'m Mesh) -> Self {
+    fn new(mesh: &'m Mesh) -> Self {
         Vertices {
             mesh,
             slot: 0,
@@ -83,7 +130,7 @@ pub struct Edges<'m> {
 }
 
 impl<'m> Edges<'m> {
-    pub(crate) fn new(mesh: &'m Mesh) -> Self {
+    fn new(mesh: &'m Mesh) -> Self {
         Edges {
             mesh,
             slot: 0,
@@ -134,7 +181,7 @@ pub struct Halfedges<'m> {
 }
 
 impl<'m> Halfedges<'m> {
-    pub(crate) fn new(mesh: &'m Mesh) -> Self {
+    fn new(mesh: &'m Mesh) -> Self {
         Halfedges {
             edges: Edges::new(mesh),
             pending: None,
@@ -177,15 +224,15 @@ pub struct Faces<'m> {
 }
 
 impl<'m> Faces<'m> {
-    pub(crate) fn not_holes(mesh: &'m Mesh) -> Self {
+    fn not_holes(mesh: &'m Mesh) -> Self {
         Faces::of(mesh, Which::Faces, mesh.face_count())
     }
 
-    pub(crate) fn holes(mesh: &'m Mesh) -> Self {
+    fn holes(mesh: &'m Mesh) -> Self {
         Faces::of(mesh, Which::Holes, mesh.hole_count())
     }
 
-    pub(crate) fn both(mesh: &'m Mesh) -> Self {
+    fn both(mesh: &'m Mesh) -> Self {
         Faces::of(mesh, Which::Both, mesh.face_count() + mesh.hole_count())
     }
 

@@ -117,7 +117,21 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+// Layers, lowest first. A module may use (by `crate::` paths, outside
+// `#[cfg(test)]` code) only the modules named before it here, so imports
+// run one way and never form a cycle; tests/layers.rs checks it.
+//
+// - core: choice keys layout map slots store error record
+// - mesh: mesh
+// - access: circulate iter traverse validate view link stats attr geometry serde_impl
+// - editing: journal ops
+// - building: build shapes repair arbitrary
+// - algorithms: algo
+// - exchange: buffers io
+// - umbrella: any_error
+
 pub mod algo;
+mod any_error;
 #[cfg(feature = "quickcheck")]
 pub mod arbitrary;
 pub mod attr;
@@ -136,6 +150,7 @@ pub mod link;
 pub mod map;
 mod mesh;
 pub mod ops;
+mod record;
 pub mod repair;
 #[cfg(feature = "serde")]
 mod serde_impl;
@@ -148,8 +163,9 @@ pub mod validate;
 mod vec3;
 pub mod view;
 
+pub use any_error::AnyError;
 pub use build::{Built, IndexMaps, Polygons, PolygonsRef, VertexIndex};
-pub use error::{AnyError, BuildError, Error, Refusal, Result};
+pub use error::{BuildError, Error, Refusal, Result};
 pub use keys::{AnyKey, EdgeKey, ElementKey, ElementKind, FaceKey, HalfedgeKey, VertexKey};
 pub use mesh::Mesh;
 pub use stats::{ComponentStats, Stats};

@@ -45,10 +45,10 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::journal::Recorded;
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 use crate::layout::Vid;
 use crate::mesh::Mesh;
+use crate::record::Recorded;
 
 /// A guard for raw link edits; see the [module docs](self).
 ///

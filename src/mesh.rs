@@ -17,14 +17,16 @@
 //! generations are checked once, at the public door.
 
 use crate::error::{Error, Result};
-use crate::iter::{Edges, Faces, Halfedges, Vertices};
-use crate::journal::{Journaling, Recorded, Recorder};
 use crate::keys::{AnyKey, EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 pub(crate) use crate::layout::HalfedgeRecord;
 use crate::layout::{Eid, FaceLink, Fid, Hid, LinkVec, Vid};
+use crate::record::{Arena, Journaling, PerArena, Recorded, Recorder};
 use crate::slots::Slots;
 use crate::store::rules::Interpolate;
 use crate::store::{AttrStore, Column, POSITION};
+
+mod hooks;
+mod recording;
 
 /// A polygon mesh stored as a half-edge graph.
 ///
@@ -79,7 +81,7 @@ impl Clone for Mesh {
             rec: None,
         };
         if let Some(r) = &self.rec {
-            r.release_held_into(&mut m);
+            r.release_held_into(PerArena([&mut m.v_slots, &mut m.e_slots, &mut m.f_slots]));
         }
         m
     }
@@ -221,51 +223,6 @@ impl Mesh {
             + self.f_halfedge.capacity() * std::mem::size_of::<FaceLink>()
             + self.f_slots.heap_bytes()
             + self.attrs.heap_bytes()
-    }
-
-    // ----- element iterators (keys, in slot order) -------------------------
-
-    /// Every vertex key, in slot order; `len()` is exact.
-    #[inline]
-    pub fn vertices(&self) -> Vertices<'_> {
-        Vertices::new(self)
-    }
-
-    /// Every half-edge key, in slot order (twins adjacent); `len()` is
-    /// exact.
-    #[inline]
-    pub fn halfedges(&self) -> Halfedges<'_> {
-        Halfedges::new(self)
-    }
-
-    /// Every edge key, in slot order; `len()` is exact.
-    #[inline]
-    pub fn edges(&self) -> Edges<'_> {
-        Edges::new(self)
-    }
-
-    /// Every face key, holes excluded, in slot order; `len()` is exact.
-    ///
-    /// ```
-    /// let cube = meshloom::shapes::cube();
-    /// let faces = cube.faces();
-    /// assert_eq!(faces.len(), cube.face_count());
-    /// ```
-    #[inline]
-    pub fn faces(&self) -> Faces<'_> {
-        Faces::not_holes(self)
-    }
-
-    /// Every hole face key, in slot order; `len()` is exact.
-    #[inline]
-    pub fn holes(&self) -> Faces<'_> {
-        Faces::holes(self)
-    }
-
-    /// Every face key, holes included, in slot order; `len()` is exact.
-    #[inline]
-    pub fn faces_and_holes(&self) -> Faces<'_> {
-        Faces::both(self)
     }
 
     // ----- keys by slot (for walking while editing) --------------------------
@@ -617,7 +574,7 @@ impl Mesh {
         } else {
             self.set_vertex_halfedge::<J>(v, Hid::NONE);
             if let Some(r) = self.recorder::<J>() {
-                r.reused(0, i, g);
+                r.reused(Arena::Vertex, i, g);
                 self.attrs.vertex.reset(v.index());
             }
         }
@@ -637,7 +594,7 @@ impl Mesh {
                 self.set_he::<J>(h, HalfedgeRecord::VACANT);
             }
             if let Some(r) = self.recorder::<J>() {
-                r.reused(1, i, g);
+                r.reused(Arena::Edge, i, g);
                 self.attrs.edge.reset(e.index());
                 for h in e.halfedges() {
                     self.attrs.halfedge.reset(h.index());
@@ -662,7 +619,7 @@ impl Mesh {
         } else {
             self.set_face_link_raw::<J>(f, link);
             if let Some(r) = self.recorder::<J>() {
-                r.reused(2, i, g);
+                r.reused(Arena::Face, i, g);
                 self.attrs.face.reset(f.index());
             }
         }
@@ -679,7 +636,7 @@ impl Mesh {
     pub(crate) fn free_vertex<J: Journaling>(&mut self, v: Vid) {
         let generation = self.v_slots.generation_of(v.raw());
         if let Some(r) = self.recorder::<J>() {
-            r.died(0, v.raw(), generation);
+            r.died(Arena::Vertex, v.raw(), generation);
         } else {
             self.attrs.vertex.clear(v.index());
             *self.v_halfedge.unlogged_mut(v) = Hid::NONE;
@@ -692,7 +649,7 @@ impl Mesh {
     pub(crate) fn free_edge<J: Journaling>(&mut self, e: Eid) {
         let generation = self.e_slots.generation_of(e.raw());
         if let Some(r) = self.recorder::<J>() {
-            r.died(1, e.raw(), generation);
+            r.died(Arena::Edge, e.raw(), generation);
         } else {
             self.attrs.edge.clear(e.index());
             for h in e.halfedges() {
@@ -711,7 +668,7 @@ impl Mesh {
         }
         let generation = self.f_slots.generation_of(f.raw());
         if let Some(r) = self.recorder::<J>() {
-            r.died(2, f.raw(), generation);
+            r.died(Arena::Face, f.raw(), generation);
         } else {
             self.attrs.face.clear(f.index());
             *self.f_halfedge.unlogged_mut(f) = FaceLink::unset(false);

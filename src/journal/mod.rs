@@ -4,7 +4,7 @@
 //! Three services share one recorder, which is off until one of them is
 //! asked for (then [`Mesh`] carries it). With it off, the journal costs
 //! one test per operator call: the operator then runs a body compiled
-//! without any recording hook (see `hooks.rs`), the same code as if the
+//! without any recording hook (see `mesh/hooks.rs`), the same code as if the
 //! journal did not exist:
 //!
 //! - **Transactions.** [`Mesh::transaction`] runs a closure; if it returns
@@ -26,6 +26,11 @@
 //! - **Change tracking.** [`Mesh::take_changes`] reports which vertices,
 //!   edges, faces and attribute columns were created, removed or modified
 //!   since the last call, after edits, transactions, undos and redos.
+//!
+//! The recorder and its step log belong to the storage (`record`, a layer
+//! under the mesh: the mesh holds the recorder, and its link mutators and
+//! column setters write it); this module is the layer above the mesh that
+//! applies them: undo, redo, transactions and change reports.
 //!
 //! # What is one edit
 //!
@@ -96,7 +101,7 @@
 //! pass, not once per element; for a few elements use
 //! [`Mesh::set_position`] or [`Mesh::set_attr`], which save one value.
 //! Inside the crate, every link write goes through the mutators in
-//! `journal/hooks.rs` (the link arrays have no `IndexMut`), every column
+//! `mesh/hooks.rs` (the link arrays have no `IndexMut`), every column
 //! write through the `Columns` rule methods, which save first; a slot born
 //! in the open step needs no saving (undo makes it vacant).
 //!
@@ -162,21 +167,20 @@
 //! [`RawEdit`]: crate::link::RawEdit
 //! [`RawEdit::finish`]: crate::link::RawEdit::finish
 
-mod codec;
-mod hooks;
-mod pages;
-mod recorder;
+mod apply;
 
-pub(crate) use hooks::{journaled, Journaling, Recorded, Unrecorded};
-use recorder::Dir;
-pub(crate) use recorder::Recorder;
+// The operators name their journaling mode by these paths.
+pub(crate) use crate::record::{journaled, Journaling, Unrecorded};
+use apply::Dir;
 
+use std::collections::HashMap;
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
 
 use crate::error::Result;
 use crate::keys::{EdgeKey, ElementKind, FaceKey, VertexKey};
 use crate::layout::{Eid, Fid, Vid};
 use crate::mesh::Mesh;
+use crate::record::{Arena, PerArena};
 
 /// Bounds on the undo history. `None`: unbounded.
 ///
@@ -276,13 +280,6 @@ impl Changes {
     }
 }
 
-const KINDS: [ElementKind; 4] = [
-    ElementKind::Vertex,
-    ElementKind::Halfedge,
-    ElementKind::Edge,
-    ElementKind::Face,
-];
-
 impl Mesh {
     /// Turn the undo history on (or change its limits). Edits from now on
     /// can be undone.
@@ -304,7 +301,7 @@ impl Mesh {
         r.history = true;
         r.max_units = limits.max_steps;
         r.max_bytes = limits.max_bytes;
-        self.trim();
+        self.r().trim();
     }
 
     /// Turn the undo history off and drop it (undo and redo logs).
@@ -444,7 +441,7 @@ impl Mesh {
         if r.group_depth == 0 {
             r.group_started = false;
             r.group_name = None;
-            self.trim();
+            self.r().trim();
         }
         self.maybe_stop();
     }
@@ -550,7 +547,7 @@ impl Mesh {
             r.undo = Default::default();
         }
         if r.group_depth == 0 {
-            self.trim();
+            self.r().trim();
         }
         self.maybe_stop();
         if failed {
@@ -593,17 +590,44 @@ impl Mesh {
             return Changes::default();
         }
         self.seal();
-        let r = self.rec.as_deref_mut().expect("recorder");
+        let r = self.r();
         let touched = std::mem::take(&mut r.touched);
         let cols = std::mem::take(&mut r.cols);
         let rebuilt = std::mem::take(&mut r.rebuilt);
-        let mut out = Changes {
+        let PerArena([lv, le, lf]) = self.element_changes(&touched);
+        let vk = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Vid::new(s).key(g)).collect();
+        let ek = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Eid::new(s).key(g)).collect();
+        let fk = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Fid::new(s).key(g)).collect();
+        Changes {
+            vertices: ElementChanges {
+                created: vk(&lv[0]),
+                removed: vk(&lv[1]),
+                modified: vk(&lv[2]),
+            },
+            edges: ElementChanges {
+                created: ek(&le[0]),
+                removed: ek(&le[1]),
+                modified: ek(&le[2]),
+            },
+            faces: ElementChanges {
+                created: fk(&lf[0]),
+                removed: fk(&lf[1]),
+                modified: fk(&lf[2]),
+            },
+            columns: self.column_changes(cols),
             rebuilt,
-            ..Changes::default()
-        };
-        // Per arena: (created, removed, modified) as (slot, generation).
-        let mut lists: [[Vec<(u32, u32)>; 3]; 3] = Default::default();
-        for (a, map) in touched.iter().enumerate() {
+        }
+    }
+
+    /// Per arena, the (created, removed, modified) slots as (slot,
+    /// generation), sorted, from the slots written since the last take
+    /// (`touched`: slot -> generation then).
+    fn element_changes(
+        &self,
+        touched: &PerArena<HashMap<u32, u32>>,
+    ) -> PerArena<[Vec<(u32, u32)>; 3]> {
+        let mut lists: PerArena<[Vec<(u32, u32)>; 3]> = Default::default();
+        for (a, map) in Arena::ALL.into_iter().zip(touched.iter()) {
             for (&slot, &g0) in map {
                 let now = self.gen_now(a, slot);
                 let (live0, live1) = (g0 & 1 == 1, now & 1 == 1);
@@ -622,9 +646,9 @@ impl Mesh {
         // Faces and vertices around a written live edge changed too.
         let mut extra_f = Vec::new();
         let mut extra_v = Vec::new();
-        for (&slot, _) in touched[1].iter() {
+        for (&slot, _) in touched[Arena::Edge].iter() {
             let e = Eid::new(slot);
-            if self.gen_now(1, slot) & 1 == 0 {
+            if self.gen_now(Arena::Edge, slot) & 1 == 0 {
                 continue;
             }
             for h in e.halfedges() {
@@ -637,7 +661,7 @@ impl Mesh {
                 }
             }
         }
-        for (a, extra) in [(2usize, extra_f), (0usize, extra_v)] {
+        for (a, extra) in [(Arena::Face, extra_f), (Arena::Vertex, extra_v)] {
             for slot in extra {
                 if !touched[a].contains_key(&slot) {
                     let g = self.gen_now(a, slot);
@@ -651,29 +675,18 @@ impl Mesh {
             l.sort_unstable();
             l.dedup();
         }
-        let [lv, le, lf] = lists;
-        let vk = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Vid::new(s).key(g)).collect();
-        let ek = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Eid::new(s).key(g)).collect();
-        let fk = |l: &[(u32, u32)]| l.iter().map(|&(s, g)| Fid::new(s).key(g)).collect();
-        out.vertices = ElementChanges {
-            created: vk(&lv[0]),
-            removed: vk(&lv[1]),
-            modified: vk(&lv[2]),
-        };
-        out.edges = ElementChanges {
-            created: ek(&le[0]),
-            removed: ek(&le[1]),
-            modified: ek(&le[2]),
-        };
-        out.faces = ElementChanges {
-            created: fk(&lf[0]),
-            removed: fk(&lf[1]),
-            modified: fk(&lf[2]),
-        };
+        lists
+    }
+
+    /// The columns touched since the last take (`(set, id) -> (existed
+    /// then, name then)`), as they stand now, sorted by arena and name.
+    fn column_changes(
+        &self,
+        cols: HashMap<(ElementKind, u64), (bool, String)>,
+    ) -> Vec<ColumnChange> {
         let mut columns: Vec<ColumnChange> = cols
             .into_iter()
-            .filter_map(|((set, id), (existed, name))| {
-                let kind = KINDS[set as usize];
+            .filter_map(|((kind, id), (existed, name))| {
                 let cols = self.attrs.columns(kind);
                 let now = cols.meta.iter().position(|m| m.id == id);
                 let change = match (existed, now) {
@@ -687,20 +700,18 @@ impl Mesh {
             })
             .collect();
         columns.sort_by(|a, b| (a.kind as u8, &a.name).cmp(&(b.kind as u8, &b.name)));
-        out.columns = columns;
-        out
+        columns
     }
 
-    fn gen_now(&self, a: usize, slot: u32) -> u32 {
+    fn gen_now(&self, a: Arena, slot: u32) -> u32 {
         let s = match a {
-            0 => &self.v_slots,
-            1 => &self.e_slots,
-            _ => &self.f_slots,
+            Arena::Vertex => &self.v_slots,
+            Arena::Edge => &self.e_slots,
+            Arena::Face => &self.f_slots,
         };
         s.generation(slot as usize).unwrap_or(0)
     }
 
-    /// Close the open step if a recorder is on.
     /// Run `f` (an algorithm, a composite operator) as one undo unit named
     /// `name` while a journal records; with none, just run it (nothing
     /// else: the check is one test). The run's edits share one open step
@@ -729,80 +740,11 @@ impl Mesh {
         }
     }
 
+    /// Close the open step if a recorder is on.
     #[inline]
     fn seal_if_on(&mut self) {
         if self.rec.is_some() {
             self.seal();
-        }
-    }
-
-    /// Before a column's structure changes (added, removed): close the
-    /// open step, then record `side` as a step of its own.
-    pub(crate) fn journal_column_added(&mut self, kind: ElementKind, col: usize) {
-        if self.rec.is_none() {
-            return;
-        }
-        self.push_structure(recorder::Side::Added {
-            set: kind as u8,
-            col: col as u32,
-        });
-    }
-
-    /// Record a removed column (the journal keeps it for undo). Returns
-    /// `None` with no journal (the caller drops the column).
-    pub(crate) fn journal_column_removed(&mut self, kind: ElementKind, col: usize) -> bool {
-        if self.rec.is_none() {
-            return false;
-        }
-        self.seal();
-        let position = kind == ElementKind::Vertex && self.attrs.position == Some(col);
-        let (name, column, meta) = self.attrs.take_column(kind as usize, col);
-        self.push_structure(recorder::Side::Removed {
-            set: kind as u8,
-            col: col as u32,
-            name,
-            column,
-            meta,
-            position,
-        });
-        true
-    }
-
-    fn push_structure(&mut self, s: recorder::Side) {
-        self.r_mut().side.push(s);
-        self.seal();
-    }
-
-    fn r_mut(&mut self) -> &mut Recorder {
-        self.rec.as_deref_mut().expect("recorder")
-    }
-
-    /// Save a column's values of every slot for a raw mutable view (see
-    /// the module docs).
-    pub(crate) fn journal_bulk(&mut self, kind: ElementKind, col: usize) {
-        if self.rec.is_some() {
-            let n = self.slot_counts()[kind as usize];
-            self.save_bulk(kind as usize, col, 0..n);
-        }
-    }
-
-    /// The position column, mutably, over `range` of slots, saved first
-    /// while a journal records.
-    pub(crate) fn bulk_positions_mut(
-        &mut self,
-        range: std::ops::Range<usize>,
-    ) -> Option<&mut [[f64; 3]]> {
-        let p = self.attrs.position?;
-        if self.rec.is_some() {
-            self.save_bulk(0, p, range);
-        }
-        self.attrs.positions_mut().map(|c| c.raw_mut())
-    }
-
-    /// Save slot `i` of column `col` of `kind` before a single write.
-    pub(crate) fn journal_attr_write(&mut self, kind: ElementKind, col: usize, i: usize) {
-        if self.rec.is_some() {
-            self.attrs.columns_mut(kind).save_one(col, i);
         }
     }
 }

@@ -4,10 +4,10 @@
 use super::ear_clip::{self, clip_ears, inside, QUEUED_FROM};
 use super::refuse;
 use crate::error::{Refusal, Result};
-use crate::journal::{journaled, Journaling, Recorded};
 use crate::keys::FaceKey;
 use crate::layout::{Fid, Hid};
 use crate::mesh::Mesh;
+use crate::record::{journaled, Journaling, Recorded};
 use crate::vec3::{dist2, newell};
 
 /// One ear: corners `l, m, r` (indices into the face's corner list) and the

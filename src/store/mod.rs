@@ -14,10 +14,13 @@
 //! | `attribute.rs` | [`Attribute`]: a value type that names its rule |
 //! | `plan.rs` | `ColumnPlan`: the sources of every slot of a column rebuilt wholesale (subdivision) |
 //! | `value.rs` | [`Value`] and [`ValueType`], the portable form of a value (file formats, serde, dynamic columns) |
+//! | `float_serde.rs` | serde for a `Value`'s floats, NaN and the infinities included |
 //! | this file | `Columns` (one arena's columns) and `AttrStore` (the four arenas) |
 
 mod attribute;
 mod column;
+#[cfg(feature = "serde")]
+mod float_serde;
 pub(crate) mod plan;
 pub mod rule;
 pub mod rules;

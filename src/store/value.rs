@@ -37,9 +37,9 @@ pub enum Value {
     /// 32-bit float. NaN and the infinities are values like any other;
     /// serde carries them as the strings `"NaN"`, `"inf"` and `"-inf"` in
     /// human-readable formats (JSON has no such numbers).
-    F32(#[cfg_attr(feature = "serde", serde(with = "crate::serde_impl::float32"))] f32),
+    F32(#[cfg_attr(feature = "serde", serde(with = "crate::store::float_serde::float32"))] f32),
     /// 64-bit float; non-finite values as for [`Value::F32`].
-    F64(#[cfg_attr(feature = "serde", serde(with = "crate::serde_impl::float64"))] f64),
+    F64(#[cfg_attr(feature = "serde", serde(with = "crate::store::float_serde::float64"))] f64),
     /// Text.
     Text(String),
     /// A list (a PLY list property, a fixed-size vector).

@@ -9,64 +9,20 @@
 //! write is the plain store and nothing else, as if the journal did not
 //! exist) or as `body::<Recorded>` (the hooks record the old value of
 //! every slot that existed when the open step began, once per slot per
-//! step). Code outside the operators (raw edits, setters) uses
-//! `Recorded`, whose hooks check the recorder themselves.
+//! step, through the [`Recorder`]'s save primitives). Code outside the
+//! operators (raw edits, setters) uses `Recorded`, whose hooks check the
+//! recorder themselves.
 //!
 //! Slot births and deaths are recorded in [`Mesh::alloc_vertex`] and its
 //! siblings (generic the same way), attribute writes in
 //! [`Columns`](crate::store::Columns) (`save`, one compare with a bound
 //! that is 0 with no journal).
+//!
+//! [`Unrecorded`]: crate::record::Unrecorded
 
-use crate::journal::Recorder;
 use crate::layout::{FaceLink, Fid, HalfedgeRecord, Hid, Vid};
 use crate::mesh::Mesh;
-
-/// Whether an operator's writes are recorded: [`Recorded`] or
-/// [`Unrecorded`], picked once per call (see the module docs).
-pub(crate) trait Journaling {
-    /// Whether the hooks look for a recorder at all.
-    const ON: bool;
-}
-
-/// Writes record their old values while a recorder exists (one test of
-/// [`Mesh::rec`] per write).
-pub(crate) enum Recorded {}
-
-/// No recorder exists: the hooks compile to nothing.
-pub(crate) enum Unrecorded {}
-
-impl Journaling for Recorded {
-    const ON: bool = true;
-}
-
-impl Journaling for Unrecorded {
-    const ON: bool = false;
-}
-
-/// Run an operator body generic over [`Journaling`] in the mode the mesh
-/// is in: `journaled!(self.body(args..))` calls `self.body::<Recorded>`
-/// while a recorder exists, `self.body::<Unrecorded>` otherwise; on a mesh
-/// with a column whose rule can fail, as a transaction, so that a rule's
-/// failure refuses the operator (its body returns a `Result`) and leaves
-/// the mesh unchanged. `journaled!(unguarded self.body(args..))` leaves
-/// that to the caller.
-macro_rules! journaled {
-    ($m:ident . $body:ident ( $($arg:expr),* $(,)? )) => {
-        if $m.attrs.may_fail() {
-            $m.transaction(|m| m.$body::<$crate::journal::Recorded>($($arg),*))
-        } else {
-            $crate::journal::journaled!(unguarded $m.$body($($arg),*))
-        }
-    };
-    (unguarded $m:ident . $body:ident ( $($arg:expr),* $(,)? )) => {
-        if $m.rec.is_some() {
-            $m.$body::<$crate::journal::Recorded>($($arg),*)
-        } else {
-            $m.$body::<$crate::journal::Unrecorded>($($arg),*)
-        }
-    };
-}
-pub(crate) use journaled;
+use crate::record::{Journaling, Recorder};
 
 impl Mesh {
     /// The recorder, if `J` records and one exists (with `Unrecorded`, a

@@ -22,6 +22,7 @@
 //! undo step. The slot events are the forward history in both logs; the
 //! direction of application decides what they do.
 
+use super::{Arena, PerArena};
 use crate::layout::{FaceLink, Fid, HalfedgeRecord, Hid, Vid};
 use crate::slots::State;
 
@@ -60,19 +61,19 @@ pub(crate) struct Step {
     pub(crate) vh: Vec<(Vid, Hid)>,
     pub(crate) fl: Vec<(Fid, FaceLink)>,
     /// Per arena (vertex, edge, face): new slots at the end, `(start, count)`.
-    pub(crate) births: [(u32, u32); 3],
+    pub(crate) births: PerArena<(u32, u32)>,
     /// Per arena: which of the new slots were live when the step was
     /// sealed, as run lengths over `births` alternating live, vacant,
     /// live, ... (the first run may be empty). Empty: all live. A new slot
     /// that died (or died and was reused) in the step has no event: this
     /// and the slot's generation say all that undo and redo need.
-    pub(crate) born_live: [Vec<u32>; 3],
+    pub(crate) born_live: PerArena<Vec<u32>>,
     /// Per arena: deaths and reuses of slots older than the step, in order.
-    pub(crate) events: [Vec<SlotEvent>; 3],
+    pub(crate) events: PerArena<Vec<SlotEvent>>,
     /// Hole count after minus before.
     pub(crate) holes: i64,
     /// Per arena: the fast-path state before and after, where it changed.
-    pub(crate) states: [Option<(State, State)>; 3],
+    pub(crate) states: PerArena<Option<(State, State)>>,
     /// Side records of the step.
     pub(crate) side: u32,
 }
@@ -84,15 +85,15 @@ impl Step {
         self.he.clear();
         self.vh.clear();
         self.fl.clear();
-        self.births = [(0, 0); 3];
-        for r in &mut self.born_live {
+        self.births = PerArena::default();
+        for r in self.born_live.iter_mut() {
             r.clear();
         }
-        for e in &mut self.events {
+        for e in self.events.iter_mut() {
             e.clear();
         }
         self.holes = 0;
-        self.states = [None; 3];
+        self.states = PerArena::default();
         self.side = 0;
     }
 
@@ -261,9 +262,9 @@ impl HeWriter {
 /// `step`'s body, appended to `body` (half-edge records by `direct`, if
 /// given: see [`encode_with`]).
 fn encode_body(step: &Step, body: &mut Vec<u8>, direct: Option<DirectHe<'_>>) {
-    let mut flags = u64::from(step.more);
     let has_slots =
         step.births.iter().any(|b| b.1 > 0) || step.events.iter().any(|e| !e.is_empty());
+    let mut flags = u64::from(step.more);
     for (on, bit) in [
         (!step.he.is_empty() || direct.is_some(), HE),
         (!step.vh.is_empty(), VH),
@@ -278,20 +279,8 @@ fn encode_body(step: &Step, body: &mut Vec<u8>, direct: Option<DirectHe<'_>>) {
         }
     }
     put(body, flags);
-    if let Some((max, write)) = direct {
-        // The count, padded to the bound's width, goes before the records.
-        let width = varint_len(max as u64);
-        let at = body.len();
-        body.resize(at + width, 0);
-        let mut w = HeWriter::default();
-        write(body, &mut w);
-        debug_assert!(w.count <= max, "more half-edge records than the bound");
-        let mut c = w.count as u64;
-        for b in &mut body[at..at + width - 1] {
-            *b = (c & 0x7f) as u8 | 0x80;
-            c >>= 7;
-        }
-        body[at + width - 1] = c as u8;
+    if let Some(direct) = direct {
+        encode_direct_halfedges(body, direct);
     } else if !step.he.is_empty() {
         put(body, step.he.len() as u64);
         let mut w = HeWriter::default();
@@ -299,6 +288,47 @@ fn encode_body(step: &Step, body: &mut Vec<u8>, direct: Option<DirectHe<'_>>) {
             w.push(body, h, mask, r);
         }
     }
+    encode_links(step, body);
+    if has_slots {
+        encode_slots(step, body);
+    }
+    if step.holes != 0 {
+        put(body, zigzag(step.holes));
+    }
+    if step.states.iter().any(Option::is_some) {
+        let mut bits = 0u64;
+        for a in Arena::ALL {
+            if let Some((before, after)) = step.states[a] {
+                let b = 1 | state_bits(before) << 1 | state_bits(after) << 3;
+                bits |= b << (5 * a.index());
+            }
+        }
+        put(body, bits);
+    }
+    if step.side > 0 {
+        put(body, u64::from(step.side));
+    }
+}
+
+/// The half-edge records the caller writes (see [`encode_with`]), after
+/// their count, padded to the width of the bound.
+fn encode_direct_halfedges(body: &mut Vec<u8>, (max, write): DirectHe<'_>) {
+    let width = varint_len(max as u64);
+    let at = body.len();
+    body.resize(at + width, 0);
+    let mut w = HeWriter::default();
+    write(body, &mut w);
+    debug_assert!(w.count <= max, "more half-edge records than the bound");
+    let mut c = w.count as u64;
+    for b in &mut body[at..at + width - 1] {
+        *b = (c & 0x7f) as u8 | 0x80;
+        c >>= 7;
+    }
+    body[at + width - 1] = c as u8;
+}
+
+/// The vertex and face links of `step`.
+fn encode_links(step: &Step, body: &mut Vec<u8>) {
     if !step.vh.is_empty() {
         put(body, step.vh.len() as u64);
         let (mut slot, mut prev) = (0u32, 0u32);
@@ -320,65 +350,53 @@ fn encode_body(step: &Step, body: &mut Vec<u8>, direct: Option<DirectHe<'_>>) {
             prev = h;
         }
     }
-    if has_slots {
-        let mut mask = 0u64;
-        for a in 0..3 {
-            if step.births[a].1 > 0 {
-                mask |= 1 << a;
-            }
-            if !step.events[a].is_empty() {
-                mask |= 8 << a;
-            }
-            if step.births[a].1 > 0 && !step.born_live[a].is_empty() {
-                mask |= 64 << a;
-            }
+}
+
+/// The slots part: births (and which new slots are vacant), then the
+/// deaths and reuses of older slots, per arena.
+fn encode_slots(step: &Step, body: &mut Vec<u8>) {
+    let mut mask = 0u64;
+    for a in Arena::ALL {
+        let i = a.index();
+        if step.births[a].1 > 0 {
+            mask |= 1 << i;
         }
-        put(body, mask);
-        for (&(start, count), runs) in step.births.iter().zip(&step.born_live) {
-            if count > 0 {
-                put(body, u64::from(count));
-                put(body, u64::from(start));
-                if !runs.is_empty() {
-                    // The last run is what the others leave of `count`.
-                    put(body, runs.len() as u64);
-                    for &r in &runs[..runs.len() - 1] {
-                        put(body, u64::from(r));
-                    }
+        if !step.events[a].is_empty() {
+            mask |= 8 << i;
+        }
+        if step.births[a].1 > 0 && !step.born_live[a].is_empty() {
+            mask |= 64 << i;
+        }
+    }
+    put(body, mask);
+    for (&(start, count), runs) in step.births.iter().zip(step.born_live.iter()) {
+        if count > 0 {
+            put(body, u64::from(count));
+            put(body, u64::from(start));
+            if !runs.is_empty() {
+                // The last run is what the others leave of `count`.
+                put(body, runs.len() as u64);
+                for &r in &runs[..runs.len() - 1] {
+                    put(body, u64::from(r));
                 }
             }
         }
-        for events in &step.events {
-            if events.is_empty() {
-                continue;
-            }
-            put(body, events.len() as u64);
-            let mut prev = 0u32;
-            for e in events {
-                let (slot, generation, kind) = match *e {
-                    SlotEvent::Death { slot, generation } => (slot, generation, 0),
-                    SlotEvent::Reuse { slot, generation } => (slot, generation, 1),
-                };
-                put(body, diff(slot, prev) << 1 | kind);
-                put(body, u64::from(generation));
-                prev = slot;
-            }
+    }
+    for events in step.events.iter() {
+        if events.is_empty() {
+            continue;
         }
-    }
-    if step.holes != 0 {
-        put(body, zigzag(step.holes));
-    }
-    if step.states.iter().any(Option::is_some) {
-        let mut bits = 0u64;
-        for (a, s) in step.states.iter().enumerate() {
-            if let Some((before, after)) = s {
-                let b = 1 | state_bits(*before) << 1 | state_bits(*after) << 3;
-                bits |= b << (5 * a);
-            }
+        put(body, events.len() as u64);
+        let mut prev = 0u32;
+        for e in events {
+            let (slot, generation, kind) = match *e {
+                SlotEvent::Death { slot, generation } => (slot, generation, 0),
+                SlotEvent::Reuse { slot, generation } => (slot, generation, 1),
+            };
+            put(body, diff(slot, prev) << 1 | kind);
+            put(body, u64::from(generation));
+            prev = slot;
         }
-        put(body, bits);
-    }
-    if step.side > 0 {
-        put(body, u64::from(step.side));
     }
 }
 
@@ -459,28 +477,7 @@ pub(crate) fn decode(body: &[u8], step: &mut Step) {
     let flags = r.get();
     step.more = flags & MORE != 0;
     if flags & HE != 0 {
-        let n = r.get() as usize;
-        step.he.reserve(n);
-        let (mut slot, mut o, mut nx, mut f) = (0u32, 0u32, 0u32, 0u32);
-        for _ in 0..n {
-            let k = r.get();
-            slot += (k >> 3) as u32;
-            let mask = (k & 7) as u8;
-            let mut rec = HalfedgeRecord::VACANT;
-            if mask & ORIGIN != 0 {
-                o = undiff(o, r.get());
-                rec.origin = Vid::new(o);
-            }
-            if mask & NEXT != 0 {
-                nx = undiff(nx, r.get());
-                rec.next = Hid::new(nx);
-            }
-            if mask & FACE != 0 {
-                f = undiff(f, r.get());
-                rec.face = Fid::new(f);
-            }
-            step.he.push((Hid::new(slot), mask, rec));
-        }
+        decode_halfedges(&mut r, step);
     }
     if flags & VH != 0 {
         let n = r.get() as usize;
@@ -503,56 +500,15 @@ pub(crate) fn decode(body: &[u8], step: &mut Step) {
         }
     }
     if flags & SLOTS != 0 {
-        let mask = r.get();
-        for a in 0..3 {
-            if mask & (1 << a) != 0 {
-                let count = r.get32();
-                let start = r.get32();
-                step.births[a] = (start, count);
-                if mask & (64 << a) != 0 {
-                    let n = r.get() as usize;
-                    let runs = &mut step.born_live[a];
-                    let mut left = count;
-                    for _ in 1..n {
-                        let k = r.get32();
-                        runs.push(k);
-                        left -= k;
-                    }
-                    runs.push(left);
-                }
-            }
-        }
-        for a in 0..3 {
-            if mask & (8 << a) == 0 {
-                continue;
-            }
-            let n = r.get() as usize;
-            let mut prev = 0u32;
-            for _ in 0..n {
-                let k = r.get();
-                let slot = undiff(prev, k >> 1);
-                prev = slot;
-                step.events[a].push(if k & 1 == 1 {
-                    SlotEvent::Reuse {
-                        slot,
-                        generation: r.get32(),
-                    }
-                } else {
-                    SlotEvent::Death {
-                        slot,
-                        generation: r.get32(),
-                    }
-                });
-            }
-        }
+        decode_slots(&mut r, step);
     }
     if flags & HOLES != 0 {
         step.holes = unzigzag(r.get());
     }
     if flags & STATES != 0 {
         let bits = r.get();
-        for a in 0..3 {
-            let b = bits >> (5 * a);
+        for a in Arena::ALL {
+            let b = bits >> (5 * a.index());
             if b & 1 == 1 {
                 step.states[a] = Some((bits_state(b >> 1), bits_state(b >> 3)));
             }
@@ -562,6 +518,73 @@ pub(crate) fn decode(body: &[u8], step: &mut Step) {
         step.side = r.get32();
     }
     debug_assert_eq!(r.pos, body.len(), "a step decoded to a different length");
+}
+
+/// The half-edge records (see [`HeWriter`]).
+fn decode_halfedges(r: &mut Reader<'_>, step: &mut Step) {
+    let n = r.get() as usize;
+    step.he.reserve(n);
+    let (mut slot, mut o, mut nx, mut f) = (0u32, 0u32, 0u32, 0u32);
+    for _ in 0..n {
+        let k = r.get();
+        slot += (k >> 3) as u32;
+        let mask = (k & 7) as u8;
+        let mut rec = HalfedgeRecord::VACANT;
+        if mask & ORIGIN != 0 {
+            o = undiff(o, r.get());
+            rec.origin = Vid::new(o);
+        }
+        if mask & NEXT != 0 {
+            nx = undiff(nx, r.get());
+            rec.next = Hid::new(nx);
+        }
+        if mask & FACE != 0 {
+            f = undiff(f, r.get());
+            rec.face = Fid::new(f);
+        }
+        step.he.push((Hid::new(slot), mask, rec));
+    }
+}
+
+/// The slots part (see [`encode_slots`]).
+fn decode_slots(r: &mut Reader<'_>, step: &mut Step) {
+    let mask = r.get();
+    for a in Arena::ALL {
+        if mask & (1 << a.index()) != 0 {
+            let count = r.get32();
+            let start = r.get32();
+            step.births[a] = (start, count);
+            if mask & (64 << a.index()) != 0 {
+                let n = r.get() as usize;
+                let runs = &mut step.born_live[a];
+                let mut left = count;
+                for _ in 1..n {
+                    let k = r.get32();
+                    runs.push(k);
+                    left -= k;
+                }
+                runs.push(left);
+            }
+        }
+    }
+    for a in Arena::ALL {
+        if mask & (8 << a.index()) == 0 {
+            continue;
+        }
+        let n = r.get() as usize;
+        let mut prev = 0u32;
+        for _ in 0..n {
+            let k = r.get();
+            let slot = undiff(prev, k >> 1);
+            prev = slot;
+            let generation = r.get32();
+            step.events[a].push(if k & 1 == 1 {
+                SlotEvent::Reuse { slot, generation }
+            } else {
+                SlotEvent::Death { slot, generation }
+            });
+        }
+    }
 }
 
 #[cfg(test)]
@@ -594,22 +617,22 @@ mod tests {
         s.vh.push((Vid::new(7), Hid::NONE));
         s.vh.push((Vid::new(8), Hid::new(0)));
         s.fl.push((Fid::new(2), FaceLink::new(Hid::new(5), true)));
-        s.births = [(10, 2), (0, 0), (100_000, 7)];
-        s.born_live[2] = vec![0, 3, 2, 2];
-        s.events[1].push(SlotEvent::Death {
+        s.births = PerArena([(10, 2), (0, 0), (100_000, 7)]);
+        s.born_live[Arena::Face] = vec![0, 3, 2, 2];
+        s.events[Arena::Edge].push(SlotEvent::Death {
             slot: 5,
             generation: 3,
         });
-        s.events[1].push(SlotEvent::Reuse {
+        s.events[Arena::Edge].push(SlotEvent::Reuse {
             slot: 5,
             generation: 7,
         });
-        s.events[1].push(SlotEvent::Death {
+        s.events[Arena::Edge].push(SlotEvent::Death {
             slot: 1,
             generation: u32::MAX - 2,
         });
         s.holes = -2;
-        s.states[2] = Some((State::Intact, State::Mixed));
+        s.states[Arena::Face] = Some((State::Intact, State::Mixed));
         s.side = 3;
         s
     }
