@@ -19,7 +19,7 @@
 //! passes with its stencils inlined.
 
 use crate::algo::progress::Progress;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::layout::{with_headroom, Eid, Hid, Vid};
 use crate::mesh::Mesh;
 
@@ -27,7 +27,8 @@ use super::columns::{crease_children, RefinePlans};
 use super::creases::{emit_edge, emit_vertex, Features, Mask, PointSink, RuleCounts, Sink, Spoke};
 use super::refine::{check_valence_two, refine, valence_two_error, CutRule, Refinement};
 use super::{
-    finish_columns, Growth, LevelReport, Pass, Scheme, Subdivider, SubdivisionOptions, ON_HOLE,
+    check_finite_position, finish_columns, Growth, LevelReport, Pass, Scheme, Subdivider,
+    SubdivisionOptions, ON_HOLE,
 };
 
 /// A scheme whose levels split every edge at an edge point and cut every
@@ -291,12 +292,7 @@ impl<R: SmoothRules> Positions<'_, R> {
             }
             let v = Vid::new(vi as u32);
             let pv = p[vi];
-            if !pv.iter().all(|c| c.is_finite()) {
-                return Err(Error::NonFinitePosition {
-                    key: mesh.vkey(v).into(),
-                    position: pv,
-                });
-            }
+            check_finite_position(mesh, v, pv)?;
             let n = valence[vi];
             if n != ON_HOLE && n > 0 && !features.is_special(v) {
                 // Interior and smooth: `out` holds the scatter sum.
