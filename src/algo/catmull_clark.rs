@@ -131,19 +131,22 @@ impl Mask for CatmullClark {
 /// The fast stencils: the face points and the vertex sums `Σ uᵢ + Σ Fᵢ`
 /// from one pass in face order (see [`scatter_face`]).
 impl SmoothRules for CatmullClark {
+    const FACE_POINTS: bool = true;
+
     fn scatter(
         &self,
         mesh: &Mesh,
         p: &[[f64; 3]],
         sums: &mut [[f64; 3]],
         valence: &mut [u32],
+        face_points: &mut [[f64; 3]],
         pass: &mut Pass<'_, '_>,
-    ) -> Result<Vec<[f64; 3]>> {
+    ) -> Result<()> {
         // Face points, in face-slot order (their rank order).
         let nf = mesh.f_slots.slot_count();
-        let mut face_points = Vec::with_capacity(mesh.face_count());
         let mut stage = pass.stage("face points", nf)?;
         let mut ring = Vec::new();
+        let mut k = 0usize;
         for fi in 0..nf {
             stage.tick(fi)?;
             if !mesh.f_slots.is_live(fi) {
@@ -157,10 +160,10 @@ impl SmoothRules for CatmullClark {
                 }
                 continue;
             }
-            face_points.push(scatter_face(mesh, p, &ring, sums, valence));
+            face_points[k] = scatter_face(mesh, p, &ring, sums, valence);
+            k += 1;
         }
-        stage.finish()?;
-        Ok(face_points)
+        stage.finish()
     }
 
     #[inline]

@@ -143,6 +143,8 @@ impl Mask for Loop {
 /// The fast stencils: the vertex sums `Σ uᵢ` from the edge-order scatter
 /// pass, no face points.
 impl SmoothRules for Loop {
+    const FACE_POINTS: bool = false;
+
     #[inline]
     fn scatter(
         &self,
@@ -150,10 +152,11 @@ impl SmoothRules for Loop {
         p: &[[f64; 3]],
         sums: &mut [[f64; 3]],
         valence: &mut [u32],
+        _face_points: &mut [[f64; 3]],
         _pass: &mut Pass<'_, '_>,
-    ) -> Result<Vec<[f64; 3]>> {
+    ) -> Result<()> {
         scatter_edge_ends(mesh, p, sums, valence);
-        Ok(Vec::new())
+        Ok(())
     }
 
     #[inline]

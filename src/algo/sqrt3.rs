@@ -7,7 +7,7 @@
 //! **Counts** per level: V' = V + F, F' = 3F, E' = E + 3F (3E on a closed
 //! mesh); at a level that trisects the boundary (below) add 2B vertices,
 //! 2B faces and 4B edges for the B boundary edges. Holes keep their
-//! number. Triangles only: [`Error::Unsuitable`] names the first face that
+//! number. Triangles only: [`Error::Unsuitable`](crate::Error::Unsuitable) names the first face that
 //! is not a triangle, or an interior vertex of valence 2.
 //!
 //! **Boundary** (Kobbelt's rule). Boundary edges are never flipped. Odd
@@ -89,10 +89,10 @@ use crate::algo::progress::Progress;
 use crate::algo::subdivision::creases::{Features, PointSink, Rule, Sink};
 use crate::algo::subdivision::refine::{valence_two_error, CutRule};
 use crate::algo::subdivision::{
-    finish_columns, scatter_edge_ends, subdivide, unsuitable, Growth, LevelReport, Pass, Scheme,
-    Subdivider, SubdivisionOptions, SubdivisionReport, ON_HOLE,
+    check_finite_position, finish_columns, scatter_edge_ends, subdivide, unsuitable, Growth,
+    LevelReport, Pass, Scheme, Subdivider, SubdivisionOptions, SubdivisionReport, ON_HOLE,
 };
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::layout::{with_headroom, Fid, Hid, Vid};
 use crate::mesh::Mesh;
 
@@ -109,7 +109,7 @@ const ALGORITHM: &str = "sqrt3_subdivide";
 /// module doc): [`subdivide`] with [`Scheme::Sqrt3`].
 ///
 /// # Errors
-/// [`Error::Unsuitable`] for a face that is not a triangle, an interior
+/// [`Error::Unsuitable`](crate::Error::Unsuitable) for a face that is not a triangle, an interior
 /// vertex of valence 2, or a crease column in the options; the other
 /// errors of [`subdivide`]. On any error the mesh is exactly as it was.
 ///
@@ -365,12 +365,7 @@ fn positions(
         }
         let v = Vid::new(vi as u32);
         let pv = p[vi];
-        if !pv.iter().all(|c| c.is_finite()) {
-            return Err(Error::NonFinitePosition {
-                key: mesh.vkey(v).into(),
-                position: pv,
-            });
-        }
+        check_finite_position(mesh, v, pv)?;
         match rules.of_vertex(v) {
             VertexMove::Smooth => {}
             VertexMove::Stay => {

@@ -103,7 +103,7 @@ use crate::algo::progress::Progress;
 use crate::attr::ValueType;
 use crate::error::{Error, Result};
 use crate::keys::{AnyKey, ElementKind};
-use crate::layout::Eid;
+use crate::layout::{Eid, Vid};
 use crate::mesh::Mesh;
 
 /// How the boundary is treated (boundary edges are always infinitely
@@ -433,6 +433,19 @@ impl<'a> Pass<'_, 'a> {
     /// A stage of `total` units named `what`.
     pub(crate) fn stage(&mut self, what: &str, total: usize) -> Result<Stage<'_, 'a>> {
         Stage::new(self.progress, self.algorithm, self.level, what, total)
+    }
+}
+
+/// Refuse a parent position at NaN or infinity, before a level reads it.
+#[inline(always)]
+pub(crate) fn check_finite_position(mesh: &Mesh, v: Vid, p: [f64; 3]) -> Result<()> {
+    if p.iter().all(|c| c.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::NonFinitePosition {
+            key: mesh.vkey(v).into(),
+            position: p,
+        })
     }
 }
 

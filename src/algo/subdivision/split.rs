@@ -19,7 +19,7 @@
 //! passes with its stencils inlined.
 
 use crate::algo::progress::Progress;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::layout::{with_headroom, Eid, Hid, Vid};
 use crate::mesh::Mesh;
 
@@ -27,7 +27,8 @@ use super::columns::{crease_children, RefinePlans};
 use super::creases::{emit_edge, emit_vertex, Features, Mask, PointSink, RuleCounts, Sink, Spoke};
 use super::refine::{check_valence_two, refine, valence_two_error, CutRule, Refinement};
 use super::{
-    finish_columns, Growth, LevelReport, Pass, Scheme, Subdivider, SubdivisionOptions, ON_HOLE,
+    check_finite_position, finish_columns, Growth, LevelReport, Pass, Scheme, Subdivider,
+    SubdivisionOptions, ON_HOLE,
 };
 
 /// A scheme whose levels split every edge at an edge point and cut every
@@ -49,18 +50,23 @@ pub(crate) trait FaceSplit {
 /// The smooth rules of a face-splitting scheme: the masks, and the fast
 /// stencils of smooth interior vertices and edges.
 pub(crate) trait SmoothRules: Mask {
+    /// Whether the scheme has face points (a point per face cut into
+    /// quads, which the vertex rules read).
+    const FACE_POINTS: bool;
+
     /// Before the vertex rules: for each parent vertex slot, the sum its
     /// smooth rule reads into `sums` and its valence into `valence`
-    /// ([`ON_HOLE`] on a hole); returns the face points, by face rank
-    /// (empty for a scheme without face points).
+    /// ([`ON_HOLE`] on a hole), and the face points into `face_points`, by
+    /// face rank (empty without [`FACE_POINTS`](Self::FACE_POINTS)).
     fn scatter(
         &self,
         mesh: &Mesh,
         p: &[[f64; 3]],
         sums: &mut [[f64; 3]],
         valence: &mut [u32],
+        face_points: &mut [[f64; 3]],
         pass: &mut Pass<'_, '_>,
-    ) -> Result<Vec<[f64; 3]>>;
+    ) -> Result<()>;
 
     /// `(a, b)`: a smooth interior vertex `v` of valence `n` goes to
     /// `a v + b s`, with `s` its sum from [`scatter`](Self::scatter).
@@ -85,14 +91,17 @@ impl Mask for Linear {
 }
 
 impl SmoothRules for Linear {
+    const FACE_POINTS: bool = false;
+
     fn scatter(
         &self,
         _: &Mesh,
         _: &[[f64; 3]],
         _: &mut [[f64; 3]],
         _: &mut [u32],
+        _: &mut [[f64; 3]],
         _: &mut Pass<'_, '_>,
-    ) -> Result<Vec<[f64; 3]>> {
+    ) -> Result<()> {
         match *self {}
     }
 
@@ -216,25 +225,44 @@ impl<R: SmoothRules> Positions<'_, R> {
     /// Every new position, in the new vertex slots' order: old vertices by
     /// the vertex rules, then edge points, then face points.
     fn run(&self, pass: &mut Pass<'_, '_>) -> Result<(Vec<[f64; 3]>, RuleCounts)> {
-        let nv = self.r.nv as usize;
-        // The old vertices' slots first hold the scatter sums; the edge
-        // points are pushed after them, the face points last.
-        let mut out: Vec<[f64; 3]> = with_headroom(self.r.vertex_slots());
-        out.resize(nv, [0.0; 3]);
+        let (nv, ne) = (self.r.nv as usize, self.r.edges as usize);
+        let slots = self.r.vertex_slots();
+        // The old vertices' slots first hold the scatter sums.
+        let mut out: Vec<[f64; 3]> = with_headroom(slots);
         let mut valence = vec![0u32; nv];
-        let face_points = self
-            .rules
-            .scatter(self.mesh, self.p, &mut out, &mut valence, pass)?;
-        let mut sink = PointSink {
-            p: self.p,
-            face_points: &face_points,
-            face_rank: &self.r.face_rank,
-            acc: [0.0; 3],
+        let counts = if R::FACE_POINTS {
+            // The vertex rules read the face points, which go last: every
+            // slot now, the edge points written in place.
+            out.resize(slots, [0.0; 3]);
+            let (old, rest) = out.split_at_mut(nv);
+            let (edge_points, face_points) = rest.split_at_mut(ne);
+            self.rules
+                .scatter(self.mesh, self.p, old, &mut valence, face_points, pass)?;
+            let mut sink = PointSink {
+                p: self.p,
+                face_points,
+                face_rank: &self.r.face_rank,
+                acc: [0.0; 3],
+            };
+            let counts = self.old_vertices(old, &valence, &mut sink, pass)?;
+            let mut k = 0;
+            self.edge_points(&mut sink, pass, |x| {
+                edge_points[k] = x;
+                k += 1;
+            })?;
+            counts
+        } else {
+            // No face points: the edge points are pushed after the old
+            // vertices.
+            out.resize(nv, [0.0; 3]);
+            self.rules
+                .scatter(self.mesh, self.p, &mut out, &mut valence, &mut [], pass)?;
+            let mut sink = PointSink::new(self.p);
+            let counts = self.old_vertices(&mut out, &valence, &mut sink, pass)?;
+            self.edge_points(&mut sink, pass, |x| out.push(x))?;
+            counts
         };
-        let counts = self.old_vertices(&mut out, &valence, &mut sink, pass)?;
-        self.edge_points(&mut out, &mut sink, pass)?;
-        out.extend_from_slice(&face_points);
-        debug_assert_eq!(out.len(), self.r.vertex_slots());
+        debug_assert_eq!(out.len(), slots);
         Ok((out, counts))
     }
 
@@ -264,12 +292,7 @@ impl<R: SmoothRules> Positions<'_, R> {
             }
             let v = Vid::new(vi as u32);
             let pv = p[vi];
-            if !pv.iter().all(|c| c.is_finite()) {
-                return Err(Error::NonFinitePosition {
-                    key: mesh.vkey(v).into(),
-                    position: pv,
-                });
-            }
+            check_finite_position(mesh, v, pv)?;
             let n = valence[vi];
             if n != ON_HOLE && n > 0 && !features.is_special(v) {
                 // Interior and smooth: `out` holds the scatter sum.
@@ -306,13 +329,13 @@ impl<R: SmoothRules> Positions<'_, R> {
         Ok(counts)
     }
 
-    /// The edge points, pushed in edge order: smooth interior edges by the
+    /// The edge points, to `put` in edge order: smooth interior edges by the
     /// fast stencil, boundary and sharp ones by the crease rules.
     fn edge_points(
         &self,
-        out: &mut Vec<[f64; 3]>,
         sink: &mut PointSink<'_>,
         pass: &mut Pass<'_, '_>,
+        mut put: impl FnMut([f64; 3]),
     ) -> Result<()> {
         let (mesh, r) = (self.mesh, self.r);
         let ne = mesh.e_slots.slot_count();
@@ -330,7 +353,7 @@ impl<R: SmoothRules> Positions<'_, R> {
             } else {
                 self.features.sharpness(e)
             };
-            out.push(if s == 0.0 {
+            put(if s == 0.0 {
                 self.rules.edge_point(mesh, h, sink)
             } else {
                 emit_edge(self.rules, mesh, e, s, sink);
