@@ -35,7 +35,11 @@ impl<const FAILS: bool> Picky<FAILS> {
     }
 
     fn sum(inputs: &[(Option<&i64>, f64)]) -> Option<i64> {
-        inputs.iter().filter_map(|(v, _)| *v).copied().reduce(|a, b| a + b)
+        inputs
+            .iter()
+            .filter_map(|(v, _)| *v)
+            .copied()
+            .reduce(|a, b| a + b)
     }
 }
 
@@ -96,10 +100,7 @@ fn snapshot(m: &Mesh) -> Snapshot {
         }
     }
     Snapshot {
-        vertices: m
-            .vertices()
-            .map(|v| (v, m.position(v).unwrap()))
-            .collect(),
+        vertices: m.vertices().map(|v| (v, m.position(v).unwrap())).collect(),
         faces: m
             .faces_and_holes()
             .map(|f| (f, m.face(f).unwrap().vertices().collect()))
@@ -189,17 +190,16 @@ fn a_failing_merge_refuses_the_collapse_and_changes_nothing() {
 #[test]
 fn a_failing_split_refuses_split_edge_and_changes_nothing() {
     let mut m = shapes::grid(3, 3, GridFaces::Quads);
-    let h = m.add_attr_with_rule::<EdgeKey, i64, Strict>("picky").unwrap();
+    let h = m
+        .add_attr_with_rule::<EdgeKey, i64, Strict>("picky")
+        .unwrap();
     let es: Vec<_> = m.edges().collect();
     for (i, &e) in es.iter().enumerate() {
-        m.set_attr(&h, e, if i == 4 { -1 } else { i as i64 }).unwrap();
+        m.set_attr(&h, e, if i == 4 { -1 } else { i as i64 })
+            .unwrap();
     }
     let before = snapshot(&m);
-    rule_error(
-        m.split_edge(es[4], 0.5).unwrap_err(),
-        ElementKind::Edge,
-        -1,
-    );
+    rule_error(m.split_edge(es[4], 0.5).unwrap_err(), ElementKind::Edge, -1);
     assert_eq!(snapshot(&m), before);
     // Another edge splits: both halves keep its value.
     m.split_edge(es[3], 0.5).unwrap();
@@ -210,10 +210,13 @@ fn a_failing_split_refuses_split_edge_and_changes_nothing() {
 #[test]
 fn triangulate_all_cuts_no_face_when_a_rule_fails() {
     let mut m = shapes::grid(3, 2, GridFaces::Quads);
-    let h = m.add_attr_with_rule::<FaceKey, i64, Strict>("picky").unwrap();
+    let h = m
+        .add_attr_with_rule::<FaceKey, i64, Strict>("picky")
+        .unwrap();
     let fs: Vec<_> = m.faces().collect();
     for (i, &f) in fs.iter().enumerate() {
-        m.set_attr(&h, f, if i == 4 { -2 } else { i as i64 }).unwrap();
+        m.set_attr(&h, f, if i == 4 { -2 } else { i as i64 })
+            .unwrap();
     }
     let before = snapshot(&m);
     assert_eq!(m.triangulate_all(), fs);
@@ -291,15 +294,17 @@ fn a_failure_inside_an_algorithm_rolls_it_back_whole() {
     // Subdivision rebuilds every column: the face pieces are split by the
     // rule, which refuses the face holding −3.
     let mut m = shapes::grid(3, 3, GridFaces::Triangles);
-    let h = m.add_attr_with_rule::<FaceKey, i64, Strict>("picky").unwrap();
+    let h = m
+        .add_attr_with_rule::<FaceKey, i64, Strict>("picky")
+        .unwrap();
     let fs: Vec<_> = m.faces().collect();
     for (i, &f) in fs.iter().enumerate() {
-        m.set_attr(&h, f, if i == 7 { -3 } else { i as i64 }).unwrap();
+        m.set_attr(&h, f, if i == 7 { -3 } else { i as i64 })
+            .unwrap();
     }
     let before = snapshot(&m);
     rule_error(
-        algo::loop_subdivide(&mut m, &SubdivisionOptions::default(), Progress::none())
-            .unwrap_err(),
+        algo::loop_subdivide(&mut m, &SubdivisionOptions::default(), Progress::none()).unwrap_err(),
         ElementKind::Face,
         -3,
     );
@@ -335,7 +340,9 @@ fn a_fallible_rule_that_succeeds_edits_as_an_infallible_one() {
         let vs: Vec<_> = m.vertices().collect();
         (
             vs.iter().map(|&v| m.position(v).unwrap()).collect(),
-            vs.iter().map(|&v| m.attr(&h, v).unwrap().copied()).collect(),
+            vs.iter()
+                .map(|&v| m.attr(&h, v).unwrap().copied())
+                .collect(),
             m.face_count(),
         )
     }
@@ -345,7 +352,8 @@ fn a_fallible_rule_that_succeeds_edits_as_an_infallible_one() {
 #[test]
 fn columns_name_their_rules() {
     let mut m = shapes::grid(2, 2, GridFaces::Quads);
-    m.add_attr_with_rule::<FaceKey, i64, Strict>("picky").unwrap();
+    m.add_attr_with_rule::<FaceKey, i64, Strict>("picky")
+        .unwrap();
     m.add_attr_with_rule::<FaceKey, f64, meshloom::attr::Conserved>("area")
         .unwrap();
     m.add_dynamic_attr::<FaceKey>("label", meshloom::attr::ValueType::I32)
@@ -355,7 +363,11 @@ fn columns_name_their_rules() {
     // A custom rule without a name of its own says its type's name.
     assert_eq!(
         rules,
-        [("picky", "Picky"), ("area", "Conserved"), ("label", "Dynamic")]
+        [
+            ("picky", "Picky"),
+            ("area", "Conserved"),
+            ("label", "Dynamic")
+        ]
     );
     assert_eq!(info[0].type_name, "i64");
     assert_eq!(
