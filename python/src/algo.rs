@@ -1238,9 +1238,6 @@ impl PyMesh {
                 cb.run(|p| lod_chain(m, &o, p))
             });
             let result = result.map_err(|e| crate::errors::mesh_err(py, &slf.clone().unbind(), e));
-            if let Some(e) = crate::attrs::take_rule_error() {
-                return Err(e);
-            }
             cb.finish(result)?
         };
         let out = PyList::empty(py);

@@ -1,10 +1,10 @@
 //! Attribute columns from Python: stock rules by name, numpy bulk reads and
 //! writes, and custom rules written in Python.
 //!
-//! A column's value type and rule are found by probing the typed handles
-//! (`Mesh::attr_handle`) for each combination the bindings support, so
-//! columns read from files or restored by pickling are found the same way
-//! as columns added from Python.
+//! A column's value type and rule are read from `Mesh::attr_info` (the
+//! value type's name and [`Rule::name`]), so columns read from files or
+//! restored by pickling are found the same way as columns added from
+//! Python.
 //!
 //! # Python rules
 //!
@@ -12,19 +12,17 @@
 //! state. A Python rule is an object, so each value of a Python-rule column
 //! carries its rule object beside the value ([`PyValue`]); [`PyRule`] finds
 //! the rule in the first present contributor and calls its `merge`,
-//! `interpolate` (falling back to `merge`) or `split` method. The trait's
-//! functions cannot fail, so an exception raised by a Python rule is parked
-//! in a thread-local slot and the value is left absent; the caller of every
-//! edit ([`crate::mesh::PyMesh`]'s `edit`) runs the edit inside a journal
-//! transaction when the mesh has a Python-rule column, rolls it back and
-//! re-raises the exception when one was parked: all or nothing, at the cost
-//! of the edit. The values hold Python objects, so `Mesh` takes part in
+//! `interpolate` (falling back to `merge`) or `split` method. [`PyRule`] is
+//! a fallible rule (`Rule::FALLIBLE`): an exception a Python rule raises
+//! becomes its `RuleError`, holding the exception, and meshloom fails the
+//! edit with `Error::Rule`, leaving the mesh as it was (every edit of a
+//! mesh with such a column runs as a transaction: all or nothing, at the
+//! cost of the edit). `crate::errors::mesh_err` raises the original
+//! exception again. The values hold Python objects, so `Mesh` takes part in
 //! Python's garbage collection (`crate::gc`).
 
-use std::cell::RefCell;
-
 use meshloom::attr::Attribute;
-use meshloom::attr::{Element, Rule, Value};
+use meshloom::attr::{Element, Rule, RuleError, Value};
 use meshloom::keys::ElementKind;
 use meshloom::{AnyKey, EdgeKey, FaceKey, HalfedgeKey, Mesh, VertexKey};
 use numpy::{
@@ -94,6 +92,22 @@ impl RuleName {
         }
     }
 
+    /// The rule a column reports (`meshloom::attr::Rule::name`), if the
+    /// bindings know it.
+    pub fn of_rule_name(name: &str) -> Option<RuleName> {
+        Some(match name {
+            "Interpolate" => RuleName::Interpolate,
+            "Conserved" => RuleName::Conserved,
+            "Contagion" => RuleName::Contagion,
+            "Incompatible" => RuleName::Incompatible,
+            "KeepFirst" => RuleName::KeepFirst,
+            "Discard" => RuleName::Discard,
+            "Dynamic" => RuleName::Dynamic,
+            n if n == <PyRule as Rule<PyValue>>::name() => RuleName::PyRule,
+            _ => return None,
+        })
+    }
+
     /// A rule from its Python name.
     pub fn parse(s: &str) -> PyResult<RuleName> {
         Ok(match s {
@@ -151,6 +165,27 @@ impl Dtype {
             "object" => Dtype::Object,
             other => return Err(PyValueError::new_err(format!("unsupported dtype {other:?}: use float, int, bool, str, \"vec2\", \"vec3\", \"vec4\", or object with a Python rule"))),
         })
+    }
+
+    /// The dtype of a column whose values are of the Rust type named
+    /// `type_name` (`std::any::type_name`, as `Mesh::attr_info` reports
+    /// it), if the bindings offer it.
+    pub fn of_type_name(type_name: &str) -> Option<Dtype> {
+        use std::any::type_name as name;
+        let dtypes = [
+            (name::<f64>(), Dtype::Float),
+            (name::<i64>(), Dtype::Int),
+            (name::<bool>(), Dtype::Bool),
+            (name::<[f64; 2]>(), Dtype::Vec2),
+            (name::<[f64; 3]>(), Dtype::Vec3),
+            (name::<[f64; 4]>(), Dtype::Vec4),
+            (name::<String>(), Dtype::Text),
+            (name::<PyValue>(), Dtype::Object),
+            (name::<Value>(), Dtype::Dynamic),
+        ];
+        dtypes
+            .into_iter()
+            .find_map(|(n, d)| (n == type_name).then_some(d))
     }
 
     /// The rule a column of this type gets when none is named.
@@ -218,54 +253,39 @@ impl Attribute for PyValue {
     type Rule = PyRule;
 }
 
-/// The rule of Python-rule columns: calls the Python rule object.
+/// The rule of Python-rule columns: calls the Python rule object; an
+/// exception it raises fails the edit (see the module docs).
 pub struct PyRule;
 
-thread_local! {
-    static RULE_ERROR: RefCell<Option<PyErr>> = const { RefCell::new(None) };
+/// An exception a Python rule raised, as the rule's error. PyO3's own
+/// refusal to lend a mesh an edit holds (a rule calling a method of its
+/// mesh) becomes the package's `ReentrantError`.
+fn rule_error(py: Python<'_>, err: PyErr) -> RuleError {
+    let text = err.value(py).to_string();
+    let err = if err.is_instance_of::<pyo3::exceptions::PyRuntimeError>(py)
+        && text.starts_with("Already")
+        && text.contains("borrowed")
+    {
+        let reentrant = crate::errors::busy(text);
+        reentrant.set_cause(py, Some(err));
+        reentrant
+    } else {
+        err
+    };
+    RuleError::from_source(err)
 }
 
-/// Take the exception a Python rule raised since the last call, if any.
-pub fn take_rule_error() -> Option<PyErr> {
-    RULE_ERROR.with(|e| e.borrow_mut().take())
-}
-
-/// Whether a Python rule raised since the last [`take_rule_error`].
-pub fn rule_failed() -> bool {
-    RULE_ERROR.with(|e| e.borrow().is_some())
-}
-
-fn park(err: PyErr) {
-    // PyO3's own refusal to lend a mesh an edit holds (a rule calling a
-    // method of its mesh) becomes the package's `ReentrantError`.
-    let err = Python::attach(|py| {
-        let text = err.value(py).to_string();
-        if err.is_instance_of::<pyo3::exceptions::PyRuntimeError>(py)
-            && text.starts_with("Already")
-            && text.contains("borrowed")
-        {
-            let reentrant = crate::errors::busy(text);
-            reentrant.set_cause(py, Some(err));
-            reentrant
-        } else {
-            err
-        }
-    });
-    RULE_ERROR.with(|e| {
-        let mut slot = e.borrow_mut();
-        if slot.is_none() {
-            *slot = Some(err);
-        }
-    });
-}
-
-fn call_rule(method: &str, inputs: &[(Option<&PyValue>, f64)]) -> Option<PyValue> {
-    let carried = inputs
+/// The value the rule object's `method` gives for `inputs`.
+fn call_rule(
+    method: &str,
+    inputs: &[(Option<&PyValue>, f64)],
+) -> Result<Option<PyValue>, RuleError> {
+    let Some(carried) = inputs
         .iter()
-        .find_map(|(v, _)| v.and_then(|v| v.0.as_ref()))?;
-    if rule_failed() {
-        return None;
-    }
+        .find_map(|(v, _)| v.and_then(|v| v.0.as_ref()))
+    else {
+        return Ok(None);
+    };
     Python::attach(|py| {
         let rule = carried.rule.bind(py);
         let values: Vec<Py<PyAny>> = inputs
@@ -282,42 +302,53 @@ fn call_rule(method: &str, inputs: &[(Option<&PyValue>, f64)]) -> Option<PyValue
             method
         };
         match rule.call_method1(method, (values, weights)) {
-            Ok(r) if r.is_none() => None,
-            Ok(r) => Some(PyValue::new(carried.rule.clone_ref(py), r.unbind())),
-            Err(e) => {
-                park(e);
-                None
-            }
+            Ok(r) if r.is_none() => Ok(None),
+            Ok(r) => Ok(Some(PyValue::new(carried.rule.clone_ref(py), r.unbind()))),
+            Err(e) => Err(rule_error(py, e)),
         }
     })
 }
 
 impl Rule<PyValue> for PyRule {
+    const FALLIBLE: bool = true;
+
+    fn name() -> &'static str {
+        "PyRule"
+    }
+
     fn merge(inputs: &[(Option<&PyValue>, f64)]) -> Option<PyValue> {
-        call_rule("merge", inputs)
+        Self::try_merge(inputs).ok().flatten()
     }
 
     fn interpolate(inputs: &[(Option<&PyValue>, f64)]) -> Option<PyValue> {
-        call_rule("interpolate", inputs)
+        Self::try_interpolate(inputs).ok().flatten()
     }
 
     fn split(source: Option<&PyValue>, share: f64) -> Option<PyValue> {
-        let carried = source?.0.as_ref()?;
-        if rule_failed() {
-            return None;
-        }
+        Self::try_split(source, share).ok().flatten()
+    }
+
+    fn try_merge(inputs: &[(Option<&PyValue>, f64)]) -> Result<Option<PyValue>, RuleError> {
+        call_rule("merge", inputs)
+    }
+
+    fn try_interpolate(inputs: &[(Option<&PyValue>, f64)]) -> Result<Option<PyValue>, RuleError> {
+        call_rule("interpolate", inputs)
+    }
+
+    fn try_split(source: Option<&PyValue>, share: f64) -> Result<Option<PyValue>, RuleError> {
+        let Some(carried) = source.and_then(|s| s.0.as_ref()) else {
+            return Ok(None);
+        };
         Python::attach(|py| {
             match carried
                 .rule
                 .bind(py)
                 .call_method1("split", (carried.value.clone_ref(py), share))
             {
-                Ok(r) if r.is_none() => None,
-                Ok(r) => Some(PyValue::new(carried.rule.clone_ref(py), r.unbind())),
-                Err(e) => {
-                    park(e);
-                    None
-                }
+                Ok(r) if r.is_none() => Ok(None),
+                Ok(r) => Ok(Some(PyValue::new(carried.rule.clone_ref(py), r.unbind()))),
+                Err(e) => Err(rule_error(py, e)),
             }
         })
     }
@@ -849,62 +880,22 @@ pub fn combo_err(dtype: Dtype, rule: RuleName) -> PyErr {
     ))
 }
 
-/// Whether `name` is a column `Column<T, R>` on `K`'s arena.
-pub fn probe<K: Element, T: Attribute, R: Rule<T>>(mesh: &Mesh, name: &str) -> PyResult<bool> {
-    Ok(mesh.attr_handle::<K, T, R>(name).is_ok())
+/// Whether [`dispatch!`] reached the column type of arena `kind` under the
+/// rule named `rule` (a combination it does not offer is its `TypeError`).
+fn offered<K: Element, T: Attribute, R: Rule<T>>(kind: ElementKind, rule: &str) -> PyResult<bool> {
+    Ok(K::KIND == kind && R::name() == rule)
 }
 
-/// Every (dtype, rule) the bindings know, for probing.
-pub const COMBOS: &[(Dtype, RuleName)] = &[
-    (Dtype::Float, RuleName::Interpolate),
-    (Dtype::Vec3, RuleName::Interpolate),
-    (Dtype::Vec2, RuleName::Interpolate),
-    (Dtype::Vec4, RuleName::Interpolate),
-    (Dtype::Int, RuleName::Incompatible),
-    (Dtype::Bool, RuleName::Contagion),
-    (Dtype::Text, RuleName::Incompatible),
-    (Dtype::Object, RuleName::PyRule),
-    (Dtype::Dynamic, RuleName::Dynamic),
-    (Dtype::Float, RuleName::Conserved),
-    (Dtype::Float, RuleName::Contagion),
-    (Dtype::Float, RuleName::Incompatible),
-    (Dtype::Float, RuleName::KeepFirst),
-    (Dtype::Float, RuleName::Discard),
-    (Dtype::Vec3, RuleName::Conserved),
-    (Dtype::Vec3, RuleName::Incompatible),
-    (Dtype::Vec3, RuleName::KeepFirst),
-    (Dtype::Vec3, RuleName::Discard),
-    (Dtype::Vec2, RuleName::Conserved),
-    (Dtype::Vec2, RuleName::Incompatible),
-    (Dtype::Vec2, RuleName::KeepFirst),
-    (Dtype::Vec2, RuleName::Discard),
-    (Dtype::Vec4, RuleName::Conserved),
-    (Dtype::Vec4, RuleName::Incompatible),
-    (Dtype::Vec4, RuleName::KeepFirst),
-    (Dtype::Vec4, RuleName::Discard),
-    (Dtype::Int, RuleName::Contagion),
-    (Dtype::Int, RuleName::KeepFirst),
-    (Dtype::Int, RuleName::Discard),
-    (Dtype::Bool, RuleName::Incompatible),
-    (Dtype::Bool, RuleName::KeepFirst),
-    (Dtype::Bool, RuleName::Discard),
-    (Dtype::Text, RuleName::Contagion),
-    (Dtype::Text, RuleName::KeepFirst),
-    (Dtype::Text, RuleName::Discard),
-    (Dtype::Dynamic, RuleName::KeepFirst),
-    (Dtype::Dynamic, RuleName::Discard),
-];
-
-/// The dtype and rule of column `name` on arena `kind`, if it exists and is
-/// of a type the bindings know.
+/// The dtype and rule of column `name` on arena `kind`, as
+/// `Mesh::attr_info` names them, if it exists and the bindings offer that
+/// combination.
 pub fn column_type(mesh: &Mesh, kind: ElementKind, name: &str) -> Option<(Dtype, RuleName)> {
-    if !mesh.attr_info(kind).iter().any(|i| i.name == name) {
-        return None;
-    }
-    COMBOS
-        .iter()
-        .copied()
-        .find(|&(d, r)| dispatch!(kind, d, r, probe(mesh, name)).unwrap_or(false))
+    let info = mesh.attr_info(kind).into_iter().find(|i| i.name == name)?;
+    let dtype = Dtype::of_type_name(info.type_name)?;
+    let rule = RuleName::of_rule_name(info.rule)?;
+    dispatch!(kind, dtype, rule, offered(kind, info.rule))
+        .unwrap_or(false)
+        .then_some((dtype, rule))
 }
 
 /// Add a column.

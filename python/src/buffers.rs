@@ -98,6 +98,73 @@ fn choice_of(mesh: &Mesh, ob: &Bound<'_, PyAny>) -> PyResult<ColumnChoice> {
     })
 }
 
+/// The corner normals `to_triangle_buffers` asks for: `weight` by name.
+fn normal_options(
+    weight: &str,
+    crease_angle: Option<f64>,
+    hard_edges: Option<meshloom::attr::EdgeAttr<bool>>,
+) -> PyResult<meshloom::algo::CornerNormalOptions> {
+    let weight = match weight {
+        "angle" => meshloom::algo::NormalWeight::Angle,
+        "area" => meshloom::algo::NormalWeight::Area,
+        "uniform" => meshloom::algo::NormalWeight::Uniform,
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "weight is \"angle\", \"area\" or \"uniform\", not {other:?}"
+            )))
+        }
+    };
+    Ok(meshloom::algo::CornerNormalOptions {
+        weight,
+        feature_angle: crease_angle,
+        features: hard_edges,
+    })
+}
+
+/// The index width `index_type` names, set in `options`; whether uint16
+/// indices are required (an error when they do not fit).
+fn index_width(index_type: &str, options: &mut TriangleBufferOptions) -> PyResult<bool> {
+    match index_type {
+        "auto" => Ok(false),
+        "uint16" => Ok(true),
+        "uint32" => {
+            options.index_width = IndexWidth::U32;
+            Ok(false)
+        }
+        other => Err(PyValueError::new_err(format!(
+            "index_type is \"auto\", \"uint16\" or \"uint32\", not {other:?}"
+        ))),
+    }
+}
+
+/// What `to_triangle_buffers` takes from the buffers after the vertex
+/// arrays: the columns (a dict), indices, triangle faces, vertex sources.
+type BufferParts<'py> = (
+    Bound<'py, PyDict>,
+    Indices,
+    Vec<meshloom::FaceKey>,
+    Vec<meshloom::VertexKey>,
+);
+
+/// Put `b`'s positions (and its normals, when asked for) into `out`, and
+/// its columns into a dict; hand back the rest.
+fn put_vertices<'py, S: numpy::Element + Copy>(
+    out: &Bound<'py, PyDict>,
+    b: meshloom::buffers::TriangleBuffers<S>,
+    normals: bool,
+) -> PyResult<BufferParts<'py>> {
+    let py = out.py();
+    out.set_item("positions", rows(py, b.positions.as_flattened(), 3)?)?;
+    if normals {
+        out.set_item("normals", rows(py, b.normals.as_flattened(), 3)?)?;
+    }
+    let cols = PyDict::new(py);
+    for c in &b.columns {
+        cols.set_item(&c.name, rows(py, &c.data, c.components)?)?;
+    }
+    Ok((cols, b.indices, b.triangle_faces, b.vertex_sources))
+}
+
 #[pymethods]
 impl PyMesh {
     /// Triangle buffers for a renderer or game engine, as a dict of numpy
@@ -132,23 +199,9 @@ impl PyMesh {
         let mesh = &this.mesh;
         let mut options = TriangleBufferOptions::default();
         if normals {
-            let w = match weight {
-                "angle" => meshloom::algo::NormalWeight::Angle,
-                "area" => meshloom::algo::NormalWeight::Area,
-                "uniform" => meshloom::algo::NormalWeight::Uniform,
-                other => {
-                    return Err(PyValueError::new_err(format!(
-                        "weight is \"angle\", \"area\" or \"uniform\", not {other:?}"
-                    )))
-                }
-            };
             let hard = crate::algo::flag_column(mesh, hard_edges.as_deref())
                 .map_err(|e| crate::errors::mesh_err(py, &slf.clone().unbind(), e))?;
-            options.normals = Some(meshloom::algo::CornerNormalOptions {
-                weight: w,
-                feature_angle: crease_angle,
-                features: hard,
-            });
+            options.normals = Some(normal_options(weight, crease_angle, hard)?);
         } else {
             options.normals = None;
         }
@@ -157,47 +210,20 @@ impl PyMesh {
                 options.columns.push(choice_of(mesh, &c?)?);
             }
         }
-        let force16 = match index_type {
-            "auto" => false,
-            "uint16" => true,
-            "uint32" => {
-                options.index_width = IndexWidth::U32;
-                false
-            }
-            other => {
-                return Err(PyValueError::new_err(format!(
-                    "index_type is \"auto\", \"uint16\" or \"uint32\", not {other:?}"
-                )))
-            }
-        };
+        let force16 = index_width(index_type, &mut options)?;
         let out = PyDict::new(py);
-        let cols = PyDict::new(py);
-        let (indices, tf, vs) = match dtype {
+        let (cols, indices, tf, vs) = match dtype {
             "float32" => {
                 let b = mesh
                     .to_triangle_buffers(&options)
                     .map_err(|e| buffer_err(py, e))?;
-                out.set_item("positions", rows(py, b.positions.as_flattened(), 3)?)?;
-                if normals {
-                    out.set_item("normals", rows(py, b.normals.as_flattened(), 3)?)?;
-                }
-                for c in &b.columns {
-                    cols.set_item(&c.name, rows(py, &c.data, c.components)?)?;
-                }
-                (b.indices, b.triangle_faces, b.vertex_sources)
+                put_vertices(&out, b, normals)?
             }
             "float64" => {
                 let b = mesh
                     .to_triangle_buffers_f64(&options)
                     .map_err(|e| buffer_err(py, e))?;
-                out.set_item("positions", rows(py, b.positions.as_flattened(), 3)?)?;
-                if normals {
-                    out.set_item("normals", rows(py, b.normals.as_flattened(), 3)?)?;
-                }
-                for c in &b.columns {
-                    cols.set_item(&c.name, rows(py, &c.data, c.components)?)?;
-                }
-                (b.indices, b.triangle_faces, b.vertex_sources)
+                put_vertices(&out, b, normals)?
             }
             other => {
                 return Err(PyValueError::new_err(format!(

@@ -1,12 +1,15 @@
 //! Rust errors as the Python exceptions of `meshloom.errors`, carrying what
 //! the Rust errors carry (operator, reason and element; file and line).
 
+use meshloom::attr::RuleError;
 use meshloom::error::{BuildError, Refusal};
 use meshloom::io::Position;
+use meshloom::keys::ElementKind;
 use meshloom::{AnyKey, Error};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::PyModule;
+use pyo3::IntoPyObjectExt;
 
 use crate::elements::key_object;
 use crate::mesh::PyMesh;
@@ -78,6 +81,11 @@ fn build_face(e: &BuildError) -> Option<usize> {
         .ok()
 }
 
+/// A Python object of a Rust value.
+fn obj<'py, T: IntoPyObject<'py>>(py: Python<'py>, v: T) -> Py<PyAny> {
+    v.into_py_any(py).unwrap_or_else(|_| py.None())
+}
+
 /// A meshloom error as a Python exception; keys it names become key objects
 /// of `mesh`.
 pub fn mesh_err(py: Python<'_>, mesh: &Py<PyMesh>, e: Error) -> PyErr {
@@ -90,41 +98,44 @@ pub fn mesh_err(py: Python<'_>, mesh: &Py<PyMesh>, e: Error) -> PyErr {
             "RefusedError",
             msg,
             &[
-                ("op", op.into_pyobject(py).unwrap().into_any().unbind()),
-                (
-                    "reason",
-                    refusal_name(&reason)
-                        .into_pyobject(py)
-                        .unwrap()
-                        .into_any()
-                        .unbind(),
-                ),
+                ("op", obj(py, op)),
+                ("reason", obj(py, refusal_name(&reason))),
                 ("element", key(k)),
             ],
         ),
         Error::Build(b) => build_err(py, b),
         Error::Invalid(v) => {
             let element = v.key.map(key).unwrap_or_else(|| py.None());
-            let rule = v.rule.into_pyobject(py).unwrap().into_any().unbind();
             raise(
                 py,
                 "ValidationError",
                 msg,
-                &[("rule", rule), ("element", element)],
+                &[("rule", obj(py, v.rule)), ("element", element)],
             )
         }
         Error::AttributeExists { .. }
         | Error::AttributeMissing { .. }
         | Error::AttributeType { .. }
         | Error::AttributeHandle { .. } => raise(py, "ColumnError", msg, &[]),
+        Error::Rule {
+            kind,
+            column,
+            error,
+        } => rule_err(py, kind, &column, &error, msg),
+        e => algorithm_err(py, mesh, e, msg),
+    }
+}
+
+/// The errors an algorithm stops with, each as its exception
+/// (`MeshloomError` for any other).
+fn algorithm_err(py: Python<'_>, mesh: &Py<PyMesh>, e: Error, msg: String) -> PyErr {
+    let key = |k: AnyKey| key_object(py, mesh, k);
+    match e {
         Error::Cancelled { algorithm } => raise(
             py,
             "CancelledError",
             msg,
-            &[(
-                "algorithm",
-                algorithm.into_pyobject(py).unwrap().into_any().unbind(),
-            )],
+            &[("algorithm", obj(py, algorithm))],
         ),
         Error::Unsuitable {
             algorithm,
@@ -135,14 +146,8 @@ pub fn mesh_err(py: Python<'_>, mesh: &Py<PyMesh>, e: Error) -> PyErr {
             "UnsuitableError",
             msg,
             &[
-                (
-                    "algorithm",
-                    algorithm.into_pyobject(py).unwrap().into_any().unbind(),
-                ),
-                (
-                    "reason",
-                    reason.into_pyobject(py).unwrap().into_any().unbind(),
-                ),
+                ("algorithm", obj(py, algorithm)),
+                ("reason", obj(py, reason)),
                 ("element", k.map(key).unwrap_or_else(|| py.None())),
             ],
         ),
@@ -156,22 +161,10 @@ pub fn mesh_err(py: Python<'_>, mesh: &Py<PyMesh>, e: Error) -> PyErr {
             "TooLargeError",
             msg,
             &[
-                (
-                    "algorithm",
-                    algorithm.into_pyobject(py).unwrap().into_any().unbind(),
-                ),
-                (
-                    "estimate",
-                    estimate.into_pyobject(py).unwrap().into_any().unbind(),
-                ),
-                (
-                    "limit",
-                    limit.into_pyobject(py).unwrap().into_any().unbind(),
-                ),
-                (
-                    "option",
-                    option.into_pyobject(py).unwrap().into_any().unbind(),
-                ),
+                ("algorithm", obj(py, algorithm)),
+                ("estimate", obj(py, estimate)),
+                ("limit", obj(py, limit)),
+                ("option", obj(py, option)),
             ],
         ),
         Error::NonFiniteResult {
@@ -180,16 +173,38 @@ pub fn mesh_err(py: Python<'_>, mesh: &Py<PyMesh>, e: Error) -> PyErr {
             py,
             "NonFiniteError",
             msg,
-            &[
-                (
-                    "algorithm",
-                    algorithm.into_pyobject(py).unwrap().into_any().unbind(),
-                ),
-                ("element", key(k)),
-            ],
+            &[("algorithm", obj(py, algorithm)), ("element", key(k))],
         ),
         _ => raise(py, "MeshloomError", msg, &[]),
     }
+}
+
+/// A column's rule failed: the exception a Python rule raised, itself (with
+/// a note that the mesh is unchanged); for a rule of another kind, a
+/// `MeshloomError` naming the column.
+fn rule_err(
+    py: Python<'_>,
+    kind: ElementKind,
+    column: &str,
+    error: &RuleError,
+    msg: String,
+) -> PyErr {
+    if let Some(raised) = error.cause().and_then(|c| c.downcast_ref::<PyErr>()) {
+        let raised = raised.clone_ref(py);
+        let note =
+            format!("raised by the Python rule of the {kind} column {column:?} inside a meshloom edit; the mesh is unchanged");
+        let _ = raised.value(py).call_method1("add_note", (note,));
+        return raised;
+    }
+    raise(
+        py,
+        "MeshloomError",
+        msg,
+        &[
+            ("column", obj(py, column)),
+            ("kind", obj(py, kind.to_string())),
+        ],
+    )
 }
 
 /// A build error (bad input polygons) as `BuildError`.

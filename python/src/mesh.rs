@@ -14,8 +14,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList, PyTuple};
 
 use crate::attrs::{
-    add, column_type, get_all, get_one, parse_kind, remove, rule_failed, set_all, set_one,
-    take_rule_error, Dtype, FromAny, PyAttr, RuleName,
+    add, column_type, get_all, get_one, parse_kind, remove, set_all, set_one, Dtype, FromAny,
+    PyAttr, RuleName,
 };
 use crate::dispatch;
 use crate::elements::{self, key_object, PyEdge, PyFace, PyHalfedge, PyVertex};
@@ -83,36 +83,23 @@ impl PyMesh {
 }
 
 /// Run an edit all-or-nothing: the Rust operators refuse before changing
-/// anything; on a mesh with a Python-rule column the edit runs inside a
-/// journal transaction (`Mesh::transaction`), which a Python rule that
-/// raised rolls back: the cost is the size of the edit, not of the mesh.
+/// anything, and a Python rule that raises fails the edit with
+/// `Error::Rule`, which leaves the mesh as it was (meshloom runs every edit
+/// of a mesh with a fallible column as a transaction: the cost is the size
+/// of the edit, not of the mesh); `mesh_err` raises the rule's exception.
+/// On such a mesh the whole call is one transaction too, so that an edit of
+/// several steps is undone whole.
 pub(crate) fn edit<T>(
     slf: &Bound<'_, PyMesh>,
     op: impl FnOnce(&mut Mesh) -> meshloom::Result<T>,
 ) -> PyResult<T> {
     let py = slf.py();
     let mut this = slf.try_borrow_mut().map_err(busy)?;
-    let _ = take_rule_error();
     let result = if this.has_python_rules() {
-        this.mesh.transaction(|m| {
-            let out = op(m);
-            if rule_failed() {
-                // Roll back; the parked exception is raised below.
-                return Err(meshloom::Error::Cancelled {
-                    algorithm: "a Python attribute rule",
-                });
-            }
-            out
-        })
+        this.mesh.transaction(op)
     } else {
         op(&mut this.mesh)
     };
-    if let Some(err) = take_rule_error() {
-        let note =
-            "raised by a Python attribute rule inside a meshloom edit; the mesh is unchanged";
-        let _ = err.value(py).call_method1("add_note", (note,));
-        return Err(err);
-    }
     drop(this);
     result.map_err(|e| mesh_err(py, &slf.clone().unbind(), e))
 }

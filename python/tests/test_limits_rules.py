@@ -137,3 +137,74 @@ def test_rims_over_max_refined_rim_are_filled_unrefined():
     assert (report["holes_filled"], report["unrefined"], report["vertices_added"]) == (1, 1, 0)
     report = plain.fill_holes()
     assert report["unrefined"] == 0
+
+
+class Refusal(Exception):
+    """An exception of the caller's own, with a field of its own."""
+
+    def __init__(self, message, code):
+        super().__init__(message)
+        self.code = code
+
+
+class RefusingRule(FirstRule):
+    """Refuses to merge (and so to interpolate) values; keeps what it raised."""
+
+    def __init__(self):
+        self.raised = []
+
+    def merge(self, values, weights):
+        e = Refusal("no merging here", 7)
+        self.raised.append(e)
+        raise e
+
+
+def collapse_some_edge(m):
+    for h in m.halfedges:
+        try:
+            return m.collapse_edge(h)
+        except meshloom.RefusedError:
+            pass
+
+
+EDITS = {
+    "collapse_edge": collapse_some_edge,
+    "split_edge": lambda m: m.split_edge(m.edges[0], 0.5),
+    "decimate": lambda m: m.decimate(0.5),
+    "decimate on a copy": lambda m: m.decimate(0.5, progress=lambda info: True),
+    "subdivide": lambda m: m.subdivide("loop", 1),
+    "remesh": lambda m: m.remesh(0.2),
+    "lod_chain": lambda m: m.lod_chain([0.5]),
+}
+
+
+@pytest.mark.parametrize("edit", list(EDITS))
+def test_the_exception_a_rule_raised_reaches_the_caller_itself(edit):
+    m = tetra()
+    m.subdivide("loop", 2)
+    rule = RefusingRule()
+    m.add_vertex_attr("w", float, rule=rule)
+    m.set_attr_array("w", np.arange(m.vertex_count, dtype=float))
+    before = m.copy()
+    keys = (m.vertices, m.edges, m.faces)
+    with pytest.raises(Refusal) as caught:
+        EDITS[edit](m)
+    # The very object the rule raised: its type, message and fields.
+    assert rule.raised and caught.value is rule.raised[0]
+    assert (str(caught.value), caught.value.code) == ("no merging here", 7)
+    assert any(
+        "vertex column \"w\"" in n and "unchanged" in n
+        for n in getattr(caught.value, "__notes__", [])
+    )
+    m.validate()
+    # The same elements under the same keys, with the same values. (After
+    # a rebuild is rolled back, the keys it issued stay stale: the pickled
+    # state records that, so `m == before` holds only for local edits.)
+    assert (m.vertices, m.edges, m.faces) == keys
+    (p, f), (p0, f0) = m.to_arrays(), before.to_arrays()
+    assert np.array_equal(p, p0) and np.array_equal(f, f0)
+    assert m.attr_array("w") == before.attr_array("w")
+    if edit not in ("subdivide", "remesh"):
+        assert m == before
+    # The column's rule reads back without probing.
+    assert m.attrs()["w"] == ("object", "python")
