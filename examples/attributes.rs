@@ -57,6 +57,30 @@ fn colour_of(s: &Session, f: FaceKey) -> Result<String> {
 }
 
 fn main() -> Result<()> {
+    let mut s = start()?;
+    s.report("start: unit cube, 8 × 0.5 kg")?;
+    split_an_edge(&mut s)?;
+    s.report("after split_edge (the flag spreads to it)")?;
+
+    // Triangulate: every piece keeps its face's colour and material.
+    s.mesh.triangulate_all();
+    s.report("after triangulate_all")?;
+
+    poke_a_face(&mut s)?;
+    s.report("after poke_face")?;
+    flip_between_colours(&mut s)?;
+    s.report("after flip_edge")?;
+    collapse_at_selection(&mut s)?;
+    s.report("after three collapses")?;
+
+    s.mesh.validate()?;
+    println!("the mesh is valid; total mass kept at 4.00 kg through every edit");
+    Ok(())
+}
+
+/// A cube with a colour and a material per face, a mass on every vertex and
+/// one selected corner.
+fn start() -> Result<Session> {
     let mut mesh = meshloom::shapes::cube();
     // Colours interpolate ([f32; 3]'s own rule); materials never mix (u32:
     // Incompatible); mass is conserved (an explicit rule for f64); the
@@ -82,17 +106,18 @@ fn main() -> Result<()> {
     mesh.fill_attr(&selected, false)?;
     let corner = mesh.vertices().next().expect("a cube has vertices");
     mesh.set_attr(&selected, corner, true)?;
-    let mut s = Session {
+    Ok(Session {
         mesh,
         colour,
         material,
         mass,
         selected,
-    };
-    s.report("start: unit cube, 8 × 0.5 kg")?;
+    })
+}
 
-    // Split an edge a quarter of the way: the new vertex's position is
-    // interpolated, it takes no mass (conserved), the faces keep colours.
+/// Split an edge a quarter of the way: the new vertex's position is
+/// interpolated, it takes no mass (conserved), the faces keep colours.
+fn split_an_edge(s: &mut Session) -> Result<()> {
     let e = s.mesh.edges().next().expect("edges");
     let [a, b] = s.mesh.edge(e)?.vertices();
     let m = s.mesh.split_edge(e, 0.25)?;
@@ -101,29 +126,29 @@ fn main() -> Result<()> {
         s.mesh.position(m)?,
         s.mesh.attr(&s.mass, m)?
     );
-    s.report("after split_edge (the flag spreads to it)")?;
+    Ok(())
+}
 
-    // Triangulate: every piece keeps its face's colour and material.
-    s.mesh.triangulate_all();
-    s.report("after triangulate_all")?;
-
-    // Poke a face: the centre vertex sits at the centroid; the three new
-    // triangles keep the colour.
+/// Poke a face: the centre vertex sits at the centroid; the three new
+/// triangles keep the colour.
+fn poke_a_face(s: &mut Session) -> Result<()> {
     let f = s.mesh.faces().next().expect("faces");
-    let before = colour_of(&s, f)?;
+    let before = colour_of(s, f)?;
     let c = s.mesh.poke_face(f)?;
     let pieces: Vec<String> = s
         .mesh
         .vertex(c)?
         .faces()
-        .map(|g| colour_of(&s, g))
+        .map(|g| colour_of(s, g))
         .collect::<Result<_>>()?;
     println!("  poke_face: colour {before} -> pieces {pieces:?}");
-    s.report("after poke_face")?;
+    Ok(())
+}
 
-    // Flip an edge between two faces of different colours: both faces merge
-    // and split again, so their colours average while their materials
-    // (different ids) are dropped rather than mixed.
+/// Flip an edge between two faces of different colours: both faces merge
+/// and split again, so their colours average while their materials
+/// (different ids) are dropped rather than mixed.
+fn flip_between_colours(s: &mut Session) -> Result<()> {
     let flip = s
         .mesh
         .edges()
@@ -141,22 +166,24 @@ fn main() -> Result<()> {
     let (f, g) = (f.expect("a face"), g.expect("a face"));
     println!(
         "  flip_edge {flip:?}: colours {} and {}",
-        colour_of(&s, f)?,
-        colour_of(&s, g)?
+        colour_of(s, f)?,
+        colour_of(s, g)?
     );
     s.mesh.flip_edge(flip)?;
     println!(
         "    -> {} and {}, materials {:?} and {:?}",
-        colour_of(&s, f)?,
-        colour_of(&s, g)?,
+        colour_of(s, f)?,
+        colour_of(s, g)?,
         s.mesh.attr(&s.material, f)?,
         s.mesh.attr(&s.material, g)?
     );
-    s.report("after flip_edge")?;
+    Ok(())
+}
 
-    // Collapse every edge at the selected corner, one after the other: the
-    // masses pile up on the survivor, the selection flag spreads to it, and
-    // the total mass never changes.
+/// Collapse every edge at the selected corner, one after the other: the
+/// masses pile up on the survivor, the selection flag spreads to it, and
+/// the total mass never changes.
+fn collapse_at_selection(s: &mut Session) -> Result<()> {
     for _ in 0..3 {
         let Some(v) = s
             .mesh
@@ -182,9 +209,5 @@ fn main() -> Result<()> {
             s.mesh.attr(&s.selected, kept)?
         );
     }
-    s.report("after three collapses")?;
-
-    s.mesh.validate()?;
-    println!("the mesh is valid; total mass kept at 4.00 kg through every edit");
     Ok(())
 }

@@ -7,7 +7,7 @@
 //!     cargo run --example engine_buffers
 
 use bytemuck::{Pod, Zeroable};
-use meshloom::buffers::{ColumnChoice, Indices, TriangleBufferOptions};
+use meshloom::buffers::{ColumnChoice, Indices, TriangleBufferOptions, VertexLayout};
 
 /// The vertex a shader reads: `#[repr(C)]`, so its bytes are the
 /// interleaved buffer's.
@@ -27,19 +27,11 @@ struct VertexAttribute {
     shader_location: u32,
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    // A cube whose every face is its own UV island: corner values differ
-    // across every edge (and the flat normals differ too).
-    let mut mesh = meshloom::shapes::cube();
-    let uv = mesh.add_halfedge_attr::<[f32; 2]>("texcoord")?;
-    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-    for f in mesh.faces().collect::<Vec<_>>() {
-        let corners: Vec<_> = mesh.face(f)?.halfedges().collect();
-        for (h, value) in corners.into_iter().zip(square) {
-            mesh.set_attr(&uv, h, value)?;
-        }
-    }
+/// The unit square's corners: every cube face's UVs.
+const SQUARE: [[f32; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
 
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mesh = uv_cube()?;
     let options = TriangleBufferOptions {
         columns: vec![ColumnChoice::corner("texcoord")],
         ..TriangleBufferOptions::default()
@@ -54,16 +46,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Indices::U32(i) => (bytemuck::cast_slice(i), "Uint32"),
     };
     let scalar = std::mem::size_of::<f32>() as u64;
-    let attributes: Vec<VertexAttribute> = layout
-        .attributes
-        .iter()
-        .enumerate()
-        .map(|(location, a)| VertexAttribute {
-            format: ["", "Float32", "Float32x2", "Float32x3", "Float32x4"][a.components],
-            offset: a.offset as u64 * scalar,
-            shader_location: location as u32,
-        })
-        .collect();
+    let attributes = vertex_attributes(&layout, scalar);
     let stride = layout.stride as u64 * scalar;
     println!(
         "{} vertices x {stride} bytes = {} vertex bytes; {} indices ({index_format}) = {} index bytes",
@@ -117,7 +100,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ),
         (
             "every UV is a corner of the unit square",
-            vertices.iter().all(|v| square.contains(&v.uv)),
+            vertices.iter().all(|v| SQUARE.contains(&v.uv)),
         ),
         (
             "every index names a vertex",
@@ -127,8 +110,42 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .all(|i| (i as usize) < vertices.len()),
         ),
     ];
+    report(&checks)
+}
+
+/// A cube whose every face is its own UV island: corner values differ
+/// across every edge (and the flat normals differ too).
+fn uv_cube() -> meshloom::Result<meshloom::Mesh> {
+    let mut mesh = meshloom::shapes::cube();
+    let uv = mesh.add_halfedge_attr::<[f32; 2]>("texcoord")?;
+    for f in mesh.faces().collect::<Vec<_>>() {
+        let corners: Vec<_> = mesh.face(f)?.halfedges().collect();
+        for (h, value) in corners.into_iter().zip(SQUARE) {
+            mesh.set_attr(&uv, h, value)?;
+        }
+    }
+    Ok(mesh)
+}
+
+/// The vertex attributes a render pipeline declares for `layout`, with
+/// offsets in bytes (`scalar` bytes per value).
+fn vertex_attributes(layout: &VertexLayout, scalar: u64) -> Vec<VertexAttribute> {
+    layout
+        .attributes
+        .iter()
+        .enumerate()
+        .map(|(location, a)| VertexAttribute {
+            format: ["", "Float32", "Float32x2", "Float32x3", "Float32x4"][a.components],
+            offset: a.offset as u64 * scalar,
+            shader_location: location as u32,
+        })
+        .collect()
+}
+
+/// Print each check; an error when any failed.
+fn report(checks: &[(&str, bool)]) -> Result<(), Box<dyn std::error::Error>> {
     let mut failed = 0;
-    for (what, ok) in checks {
+    for &(what, ok) in checks {
         println!("{} {what}", if ok { "ok  " } else { "FAIL" });
         failed += usize::from(!ok);
     }

@@ -367,6 +367,38 @@ pub fn repair_with(
     weld_class: &[u32],
 ) -> Result<(RepairReport, Provenance)> {
     let input = check_input(polygons, options)?;
+    let (mut soup, implied) = take_soup(polygons, input);
+    // Passes until one changes nothing, so that repairing the result again
+    // changes nothing either: a later policy can clear what kept an earlier
+    // weld apart. Each pass is O(C log C); real files settle in two.
+    let mut report = RepairReport::default();
+    for _pass in 0..MAX_PASSES {
+        let pass = repair_pass(&mut soup, options, weld_class);
+        let settled = !pass.changed();
+        report.add(pass);
+        if settled {
+            break;
+        }
+    }
+    if options.drop_unreferenced_vertices {
+        // The implied vertices no index names were never renumbered in.
+        report.unreferenced_vertices += implied.map_or(0, |(n, dense)| n - dense);
+    } else if let Some((n, dense)) = implied {
+        // Keep the caller's numbering: original vertices keep their index,
+        // copies follow the largest one.
+        soup.restore_numbering(n, dense);
+    }
+    polygons.positions = soup.positions;
+    polygons.offsets = soup.offsets;
+    polygons.indices = soup.indices;
+    Ok((report, soup.prov))
+}
+
+/// The polygons, taken out of `polygons` into a soup with provenance. A
+/// topology-only soup is renumbered densely (its vertex count is one past
+/// its largest index, which may be anything up to 2^32 - 1); then also
+/// returns the vertex count it implied and the dense one.
+fn take_soup(polygons: &mut Polygons, input: Input) -> (Soup, Option<(usize, usize)>) {
     let mut soup = Soup {
         positions: std::mem::take(&mut polygons.positions),
         vertex_count: 0,
@@ -377,8 +409,6 @@ pub fn repair_with(
     if soup.offsets.is_empty() {
         soup.offsets.push(0);
     }
-    // A topology-only soup is renumbered densely (its vertex count is one
-    // past its largest index, which may be anything up to 2^32 - 1).
     let implied = match input {
         Input::Positions => {
             soup.vertex_count = soup.positions.len();
@@ -399,73 +429,58 @@ pub fn repair_with(
     };
     soup.prov.face_source = (0..soup.face_count() as u32).collect();
     soup.prov.corner_source = (0..soup.indices.len() as u32).collect();
-    // Passes until one changes nothing, so that repairing the result again
-    // changes nothing either: a later policy can clear what kept an earlier
-    // weld apart. Each pass is O(C log C); real files settle in two.
-    let mut report = RepairReport::default();
-    for _pass in 0..MAX_PASSES {
-        let mut pass = RepairReport::default();
-        if options.weld_vertices {
-            // Classes follow the vertices through earlier passes.
-            let classes: Vec<u32> = if weld_class.is_empty() {
-                Vec::new()
-            } else {
-                soup.prov
-                    .vertex_source
-                    .iter()
-                    .map(|&s| weld_class.get(s as usize).copied().unwrap_or(0))
-                    .collect()
-            };
-            (pass.welded_vertices, pass.weld_refused) = soup.weld(&classes);
+    (soup, implied)
+}
+
+/// One pass of the chosen policies: weld, then (only when the builder
+/// would refuse the polygons) the defect policies, then drop unreferenced
+/// vertices.
+fn repair_pass(soup: &mut Soup, options: &RepairOptions, weld_class: &[u32]) -> RepairReport {
+    let mut pass = RepairReport::default();
+    if options.weld_vertices {
+        // Classes follow the vertices through earlier passes.
+        let classes: Vec<u32> = if weld_class.is_empty() {
+            Vec::new()
+        } else {
+            soup.prov
+                .vertex_source
+                .iter()
+                .map(|&s| weld_class.get(s as usize).copied().unwrap_or(0))
+                .collect()
+        };
+        (pass.welded_vertices, pass.weld_refused) = soup.weld(&classes);
+    }
+    // Valid input is left as it is: the defect policies run only when the
+    // builder would refuse the polygons.
+    if soup.needs_repair() {
+        if options.drop_degenerate_faces {
+            (
+                pass.collapsed_corners,
+                pass.degenerate_faces,
+                pass.split_faces,
+            ) = soup.drop_degenerate();
         }
-        // Valid input is left as it is: the defect policies run only when
-        // the builder would refuse the polygons.
-        if soup.needs_repair() {
-            if options.drop_degenerate_faces {
-                (
-                    pass.collapsed_corners,
-                    pass.degenerate_faces,
-                    pass.split_faces,
-                ) = soup.drop_degenerate();
-            }
-            if options.drop_duplicate_faces {
-                pass.duplicate_faces = soup.drop_duplicates();
-            }
-            if options.orient_faces {
-                (pass.flipped_faces, pass.orientation_conflicts) = soup.orient();
-            }
-            if options.split_nonmanifold_edges {
-                let (edges, copies) = soup.split_edges();
-                pass.nonmanifold_edges = edges;
-                pass.added_vertices += copies;
-            }
-            if options.split_nonmanifold_vertices {
-                let (vertices, copies) = soup.split_vertices();
-                pass.nonmanifold_vertices = vertices;
-                pass.added_vertices += copies;
-            }
+        if options.drop_duplicate_faces {
+            pass.duplicate_faces = soup.drop_duplicates();
         }
-        if options.drop_unreferenced_vertices {
-            pass.unreferenced_vertices = soup.drop_unreferenced();
+        if options.orient_faces {
+            (pass.flipped_faces, pass.orientation_conflicts) = soup.orient();
         }
-        let settled = !pass.changed();
-        report.add(pass);
-        if settled {
-            break;
+        if options.split_nonmanifold_edges {
+            let (edges, copies) = soup.split_edges();
+            pass.nonmanifold_edges = edges;
+            pass.added_vertices += copies;
+        }
+        if options.split_nonmanifold_vertices {
+            let (vertices, copies) = soup.split_vertices();
+            pass.nonmanifold_vertices = vertices;
+            pass.added_vertices += copies;
         }
     }
     if options.drop_unreferenced_vertices {
-        // The implied vertices no index names were never renumbered in.
-        report.unreferenced_vertices += implied.map_or(0, |(n, dense)| n - dense);
-    } else if let Some((n, dense)) = implied {
-        // Keep the caller's numbering: original vertices keep their index,
-        // copies follow the largest one.
-        soup.restore_numbering(n, dense);
+        pass.unreferenced_vertices = soup.drop_unreferenced();
     }
-    polygons.positions = soup.positions;
-    polygons.offsets = soup.offsets;
-    polygons.indices = soup.indices;
-    Ok((report, soup.prov))
+    pass
 }
 
 /// The most passes of the policies (see [`repair_with`]).

@@ -118,7 +118,29 @@ fn export<S: Scalar>(
         None => None,
     };
     let tris = triangles(mesh);
+    let (sources, columns) = open_columns(mesh, options)?;
+    let mut out = TriangleBuffers::<S> {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        columns,
+        indices: Indices::U32(Vec::new()),
+        triangle_faces: Vec::with_capacity(tris.len()),
+        vertex_sources: Vec::new(),
+    };
+    let indices = weld_corners(mesh, p, normals.as_deref(), &tris, &sources, &mut out)?;
+    out.indices = if options.index_width == IndexWidth::Auto && out.positions.len() < 65_536 {
+        Indices::U16(indices.into_iter().map(|i| i as u16).collect())
+    } else {
+        Indices::U32(indices)
+    };
+    Ok(out)
+}
 
+/// The chosen columns, each with its reader and its empty output column.
+fn open_columns<'m, S: Scalar>(
+    mesh: &'m Mesh,
+    options: &TriangleBufferOptions,
+) -> Result<(Vec<Source<'m>>, Vec<BufferColumn<S>>), BufferError> {
     let mut sources = Vec::with_capacity(options.columns.len());
     let mut columns = Vec::with_capacity(options.columns.len());
     for c in &options.columns {
@@ -144,41 +166,37 @@ fn export<S: Scalar>(
             data: Vec::new(),
         });
     }
+    Ok((sources, columns))
+}
 
-    // Buffer vertices of one mesh vertex are chained: head[v] is the last
-    // made, chain[o] the one made before o.
-    const NONE: u32 = u32::MAX;
+/// Buffer vertices of one mesh vertex are chained: `head[v]` is the last
+/// made, `chain[o]` the one made before `o`.
+const NONE: u32 = u32::MAX;
+
+/// Give every triangle corner a buffer vertex: an earlier one of its mesh
+/// vertex with the same split values (normal, corner columns), or a new
+/// one. Fills `out`'s vertices and triangle faces; returns the indices.
+fn weld_corners<S: Scalar>(
+    mesh: &Mesh,
+    p: &[[f64; 3]],
+    normals: Option<&[[f64; 3]]>,
+    tris: &[([Corner; 3], FaceKey)],
+    sources: &[Source<'_>],
+    out: &mut TriangleBuffers<S>,
+) -> Result<Vec<u32>, BufferError> {
     let mut head = vec![NONE; mesh.slot_counts()[0]];
     let mut chain: Vec<u32> = Vec::new();
-    let mut out = TriangleBuffers::<S> {
-        positions: Vec::new(),
-        normals: Vec::new(),
-        columns,
-        indices: Indices::U32(Vec::new()),
-        triangle_faces: Vec::with_capacity(tris.len()),
-        vertex_sources: Vec::new(),
-    };
     let mut indices: Vec<u32> = Vec::with_capacity(3 * tris.len());
     // The values that split a vertex: the normal, then the corner columns.
     let mut split: Vec<S> = Vec::with_capacity(16);
     let mut tmp = [0.0f64; 4];
-    for (tri, f) in &tris {
+    for (tri, f) in tris {
         out.triangle_faces.push(*f);
         for c in tri {
-            split.clear();
-            if let Some(n) = &normals {
-                split.extend(n[c.orig].map(S::from_f64));
-            }
-            for s in &sources {
-                if let Source::Corner(r) = s {
-                    let k = r.components();
-                    r.read(c.work, &mut tmp[..k]);
-                    split.extend(tmp[..k].iter().map(|&x| S::from_f64(x)));
-                }
-            }
+            split_values(c, normals, sources, &mut split, &mut tmp);
             let v = c.v.index();
             let mut o = head[v];
-            while o != NONE && !same(&out, o as usize, &split) {
+            while o != NONE && !same(out, o as usize, &split) {
                 o = chain[o as usize];
             }
             if o == NONE {
@@ -188,38 +206,71 @@ fn export<S: Scalar>(
                     .ok_or(BufferError::TooLarge {
                         what: "more than 2^32 - 1 buffer vertices",
                     })?;
-                out.positions.push(p[v].map(S::from_f64));
-                out.vertex_sources.push(c.v);
-                let mut at = 0;
-                if normals.is_some() {
-                    out.normals.push([split[0], split[1], split[2]]);
-                    at = 3;
-                }
-                for (s, col) in sources.iter().zip(&mut out.columns) {
-                    let k = col.components;
-                    match s {
-                        Source::Corner(_) => {
-                            col.data.extend_from_slice(&split[at..at + k]);
-                            at += k;
-                        }
-                        Source::Vertex(r) => {
-                            r.read(c.v, &mut tmp[..k]);
-                            col.data.extend(tmp[..k].iter().map(|&x| S::from_f64(x)));
-                        }
-                    }
-                }
+                push_vertex(out, c, p[v], normals.is_some(), sources, &split, &mut tmp);
                 chain.push(head[v]);
                 head[v] = o;
             }
             indices.push(o);
         }
     }
-    out.indices = if options.index_width == IndexWidth::Auto && out.positions.len() < 65_536 {
-        Indices::U16(indices.into_iter().map(|i| i as u16).collect())
-    } else {
-        Indices::U32(indices)
-    };
-    Ok(out)
+    Ok(indices)
+}
+
+/// The values of corner `c` that split its vertex: its normal, then its
+/// corner columns.
+#[inline]
+fn split_values<S: Scalar>(
+    c: &Corner,
+    normals: Option<&[[f64; 3]]>,
+    sources: &[Source<'_>],
+    split: &mut Vec<S>,
+    tmp: &mut [f64; 4],
+) {
+    split.clear();
+    if let Some(n) = normals {
+        split.extend(n[c.orig].map(S::from_f64));
+    }
+    for s in sources {
+        if let Source::Corner(r) = s {
+            let k = r.components();
+            r.read(c.work, &mut tmp[..k]);
+            split.extend(tmp[..k].iter().map(|&x| S::from_f64(x)));
+        }
+    }
+}
+
+/// A new buffer vertex for corner `c` at `position`: the normal and corner
+/// columns from `split`, the vertex columns read.
+#[inline]
+fn push_vertex<S: Scalar>(
+    out: &mut TriangleBuffers<S>,
+    c: &Corner,
+    position: [f64; 3],
+    with_normal: bool,
+    sources: &[Source<'_>],
+    split: &[S],
+    tmp: &mut [f64; 4],
+) {
+    out.positions.push(position.map(S::from_f64));
+    out.vertex_sources.push(c.v);
+    let mut at = 0;
+    if with_normal {
+        out.normals.push([split[0], split[1], split[2]]);
+        at = 3;
+    }
+    for (s, col) in sources.iter().zip(&mut out.columns) {
+        let k = col.components;
+        match s {
+            Source::Corner(_) => {
+                col.data.extend_from_slice(&split[at..at + k]);
+                at += k;
+            }
+            Source::Vertex(r) => {
+                r.read(c.v, &mut tmp[..k]);
+                col.data.extend(tmp[..k].iter().map(|&x| S::from_f64(x)));
+            }
+        }
+    }
 }
 
 /// Whether buffer vertex `o` has the split values `split`.
