@@ -187,7 +187,8 @@ fn unsuitable(key: Option<VertexKey>, reason: impl Into<String>) -> Error {
 /// # Errors
 /// [`Error::Unsuitable`] without the `sparse` feature (faer);
 /// [`Error::NoPositions`]; [`Error::StaleKey`] for a region vertex that is
-/// not in the mesh; [`Error::AttributeHandle`] for a removed mask column;
+/// not in the mesh; [`Error::AttributeHandle`] for a removed mask, pinned
+/// or feature column;
 /// [`Error::Unsuitable`] for an order outside 1..=3, a region with no vertex
 /// that may move, a connected part of the region with no edge to a fixed
 /// vertex (such as a whole closed mesh: nothing would hold it), a system
