@@ -580,6 +580,39 @@ fn decimate_kw(
     })
 }
 
+/// The targets of `lod_chain`: ratios or dicts `{"vertices": n}`,
+/// `{"faces": n}`, `{"ratio": r}` (default: `LodOptions`').
+fn lod_targets(targets: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<Target>> {
+    let Some(t) = targets else {
+        return Ok(LodOptions::default().targets);
+    };
+    t.try_iter()?
+        .map(|item| {
+            let item = item?;
+            if let Ok(r) = item.extract::<f64>() {
+                return Ok(Target::Ratio(r));
+            }
+            let d = item.cast::<PyDict>().map_err(|_| {
+                PyTypeError::new_err(
+                    "a target is a ratio or a dict {\"vertices\": n} or {\"faces\": n}",
+                )
+            })?;
+            if let Some(v) = d.get_item("vertices")? {
+                return Ok(Target::Vertices(v.extract()?));
+            }
+            if let Some(f) = d.get_item("faces")? {
+                return Ok(Target::Faces(f.extract()?));
+            }
+            if let Some(r) = d.get_item("ratio")? {
+                return Ok(Target::Ratio(r.extract()?));
+            }
+            Err(PyValueError::new_err(
+                "a target dict has \"vertices\", \"faces\" or \"ratio\"",
+            ))
+        })
+        .collect()
+}
+
 /// Which columns `remesh` resamples: `"linear"` (or None), `"off"`, or a
 /// list of column names.
 fn resample_of(resample: Option<&Bound<'_, PyAny>>) -> PyResult<Resample> {
@@ -1177,35 +1210,7 @@ impl PyMesh {
         feature_edges: Option<String>,
     ) -> PyResult<Py<PyList>> {
         let py = slf.py();
-        let targets: Vec<Target> = match targets {
-            None => LodOptions::default().targets,
-            Some(t) => t
-                .try_iter()?
-                .map(|item| {
-                    let item = item?;
-                    if let Ok(r) = item.extract::<f64>() {
-                        return Ok(Target::Ratio(r));
-                    }
-                    let d = item.cast::<PyDict>().map_err(|_| {
-                        PyTypeError::new_err(
-                            "a target is a ratio or a dict {\"vertices\": n} or {\"faces\": n}",
-                        )
-                    })?;
-                    if let Some(v) = d.get_item("vertices")? {
-                        return Ok(Target::Vertices(v.extract()?));
-                    }
-                    if let Some(f) = d.get_item("faces")? {
-                        return Ok(Target::Faces(f.extract()?));
-                    }
-                    if let Some(r) = d.get_item("ratio")? {
-                        return Ok(Target::Ratio(r.extract()?));
-                    }
-                    Err(PyValueError::new_err(
-                        "a target dict has \"vertices\", \"faces\" or \"ratio\"",
-                    ))
-                })
-                .collect::<PyResult<_>>()?,
-        };
+        let targets = lod_targets(targets)?;
         let mut keep = KeepKw::new(boundary, seams, feature_angle, features, None)?;
         keep.pinned = pinned.map_or(Mask::None, Mask::Column);
         OldDecimateKw {

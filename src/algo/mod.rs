@@ -8,7 +8,7 @@
 //! | [`progress`] | the progress-and-cancel callback every long algorithm takes | [`Progress`], [`Error::Cancelled`](crate::Error::Cancelled) |
 //! | [`laplacian`] | the cotangent (or uniform) Laplacian and the mixed-Voronoi mass matrix, the building blocks below | [`laplacian::Laplacian`] (sparse, by vertex slot), `Vec` of areas |
 //! | [`curvature`] | mean, Gaussian and principal curvatures (cotangent Laplacian, angle defect) | `Vec`s by slot, or vertex columns |
-//! | [`smooth`] | explicit (uniform, cotangent), Taubin and implicit smoothing, with a boundary and a vertex mask kept fixed | the mesh's positions, [`smooth::SmoothReport`] |
+//! | [`smooth`] | explicit (uniform, cotangent), Taubin and implicit smoothing, the boundary locked, sliding or free and pinned vertices kept | the mesh's positions, [`smooth::SmoothReport`] |
 //! | [`fill_hole`](mod@fill_hole) | Liepa's hole filling: the least-weight triangulation of each hole, refined to the rim's edge length and faired (k-harmonic) over the patch | the mesh, [`FillHoleReport`] |
 //! | [`fair`] | the smoothest (k-harmonic, k = 1..3) surface over a region with its surroundings fixed | the mesh's positions, [`fair::FairReport`] |
 //! | [`subdivision`] | [`subdivide`] by any [`Scheme`] on one driver; what the schemes share: options (levels, boundary, creases, per-column vertex/varying data), the report | the mesh, rebuilt wholesale; [`SubdivisionReport`] |

@@ -199,12 +199,13 @@ fn unsuitable(reason: impl Into<String>) -> Error {
 ///
 /// # Errors
 /// [`Error::Unsuitable`] for implicit smoothing without the `sparse`
-/// feature (faer); [`Error::NoPositions`]; [`Error::AttributeHandle`] if the mask column was
-/// removed; [`Error::Unsuitable`] for a step outside its range, a Taubin `μ`
-/// not below `−λ`, a mask that selects no vertex that may move, `rescale`
-/// with a mask or with an explicit method, a failed factorisation, or a
-/// result that is not finite; [`Error::Cancelled`]. The mesh is unchanged
-/// after any error.
+/// feature (faer); [`Error::NoPositions`]; [`Error::AttributeHandle`] if
+/// the pinned or feature column was removed; [`Error::Unsuitable`] for a
+/// step outside its range, a Taubin `μ` not below `−λ`, a feature angle
+/// that is not finite, pinned vertices that leave no vertex that may move,
+/// `rescale` with pinned vertices or with an explicit method, a failed
+/// factorisation, or a result that is not finite; [`Error::Cancelled`].
+/// The mesh is unchanged after any error.
 ///
 /// # Complexity
 /// Explicit: O(iterations · corners). Implicit: one sparse Cholesky
