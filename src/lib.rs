@@ -121,7 +121,7 @@
 // `#[cfg(test)]` code) only the modules named before it here, so imports
 // run one way and never form a cycle; tests/layers.rs checks it.
 //
-// - core: choice keys layout map slots store error record
+// - core: vec3 choice keys layout map slots error store record
 // - mesh: mesh
 // - access: circulate iter traverse validate view link stats attr geometry serde_impl
 // - editing: journal ops

@@ -8,8 +8,7 @@ fn close(a: V3, b: V3) -> bool {
 }
 
 fn normalized(a: V3) -> V3 {
-    let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-    a.map(|c| c / l)
+    crate::vec3::normalize_or_zero(a)
 }
 
 /// Two unit squares sharing the edge x = 1; the second turned up by
