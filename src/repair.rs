@@ -82,7 +82,7 @@
 use std::fmt;
 
 use crate::build::Polygons;
-use crate::error::{BuildError, Error, Result};
+use crate::error::{BuildError, Result};
 
 mod policies;
 mod split;
@@ -306,7 +306,7 @@ pub struct Provenance {
 /// then welding does nothing.
 ///
 /// # Errors
-/// [`Error::Build`] with the error [`Mesh::from_buffers`](crate::Mesh::from_buffers) gives for the
+/// [`Error::Build`](crate::Error::Build) with the error [`Mesh::from_buffers`](crate::Mesh::from_buffers) gives for the
 /// same malformed input, and `polygons` left as they were: offsets that do
 /// not start at 0, decrease or end past the indices
 /// ([`BuildError::MalformedOffsets`]); an index past the positions
@@ -495,17 +495,7 @@ enum Input {
 /// The checks [`Mesh::from_buffers`](crate::Mesh::from_buffers) makes of malformed input, made before
 /// anything is touched, with its errors.
 fn check_input(p: &Polygons, options: &RepairOptions) -> Result<Input> {
-    if p.offsets.first().is_some_and(|&o| o != 0)
-        || p.offsets.windows(2).any(|w| w[1] < w[0])
-        || p.offsets
-            .last()
-            .map_or(!p.indices.is_empty(), |&o| o as usize != p.indices.len())
-    {
-        return Err(Error::Build(BuildError::MalformedOffsets {
-            offsets: p.offsets.len(),
-            indices: p.indices.len(),
-        }));
-    }
+    crate::build::check_offsets(&p.offsets, &p.indices)?;
     if p.indices.len() >= (1 << 29) || p.offsets.len() > (1 << 29) {
         return Err(BuildError::TooLarge {
             what: "more than 2^29 corners or faces",

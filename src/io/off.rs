@@ -255,11 +255,15 @@ pub(crate) fn parse(bytes: &[u8], record: bool) -> Result<Soup, Error> {
         .reserve(capped(nv, rest, 2 * header.dim));
     soup.polygons.offsets.reserve(capped(nf, rest, 4));
     soup.polygons.indices.reserve(capped(3 * nf, rest, 2));
-    let mut columns = Columns::new();
-    let mut extra: Vec<f64> = Vec::new();
-    read_vertices(&mut lines, &header, &mut soup, &mut columns, &mut extra)?;
-    read_faces(&mut lines, &header, &mut soup, &mut columns, &mut extra)?;
-    columns.finish(&mut soup, nv, nf);
+    let mut read = Reading {
+        soup,
+        columns: Columns::new(),
+        extra: Vec::new(),
+    };
+    read.vertices(&mut lines, &header)?;
+    read.faces(&mut lines, &header)?;
+    let mut soup = read.soup;
+    read.columns.finish(&mut soup, nv, nf);
     Ok(soup)
 }
 
@@ -382,59 +386,130 @@ impl Columns {
     }
 }
 
-/// The vertex lines: a position, a fourth coordinate (`w`), then the
-/// normal, colour and texture coordinates the keyword announces.
-fn read_vertices(
-    lines: &mut Lines<'_>,
-    header: &Header,
-    soup: &mut Soup,
-    columns: &mut Columns,
-    extra: &mut Vec<f64>,
-) -> Result<(), Error> {
-    let (kw, dim, nv) = (&header.kw, header.dim, header.vertices);
-    for i in 0..nv {
-        let line = content(lines).ok_or_else(|| Error::Truncated {
-            at: lines.end(),
-            expected: format!("vertex {} of {nv}", i + 1),
-        })?;
-        let mut t = Tokens::new(line);
-        let at = || lines.here();
-        let mut p = [0.0; 3];
-        for c in p.iter_mut().take(dim) {
-            *c = next_f64(&mut t, at, "a vertex coordinate")?;
-        }
-        for k in 3..dim {
-            let x = next_f64(&mut t, at, "a vertex coordinate")?;
-            if k == 3 {
-                columns.w.set(i, x);
+/// The body being read: the soup, its columns, and the numbers at the end
+/// of the line at hand.
+struct Reading {
+    soup: Soup,
+    columns: Columns,
+    extra: Vec<f64>,
+}
+
+/// The content line of element `i` of `n` (`what`: vertex or face).
+#[inline]
+fn element_line<'a>(
+    lines: &mut Lines<'a>,
+    what: &str,
+    i: usize,
+    n: usize,
+) -> Result<&'a [u8], Error> {
+    content(lines).ok_or_else(|| Error::Truncated {
+        at: lines.end(),
+        expected: format!("{what} {} of {n}", i + 1),
+    })
+}
+
+impl Reading {
+    /// The vertex lines: a position, a fourth coordinate (`w`), then the
+    /// normal, colour and texture coordinates the keyword announces.
+    fn vertices(&mut self, lines: &mut Lines<'_>, header: &Header) -> Result<(), Error> {
+        let (kw, dim, nv) = (&header.kw, header.dim, header.vertices);
+        let (soup, columns, extra) = (&mut self.soup, &mut self.columns, &mut self.extra);
+        for i in 0..nv {
+            let line = element_line(lines, "vertex", i, nv)?;
+            let mut t = Tokens::new(line);
+            let at = || lines.here();
+            let mut p = [0.0; 3];
+            for c in p.iter_mut().take(dim) {
+                *c = next_f64(&mut t, at, "a vertex coordinate")?;
+            }
+            for k in 3..dim {
+                let x = next_f64(&mut t, at, "a vertex coordinate")?;
+                if k == 3 {
+                    columns.w.set(i, x);
+                }
+            }
+            soup.polygons.positions.push(p);
+            soup.vertex_read_at(lines.line);
+            if kw.normals || kw.colors || kw.texcoords {
+                rest_numbers(t, at, "a number", extra)?;
+                vertex_extras(kw, i, line, extra, at, columns)?;
             }
         }
-        soup.polygons.positions.push(p);
-        soup.vertex_read_at(lines.line);
-        if kw.normals || kw.colors || kw.texcoords {
-            vertex_extras(kw, i, line, t, at, columns, extra)?;
+        Ok(())
+    }
+
+    /// The face lines: `k i1 .. ik` and an optional colour.
+    fn faces(&mut self, lines: &mut Lines<'_>, header: &Header) -> Result<(), Error> {
+        let (nv, nf) = (header.vertices, header.faces);
+        let (soup, columns, extra) = (&mut self.soup, &mut self.columns, &mut self.extra);
+        for i in 0..nf {
+            let line = element_line(lines, "face", i, nf)?;
+            let mut t = Tokens::new(line);
+            let at = || lines.here();
+            let k_tok = t.next().unwrap_or_default();
+            let k = match parse_i64(k_tok) {
+                Some(k) if k >= 1 => k as usize,
+                _ => {
+                    return Err(Error::syntax(
+                        at(),
+                        "a face's corner count (at least 1)",
+                        k_tok,
+                    ))
+                }
+            };
+            for _ in 0..k {
+                let tok = t.next().ok_or_else(|| {
+                    Error::syntax(at(), format!("{k} vertex indices after the count"), b"")
+                })?;
+                let index =
+                    parse_i64(tok).ok_or_else(|| Error::syntax(at(), "a vertex index", tok))?;
+                if index < 0 || index as u64 >= nv as u64 {
+                    return Err(Error::IndexOutOfRange {
+                        what: "vertex",
+                        at: at(),
+                        index,
+                        count: nv,
+                    });
+                }
+                soup.polygons.indices.push(index as u32);
+            }
+            // An optional colour: a map index, RGB or RGBA, ints or floats.
+            rest_numbers(t, at, "a colour component or the end of the line", extra)?;
+            face_colour(i, k, line, extra, at, columns)?;
+            soup.end_face(lines.line);
         }
+        Ok(())
+    }
+}
+
+/// The numbers that end a line (its tokens `t`) into `extra`; a token that
+/// is not a number is an error expecting `what`.
+#[inline]
+fn rest_numbers(
+    t: Tokens<'_>,
+    at: impl Fn() -> Location,
+    what: &str,
+    extra: &mut Vec<f64>,
+) -> Result<(), Error> {
+    extra.clear();
+    for tok in t {
+        extra.push(parse_f64(tok).ok_or_else(|| Error::syntax(at(), what, tok))?);
     }
     Ok(())
 }
 
-/// The rest of vertex `i`'s line `line` (its tokens `t`): normal, colour,
-/// texture coordinates.
+/// The numbers after vertex `i`'s coordinates on its line `line`: normal,
+/// colour, texture coordinates.
 #[inline]
 fn vertex_extras(
     kw: &Keyword,
     i: usize,
     line: &[u8],
-    t: Tokens<'_>,
+    extra: &[f64],
     at: impl Fn() -> Location,
     columns: &mut Columns,
-    extra: &mut Vec<f64>,
 ) -> Result<(), Error> {
-    extra.clear();
-    for tok in t {
-        extra.push(parse_f64(tok).ok_or_else(|| Error::syntax(at(), "a number", tok))?);
-    }
-    let mut rest = &extra[..];
+    let mut rest = extra;
     if kw.normals {
         let [x, y, z] = take::<3>(&mut rest)
             .ok_or_else(|| Error::syntax(at(), "three normal coordinates (NOFF)", line))?;
@@ -455,72 +530,17 @@ fn vertex_extras(
     Ok(())
 }
 
-/// The face lines: `k i1 .. ik` and an optional colour.
-fn read_faces(
-    lines: &mut Lines<'_>,
-    header: &Header,
-    soup: &mut Soup,
-    columns: &mut Columns,
-    extra: &mut Vec<f64>,
-) -> Result<(), Error> {
-    let (nv, nf) = (header.vertices, header.faces);
-    for i in 0..nf {
-        let line = content(lines).ok_or_else(|| Error::Truncated {
-            at: lines.end(),
-            expected: format!("face {} of {nf}", i + 1),
-        })?;
-        let mut t = Tokens::new(line);
-        let at = || lines.here();
-        let k_tok = t.next().unwrap_or_default();
-        let k = match parse_i64(k_tok) {
-            Some(k) if k >= 1 => k as usize,
-            _ => {
-                return Err(Error::syntax(
-                    at(),
-                    "a face's corner count (at least 1)",
-                    k_tok,
-                ))
-            }
-        };
-        for _ in 0..k {
-            let tok = t.next().ok_or_else(|| {
-                Error::syntax(at(), format!("{k} vertex indices after the count"), b"")
-            })?;
-            let index = parse_i64(tok).ok_or_else(|| Error::syntax(at(), "a vertex index", tok))?;
-            if index < 0 || index as u64 >= nv as u64 {
-                return Err(Error::IndexOutOfRange {
-                    what: "vertex",
-                    at: at(),
-                    index,
-                    count: nv,
-                });
-            }
-            soup.polygons.indices.push(index as u32);
-        }
-        face_colour(i, k, line, t, at, columns, extra)?;
-        soup.end_face(lines.line);
-    }
-    Ok(())
-}
-
-/// The rest of face `i`'s line (`k` corners): an optional colour, a map
-/// index, RGB or RGBA, ints or floats.
+/// The numbers after face `i`'s `k` corners on its line `line`: none, a
+/// colour map index, or an RGB(A) colour.
 #[inline]
 fn face_colour(
     i: usize,
     k: usize,
     line: &[u8],
-    t: Tokens<'_>,
+    extra: &[f64],
     at: impl Fn() -> Location,
     columns: &mut Columns,
-    extra: &mut Vec<f64>,
 ) -> Result<(), Error> {
-    extra.clear();
-    for tok in t {
-        let x = parse_f64(tok)
-            .ok_or_else(|| Error::syntax(at(), "a colour component or the end of the line", tok))?;
-        extra.push(x);
-    }
     match extra.len() {
         0 => {}
         1 => columns.face_index.set(i, extra[0]),

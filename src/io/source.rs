@@ -1,9 +1,10 @@
 //! Getting the bytes of a file: formats by extension, gzip, size limits.
 //!
 //! Readers parse from one in-memory buffer: the file is read whole (or
-//! decompressed whole), never more than [`ReadOptions::max_bytes`]
-//! (crate::io::ReadOptions) bytes, so memory is bounded by the input's real
-//! size and the caller's limit, not by counts a header claims.
+//! decompressed whole), never more than
+//! [`ReadOptions::max_bytes`](crate::io::ReadOptions::max_bytes) bytes, so
+//! memory is bounded by the input's real size and the caller's limit, not
+//! by counts a header claims.
 
 use std::io::Read;
 use std::path::Path;

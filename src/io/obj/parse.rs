@@ -222,24 +222,16 @@ impl Statements {
         a.face.extend(self.objects.finish(nf));
         a.face.extend(self.groups.finish(nf));
         a.face.extend(self.materials.finish(nf));
-        if !refs.texcoord_of.is_empty() {
-            a.corner.push(corner_column(
-                "texcoord",
-                &refs.texcoord_of,
-                &refs.texcoords,
-                nc,
-                Data::Vec2,
-            ));
-        }
-        if !refs.normal_of.is_empty() {
-            a.corner.push(corner_column(
-                "normal",
-                &refs.normal_of,
-                &refs.normals,
-                nc,
-                Data::Vec3,
-            ));
-        }
+        let texcoord = corner_column(
+            "texcoord",
+            &refs.texcoord_of,
+            &refs.texcoords,
+            nc,
+            Data::Vec2,
+        );
+        a.corner.extend(texcoord);
+        let normal = corner_column("normal", &refs.normal_of, &refs.normals, nc, Data::Vec3);
+        a.corner.extend(normal);
         soup
     }
 }
@@ -259,14 +251,18 @@ fn numbers<const N: usize>(
     Ok(p)
 }
 
-/// A corner column from per-corner references into `values`.
+/// A corner column from per-corner references into `values`; `None`
+/// where no corner has a reference.
 fn corner_column<T: Copy + Default>(
     name: &str,
     of: &[u32],
     values: &[T],
     corners: usize,
     wrap: fn(Vec<T>) -> Data,
-) -> SoupColumn {
+) -> Option<SoupColumn> {
+    if of.is_empty() {
+        return None;
+    }
     let mut present = vec![false; corners];
     let mut data = vec![T::default(); corners];
     for (c, &i) in of.iter().enumerate() {
@@ -276,11 +272,11 @@ fn corner_column<T: Copy + Default>(
         }
     }
     let all = present.iter().all(|&p| p);
-    SoupColumn {
+    Some(SoupColumn {
         name: name.to_owned(),
         data: wrap(data),
         present: (!all).then_some(present),
-    }
+    })
 }
 
 /// The current name of a `g`, `o` or `usemtl` statement, per face.
