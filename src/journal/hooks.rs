@@ -53,7 +53,7 @@ impl Journaling for Unrecorded {
 macro_rules! journaled {
     ($m:ident . $body:ident ( $($arg:expr),* $(,)? )) => {
         if $m.attrs.may_fail() {
-            $m.transaction(|m| m.$body::<$crate::journal::Recorded>($($arg),*))
+            $m.guarded(|m| m.$body::<$crate::journal::Recorded>($($arg),*))
         } else {
             $crate::journal::journaled!(unguarded $m.$body($($arg),*))
         }
@@ -69,6 +69,18 @@ macro_rules! journaled {
 pub(crate) use journaled;
 
 impl Mesh {
+    /// An operator's body on a mesh with a column whose rule can fail, as a
+    /// transaction (see [`journaled!`]); out of line, so that the other
+    /// meshes' operators pay one test.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn guarded<R>(
+        &mut self,
+        body: impl FnOnce(&mut Mesh) -> crate::error::Result<R>,
+    ) -> crate::error::Result<R> {
+        self.transaction(body)
+    }
+
     /// The recorder, if `J` records and one exists (with `Unrecorded`, a
     /// constant `None`: the caller's recording code is dead).
     #[inline(always)]
