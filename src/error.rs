@@ -128,17 +128,11 @@ pub enum Error {
     Invalid(#[from] ValidationError),
     /// Occurs when a column's rule failed (a
     /// [fallible rule](crate::attr::Rule::FALLIBLE) returned an error): the
-    /// operator, algorithm or transaction that ran it changed nothing.
-    #[error("the rule of the {kind} attribute {column:?} failed: {error}; the mesh is unchanged")]
-    Rule {
-        /// The arena of the column.
-        kind: ElementKind,
-        /// The column's name.
-        column: String,
-        /// What the rule said.
-        #[source]
-        error: RuleError,
-    },
+    /// operator, algorithm or transaction that ran it changed nothing. The
+    /// [`RuleError`] names the column ([`RuleError::column`]) and says what
+    /// the rule said.
+    #[error("{}; the mesh is unchanged", .0.in_context())]
+    Rule(#[source] RuleError),
 }
 
 /// Why an operator refused. The mesh is left exactly as it was.
@@ -340,49 +334,89 @@ impl std::error::Error for ValidationError {}
 /// assert!(e.cause().unwrap().downcast_ref::<std::fmt::Error>().is_some());
 /// assert_eq!(RuleError::new("no labels to merge").to_string(), "no labels to merge");
 /// ```
+///
+/// One pointer wide (clones share it), so that [`Error`] stays as small
+/// and as cheap to drop as it was.
 #[derive(Clone, Debug)]
-pub struct RuleError {
+pub struct RuleError(Arc<RuleErrorData>);
+
+type Cause = Arc<dyn std::error::Error + Send + Sync + 'static>;
+
+#[derive(Debug)]
+struct RuleErrorData {
     message: String,
-    cause: Option<Arc<dyn std::error::Error + Send + Sync + 'static>>,
+    cause: Option<Cause>,
+    /// The column's arena and name, once meshloom reports it.
+    column: Option<(ElementKind, String)>,
 }
 
 impl RuleError {
     /// An error that says `message`.
     pub fn new(message: impl Into<String>) -> RuleError {
-        RuleError {
+        RuleError(Arc::new(RuleErrorData {
             message: message.into(),
             cause: None,
-        }
+            column: None,
+        }))
     }
 
     /// An error caused by `cause`, saying what it says.
     pub fn from_source(cause: impl std::error::Error + Send + Sync + 'static) -> RuleError {
-        RuleError {
+        RuleError(Arc::new(RuleErrorData {
             message: cause.to_string(),
             cause: Some(Arc::new(cause)),
-        }
+            column: None,
+        }))
+    }
+
+    /// This error, of the rule of the `kind` column `name`.
+    pub(crate) fn of_column(&self, kind: ElementKind, name: &str) -> RuleError {
+        RuleError(Arc::new(RuleErrorData {
+            message: self.0.message.clone(),
+            cause: self.0.cause.clone(),
+            column: Some((kind, name.to_owned())),
+        }))
     }
 
     /// What the rule said.
     pub fn message(&self) -> &str {
-        &self.message
+        &self.0.message
     }
 
     /// The error that caused it, if it was made by
     /// [`from_source`](RuleError::from_source): downcast it to get it back.
     pub fn cause(&self) -> Option<&(dyn std::error::Error + Send + Sync + 'static)> {
-        self.cause.as_deref()
+        self.0.cause.as_deref()
+    }
+
+    /// The arena and name of the column whose rule failed (in an
+    /// [`Error::Rule`]; `None` as the rule made it).
+    pub fn column(&self) -> Option<(ElementKind, &str)> {
+        self.0.column.as_ref().map(|(k, n)| (*k, n.as_str()))
+    }
+
+    /// The message with the column it is about.
+    fn in_context(&self) -> String {
+        match self.column() {
+            Some((kind, name)) => format!(
+                "the rule of the {kind} attribute {name:?} failed: {}",
+                self.0.message
+            ),
+            None => format!("a rule failed: {}", self.0.message),
+        }
     }
 }
 
 impl PartialEq for RuleError {
-    /// The same message and the same cause (the very same error object, or
-    /// none).
+    /// The same message and column, and the same cause (the very same error
+    /// object, or none).
     fn eq(&self, other: &Self) -> bool {
-        self.message == other.message
-            && match (&self.cause, &other.cause) {
+        let (a, b) = (&self.0, &other.0);
+        a.message == b.message
+            && a.column == b.column
+            && match (&a.cause, &b.cause) {
                 (None, None) => true,
-                (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+                (Some(x), Some(y)) => Arc::ptr_eq(x, y),
                 _ => false,
             }
     }
@@ -390,14 +424,13 @@ impl PartialEq for RuleError {
 
 impl fmt::Display for RuleError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
+        f.write_str(&self.0.message)
     }
 }
 
 impl std::error::Error for RuleError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        self.cause
-            .as_deref()
+        self.cause()
             .map(|e| e as &(dyn std::error::Error + 'static))
     }
 }

@@ -265,7 +265,7 @@ impl Mesh {
     ) -> Result<[f64; 3]> {
         self.attr(h, self.vkey(v))?
             .map(Point::xyz)
-            .ok_or(Error::NoPositions)
+            .ok_or_else(|| Error::NoPositions)
     }
 
     /// The Newell vector of a face: its direction is the normal, its length
@@ -362,7 +362,7 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn edge_length(&self, e: EdgeKey) -> Result<f64> {
-        self.edge_length_in(&self.position_attr().ok_or(Error::NoPositions)?, e)
+        self.edge_length_in(&self.position_attr().ok_or_else(|| Error::NoPositions)?, e)
     }
 
     /// The unit normal of face `f` (zero for a degenerate face).
@@ -377,7 +377,7 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn face_normal(&self, f: FaceKey) -> Result<[f64; 3]> {
-        self.face_normal_in(&self.position_attr().ok_or(Error::NoPositions)?, f)
+        self.face_normal_in(&self.position_attr().ok_or_else(|| Error::NoPositions)?, f)
     }
 
     /// The area of face `f` (exact for planar polygons).
@@ -391,7 +391,7 @@ impl Mesh {
     /// assert!((total - 6.0).abs() < 1e-12);
     /// ```
     pub fn face_area(&self, f: FaceKey) -> Result<f64> {
-        self.face_area_in(&self.position_attr().ok_or(Error::NoPositions)?, f)
+        self.face_area_in(&self.position_attr().ok_or_else(|| Error::NoPositions)?, f)
     }
 
     /// The centroid of face `f`'s corners.
@@ -406,7 +406,7 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn face_centroid(&self, f: FaceKey) -> Result<[f64; 3]> {
-        self.face_centroid_in(&self.position_attr().ok_or(Error::NoPositions)?, f)
+        self.face_centroid_in(&self.position_attr().ok_or_else(|| Error::NoPositions)?, f)
     }
 }
 

@@ -725,7 +725,7 @@ impl Mesh {
         self.attrs
             .positions()
             .and_then(|c| c.get(i.index()).copied())
-            .ok_or(Error::NoPositions)
+            .ok_or_else(|| Error::NoPositions)
     }
 
     /// Set a vertex's position. NaN and infinite coordinates are refused.
@@ -755,7 +755,7 @@ impl Mesh {
         }
         self.attrs
             .set_position_saved(i.index(), p)
-            .ok_or(Error::NoPositions)?;
+            .ok_or_else(|| Error::NoPositions)?;
         self.end_edit();
         Ok(())
     }

@@ -137,12 +137,8 @@ fn ends(m: &Mesh, h: meshloom::HalfedgeKey) -> [VertexKey; 2] {
 /// rule's own error.
 fn rule_error(e: Error, kind: ElementKind, want: i64) -> RuleError {
     match e {
-        Error::Rule {
-            kind: k,
-            column,
-            error,
-        } => {
-            assert_eq!((k, column.as_str()), (kind, "picky"));
+        Error::Rule(error) => {
+            assert_eq!(error.column(), Some((kind, "picky")));
             let cause = error.cause().expect("the rule's error is kept");
             assert_eq!(cause.downcast_ref::<Negative>(), Some(&Negative(want)));
             assert_eq!(error.message(), format!("{want} is negative"));
@@ -243,7 +239,7 @@ fn a_failure_inside_a_transaction_fails_it_even_when_ignored() {
         m.poke_face(f)?;
         for h in m.vertex(vs[bad])?.outgoing().collect::<Vec<_>>() {
             // Refused (by the rule, or by the link condition): ignored.
-            if let Err(Error::Rule { .. }) = m.collapse_edge(h) {
+            if let Err(Error::Rule(_)) = m.collapse_edge(h) {
                 refused_by_the_rule += 1;
             }
         }

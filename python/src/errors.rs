@@ -4,7 +4,6 @@
 use meshloom::attr::RuleError;
 use meshloom::error::{BuildError, Refusal};
 use meshloom::io::Position;
-use meshloom::keys::ElementKind;
 use meshloom::{AnyKey, Error};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
@@ -117,11 +116,7 @@ pub fn mesh_err(py: Python<'_>, mesh: &Py<PyMesh>, e: Error) -> PyErr {
         | Error::AttributeMissing { .. }
         | Error::AttributeType { .. }
         | Error::AttributeHandle { .. } => raise(py, "ColumnError", msg, &[]),
-        Error::Rule {
-            kind,
-            column,
-            error,
-        } => rule_err(py, kind, &column, &error, msg),
+        Error::Rule(error) => rule_err(py, &error, msg),
         e => algorithm_err(py, mesh, e, msg),
     }
 }
@@ -182,17 +177,15 @@ fn algorithm_err(py: Python<'_>, mesh: &Py<PyMesh>, e: Error, msg: String) -> Py
 /// A column's rule failed: the exception a Python rule raised, itself (with
 /// a note that the mesh is unchanged); for a rule of another kind, a
 /// `MeshloomError` naming the column.
-fn rule_err(
-    py: Python<'_>,
-    kind: ElementKind,
-    column: &str,
-    error: &RuleError,
-    msg: String,
-) -> PyErr {
+fn rule_err(py: Python<'_>, error: &RuleError, msg: String) -> PyErr {
+    let column = error.column();
     if let Some(raised) = error.cause().and_then(|c| c.downcast_ref::<PyErr>()) {
         let raised = raised.clone_ref(py);
-        let note =
-            format!("raised by the Python rule of the {kind} column {column:?} inside a meshloom edit; the mesh is unchanged");
+        let rule = match column {
+            Some((kind, name)) => format!("the Python rule of the {kind} column {name:?}"),
+            None => "a Python rule".to_owned(),
+        };
+        let note = format!("raised by {rule} inside a meshloom edit; the mesh is unchanged");
         let _ = raised.value(py).call_method1("add_note", (note,));
         return raised;
     }
@@ -201,8 +194,8 @@ fn rule_err(
         "MeshloomError",
         msg,
         &[
-            ("column", obj(py, column)),
-            ("kind", obj(py, kind.to_string())),
+            ("column", obj(py, column.map(|(_, name)| name))),
+            ("kind", obj(py, column.map(|(kind, _)| kind.to_string()))),
         ],
     )
 }

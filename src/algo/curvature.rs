@@ -56,7 +56,7 @@ use super::laplacian::{as_triangle, live_faces, polygon, positions, triangle};
 use crate::attr::{Interpolate, VertexAttr};
 use crate::error::{Error, Result};
 use crate::keys::VertexKey;
-use crate::layout::{Hid, Vid};
+use crate::layout::Vid;
 use crate::mesh::Mesh;
 use crate::vec3::{add, add_scaled, angle, cross, dot, norm, sub, V3};
 
@@ -112,141 +112,13 @@ pub struct Curvatures {
 /// O(corners).
 pub fn curvature(mesh: &Mesh, options: &CurvatureOptions) -> Result<Curvatures> {
     let p = positions(mesh)?;
-    let sums = Sums::of(mesh, p);
-    let (mut out, boundary) = vertex_curvatures(mesh, sums);
-    if options.boundary == BoundaryCurvature::FromInterior {
-        from_interior(mesh, &mut out, &boundary);
-    }
-    Ok(out)
-}
-
-/// What the faces give each vertex slot: the cotangent Laplacian `L x`, the
-/// mixed area, the sum of corner angles and the angle-weighted normal.
-struct Sums {
-    lx: Vec<V3>,
-    area: Vec<f64>,
-    angles: Vec<f64>,
-    normal: Vec<V3>,
-}
-
-/// Scratch space for one polygon (not a triangle): its corners, their
-/// positions, and [`polygon`]'s cotangent pairs and corner areas.
-#[derive(Default)]
-struct PolygonScratch {
-    vs: Vec<Vid>,
-    ps: Vec<V3>,
-    pairs: Vec<(usize, usize, f64)>,
-    area: Vec<f64>,
-}
-
-impl Sums {
-    /// One pass over the live faces: triangles by their closed forms, other
-    /// polygons by [`polygon`]'s cotangent pairs and Newell normal.
-    fn of(mesh: &Mesh, p: &[V3]) -> Sums {
-        let nv = mesh.v_halfedge.len();
-        let mut sums = Sums {
-            lx: vec![[0.0; 3]; nv],
-            area: vec![0.0; nv],
-            angles: vec![0.0; nv],
-            normal: vec![[0.0; 3]; nv],
-        };
-        let mut scratch = PolygonScratch::default();
-        for (_, h0) in live_faces(mesh) {
-            if let Some(hs) = as_triangle(mesh, h0) {
-                sums.add_triangle(p, hs.map(|h| mesh.he[h].origin.index()));
-            } else {
-                sums.add_polygon(mesh, p, h0, &mut scratch);
-            }
-        }
-        sums
-    }
-
-    /// Adds the triangle with corners at vertex slots `a`, `b`, `c`.
-    #[inline(always)]
-    fn add_triangle(&mut self, p: &[V3], [a, b, c]: [usize; 3]) {
-        let Sums {
-            lx,
-            area,
-            angles,
-            normal,
-        } = self;
-        let q = [p[a], p[b], p[c]];
-        let (t, d, twice) = triangle(q);
-        let [w0, w1, w2] = t.half_cot;
-        // Edge ab has the weight of the corner opposite, c; and so on.
-        let (ab, bc, ca) = (sub(q[1], q[0]), sub(q[2], q[1]), sub(q[0], q[2]));
-        add_scaled(&mut lx[a], ab, w2);
-        add_scaled(&mut lx[a], ca, -w1);
-        add_scaled(&mut lx[b], bc, w0);
-        add_scaled(&mut lx[b], ab, -w2);
-        add_scaled(&mut lx[c], ca, w1);
-        add_scaled(&mut lx[c], bc, -w0);
-        for (k, &v) in [a, b, c].iter().enumerate() {
-            area[v] += t.area[k];
-        }
-        // The angles sum to π: two atan2 give the third.
-        let ta = twice.atan2(d[0]);
-        let tb = twice.atan2(d[1]);
-        let tc = (PI - ta - tb).max(0.0);
-        angles[a] += ta;
-        angles[b] += tb;
-        angles[c] += tc;
-        if twice > 0.0 && twice.is_finite() {
-            let n = cross(ab, bc);
-            let u = [n[0] / twice, n[1] / twice, n[2] / twice];
-            add_scaled(&mut normal[a], u, ta);
-            add_scaled(&mut normal[b], u, tb);
-            add_scaled(&mut normal[c], u, tc);
-        }
-    }
-
-    /// Adds the polygon (of four or more corners) whose loop starts at `h0`.
-    fn add_polygon(&mut self, mesh: &Mesh, p: &[V3], h0: Hid, scratch: &mut PolygonScratch) {
-        let PolygonScratch {
-            vs,
-            ps,
-            pairs,
-            area: parea,
-        } = scratch;
-        vs.clear();
-        vs.extend(mesh.face_loop_from(h0).map(|h| mesh.he[h].origin));
-        ps.clear();
-        ps.extend(vs.iter().map(|v| p[v.index()]));
-        polygon(ps, pairs, parea);
-        for &(k, m, w) in pairs.iter() {
-            let e = sub(ps[m], ps[k]);
-            add_scaled(&mut self.lx[vs[k].index()], e, w);
-            add_scaled(&mut self.lx[vs[m].index()], e, -w);
-        }
-        let mut newell = [0.0; 3];
-        let n = ps.len();
-        for k in 0..n {
-            newell = add(newell, cross(ps[k], ps[(k + 1) % n]));
-        }
-        let len = norm(newell);
-        for k in 0..n {
-            let v = vs[k].index();
-            self.area[v] += parea[k];
-            let (u, w) = (sub(ps[(k + 1) % n], ps[k]), sub(ps[(k + n - 1) % n], ps[k]));
-            let theta = angle(u, w);
-            self.angles[v] += theta;
-            if len > 0.0 && len.is_finite() {
-                add_scaled(&mut self.normal[v], newell, theta / len);
-            }
-        }
-    }
-}
-
-/// Each live vertex's curvatures from its sums (zero where its area is not
-/// positive), and the boundary vertices, in slot order.
-fn vertex_curvatures(mesh: &Mesh, sums: Sums) -> (Curvatures, Vec<Vid>) {
-    let nv = sums.area.len();
     let Sums {
         lx,
         area,
         angles,
         normal,
-    } = sums;
+    } = face_sums(mesh, p);
+    let nv = area.len();
     let mut out = Curvatures {
         mean: vec![0.0; nv],
         gaussian: vec![0.0; nv],
@@ -276,7 +148,100 @@ fn vertex_curvatures(mesh: &Mesh, sums: Sums) -> (Curvatures, Vec<Vid>) {
         let k = (full - angles[i]) / a;
         set(&mut out, i, h, k);
     }
-    (out, boundary)
+    if options.boundary == BoundaryCurvature::FromInterior {
+        from_interior(mesh, &mut out, &boundary);
+    }
+    Ok(out)
+}
+
+/// What the faces give each vertex slot: the cotangent Laplacian `L x`, the
+/// mixed area, the sum of corner angles and the angle-weighted normal.
+struct Sums {
+    lx: Vec<V3>,
+    area: Vec<f64>,
+    angles: Vec<f64>,
+    normal: Vec<V3>,
+}
+
+/// One pass over the live faces: triangles by their closed forms, other
+/// polygons by [`polygon`]'s cotangent pairs and Newell normal. Inlined
+/// into [`curvature`]: as a call of its own it costs more instructions.
+#[inline(always)]
+fn face_sums(mesh: &Mesh, p: &[V3]) -> Sums {
+    let nv = mesh.v_halfedge.len();
+    // Per vertex slot: L x, area, angle sum, angle-weighted normal.
+    let mut lx = vec![[0.0; 3]; nv];
+    let mut area = vec![0.0; nv];
+    let mut angles = vec![0.0; nv];
+    let mut normal = vec![[0.0; 3]; nv];
+    let (mut ps, mut vs) = (Vec::<V3>::new(), Vec::<Vid>::new());
+    let (mut pairs, mut parea) = (Vec::new(), Vec::new());
+    for (_, h0) in live_faces(mesh) {
+        if let Some(hs) = as_triangle(mesh, h0) {
+            let [a, b, c] = hs.map(|h| mesh.he[h].origin.index());
+            let q = [p[a], p[b], p[c]];
+            let (t, d, twice) = triangle(q);
+            let [w0, w1, w2] = t.half_cot;
+            // Edge ab has the weight of the corner opposite, c; and so on.
+            let (ab, bc, ca) = (sub(q[1], q[0]), sub(q[2], q[1]), sub(q[0], q[2]));
+            add_scaled(&mut lx[a], ab, w2);
+            add_scaled(&mut lx[a], ca, -w1);
+            add_scaled(&mut lx[b], bc, w0);
+            add_scaled(&mut lx[b], ab, -w2);
+            add_scaled(&mut lx[c], ca, w1);
+            add_scaled(&mut lx[c], bc, -w0);
+            for (k, &v) in [a, b, c].iter().enumerate() {
+                area[v] += t.area[k];
+            }
+            // The angles sum to π: two atan2 give the third.
+            let ta = twice.atan2(d[0]);
+            let tb = twice.atan2(d[1]);
+            let tc = (PI - ta - tb).max(0.0);
+            angles[a] += ta;
+            angles[b] += tb;
+            angles[c] += tc;
+            if twice > 0.0 && twice.is_finite() {
+                let n = cross(ab, bc);
+                let u = [n[0] / twice, n[1] / twice, n[2] / twice];
+                add_scaled(&mut normal[a], u, ta);
+                add_scaled(&mut normal[b], u, tb);
+                add_scaled(&mut normal[c], u, tc);
+            }
+            continue;
+        }
+        vs.clear();
+        vs.extend(mesh.face_loop_from(h0).map(|h| mesh.he[h].origin));
+        ps.clear();
+        ps.extend(vs.iter().map(|v| p[v.index()]));
+        polygon(&ps, &mut pairs, &mut parea);
+        for &(k, m, w) in &pairs {
+            let e = sub(ps[m], ps[k]);
+            add_scaled(&mut lx[vs[k].index()], e, w);
+            add_scaled(&mut lx[vs[m].index()], e, -w);
+        }
+        let mut newell = [0.0; 3];
+        let n = ps.len();
+        for k in 0..n {
+            newell = add(newell, cross(ps[k], ps[(k + 1) % n]));
+        }
+        let len = norm(newell);
+        for k in 0..n {
+            let v = vs[k].index();
+            area[v] += parea[k];
+            let (u, w) = (sub(ps[(k + 1) % n], ps[k]), sub(ps[(k + n - 1) % n], ps[k]));
+            let theta = angle(u, w);
+            angles[v] += theta;
+            if len > 0.0 && len.is_finite() {
+                add_scaled(&mut normal[v], newell, theta / len);
+            }
+        }
+    }
+    Sums {
+        lx,
+        area,
+        angles,
+        normal,
+    }
 }
 
 /// Gives each boundary vertex the average of its interior neighbours' values

@@ -397,8 +397,8 @@ impl Mesh {
         let mut view = self.attr_view_mut(h)?;
         let mut out = Ok(());
         for k in keys {
-            out = view.set(k, Some(value.clone()));
-            if out.is_err() {
+            if let Err(e) = view.set(k, Some(value.clone())) {
+                out = Err(e);
                 break;
             }
         }

@@ -294,7 +294,9 @@ impl<K: Element, T: Attribute> AttrViewMut<'_, K, T> {
     /// [`Error::StaleKey`]; [`Error::AttributeType`] for a value of another
     /// type than a dynamic column declares.
     pub fn set(&mut self, key: K, value: Option<T>) -> Result<()> {
-        let i = self.live(key).ok_or(Error::StaleKey(key.any_key()))?;
+        let i = self
+            .live(key)
+            .ok_or_else(|| Error::StaleKey(key.any_key()))?;
         if let (Some(ty), Some(v)) = (self.value_type, value.as_ref()) {
             check_dynamic(K::KIND, self.name, ty, v)?;
         }

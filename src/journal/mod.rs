@@ -460,6 +460,18 @@ impl Mesh {
         }
     }
 
+    /// An operator's body on a mesh with a column whose rule can fail, as a
+    /// transaction (see `journaled!`); out of line, so that the other
+    /// meshes' operators pay one test.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn guarded<R>(
+        &mut self,
+        body: impl FnOnce(&mut Mesh) -> crate::error::Result<R>,
+    ) -> crate::error::Result<R> {
+        self.transaction(body)
+    }
+
     /// Run `f` all or nothing: if it returns an error or panics, the mesh
     /// (links, attribute columns and values, valid keys) is exactly as
     /// before, and the error is returned (the panic resumed). Nested

@@ -139,7 +139,7 @@ impl Journaling for Unrecorded {
 macro_rules! journaled {
     ($m:ident . $body:ident ( $($arg:expr),* $(,)? )) => {
         if $m.attrs.may_fail() {
-            $m.transaction(|m| m.$body::<$crate::record::Recorded>($($arg),*))
+            $m.guarded(|m| m.$body::<$crate::record::Recorded>($($arg),*))
         } else {
             $crate::record::journaled!(unguarded $m.$body($($arg),*))
         }

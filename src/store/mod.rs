@@ -49,8 +49,6 @@ pub(crate) struct ColumnMeta {
     pub(crate) id: u64,
     /// The declared type of a dynamic column.
     pub(crate) value_type: Option<ValueType>,
-    /// Whether the column's rule can fail ([`Rule::FALLIBLE`](rule::Rule::FALLIBLE)).
-    pub(crate) fallible: bool,
 }
 
 /// The name of the position column.
@@ -69,6 +67,9 @@ pub(crate) struct Columns {
     pub(crate) log_below: usize,
     /// Whether a column saved a value in the open step.
     pub(crate) dirty: bool,
+    /// Whether a column's rule can fail ([`Rule::FALLIBLE`](rule::Rule::FALLIBLE)),
+    /// kept by every change of the columns (see [`Columns::recount`]).
+    pub(crate) fallible: bool,
 }
 
 impl Clone for Columns {
@@ -83,6 +84,7 @@ impl Clone for Columns {
             meta: self.meta.clone(),
             log_below: 0,
             dirty: false,
+            fallible: self.fallible,
         }
     }
 }
@@ -113,12 +115,11 @@ impl Columns {
         col: Box<dyn ErasedColumn>,
         value_type: Option<ValueType>,
     ) -> usize {
-        let fallible = col.may_fail();
+        self.fallible |= col.may_fail();
         self.cols.push((name.to_owned(), col));
         self.meta.push(ColumnMeta {
             id: NEXT_COLUMN_ID.fetch_add(1, Ordering::Relaxed),
             value_type,
-            fallible,
         });
         self.cols.len() - 1
     }
@@ -127,6 +128,13 @@ impl Columns {
     pub(crate) fn remove(&mut self, i: usize) {
         self.cols.remove(i);
         self.meta.remove(i);
+        self.recount();
+    }
+
+    /// Set [`fallible`](Columns::fallible) from the columns, after they
+    /// changed.
+    pub(crate) fn recount(&mut self) {
+        self.fallible = self.cols.iter().any(|(_, c)| c.may_fail());
     }
 
     /// The index of the column with this id.
@@ -301,21 +309,16 @@ impl Columns {
         }
     }
 
-    /// Whether a column's rule can fail.
-    #[inline]
-    fn may_fail(&self) -> bool {
-        self.meta.iter().any(|m| m.fallible)
-    }
-
-    /// The earliest rule failure kept by a column: its order, column
-    /// index and the failure.
+    /// The earliest rule failure kept by a column: its order and the
+    /// column's index.
     fn first_failure(&self) -> Option<(u64, usize)> {
+        if !self.fallible {
+            return None;
+        }
         self.cols
             .iter()
-            .zip(&self.meta)
             .enumerate()
-            .filter(|(_, (_, m))| m.fallible)
-            .filter_map(|(i, ((_, c), _))| Some((c.failure()?.seq, i)))
+            .filter_map(|(i, (_, c))| Some((c.failure()?.seq, i)))
             .min()
     }
 
@@ -365,10 +368,7 @@ impl AttrStore {
     /// then every edit runs all or nothing, as a transaction.
     #[inline]
     pub(crate) fn may_fail(&self) -> bool {
-        self.vertex.may_fail()
-            || self.halfedge.may_fail()
-            || self.edge.may_fail()
-            || self.face.may_fail()
+        self.vertex.fallible | self.halfedge.fallible | self.edge.fallible | self.face.fallible
     }
 
     /// The first rule failure the columns kept, as the error of the edit
@@ -390,11 +390,7 @@ impl AttrStore {
             .filter_map(|(&kind, set)| set.first_failure().map(|(seq, i)| (seq, kind, i)))
             .min_by_key(|&(seq, ..)| seq)?;
         let (column, c) = &self.columns(kind).cols[col];
-        let error = Error::Rule {
-            kind,
-            column: column.clone(),
-            error: c.failure()?.error.clone(),
-        };
+        let error = Error::Rule(c.failure()?.error.of_column(kind, column));
         if take {
             for set in self.all_mut() {
                 for (_, c) in &mut set.cols {
@@ -446,6 +442,7 @@ impl AttrStore {
         let c = &mut self.all_mut()[set];
         let (name, column) = c.cols.remove(col);
         let meta = c.meta.remove(col);
+        c.recount();
         if set == 0 {
             self.position = match self.position {
                 Some(p) if p == col => None,
@@ -473,6 +470,7 @@ impl AttrStore {
         let c = &mut self.all_mut()[set];
         c.cols.insert(col, (name, column));
         c.meta.insert(col, meta);
+        c.recount();
         if set == 0 {
             self.position = match self.position {
                 Some(p) if p >= col => Some(p + 1),

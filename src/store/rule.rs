@@ -27,8 +27,8 @@ use crate::error::RuleError;
 /// ([`try_merge`](Rule::try_merge), [`try_interpolate`](Rule::try_interpolate),
 /// [`try_split`](Rule::try_split); each defaults to its plain twin). When
 /// one returns an error, the edit that ran it fails with
-/// [`Error::Rule`](crate::Error::Rule) (naming the column, and carrying the
-/// [`RuleError`]) and leaves the mesh as it was: an operator refuses, an
+/// [`Error::Rule`](crate::Error::Rule) (carrying the [`RuleError`], which
+/// then names the column) and leaves the mesh as it was: an operator refuses, an
 /// algorithm or a [transaction](crate::Mesh::transaction) rolls back whole.
 /// For that, every edit of a mesh with such a column runs as a
 /// transaction (its cost is the size of the edit); the rule is not called
@@ -68,8 +68,8 @@ use crate::error::RuleError;
 /// let h = mesh.halfedges().next().unwrap();
 /// let before = mesh.clone();
 /// match mesh.collapse_edge(h) {
-///     Err(Error::Rule { column, error, .. }) => {
-///         assert_eq!(column, "label");
+///     Err(Error::Rule(error)) => {
+///         assert_eq!(error.column(), Some((meshloom::ElementKind::Vertex, "label")));
 ///         assert!(error.message().contains("meet"));
 ///     }
 ///     other => panic!("{other:?}"),

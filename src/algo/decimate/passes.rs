@@ -248,7 +248,7 @@ impl Engine {
         match crate::journal::journaled!(mesh.collapse_unvalidated(c.h, c.t, Some(c.p))) {
             Ok(_) => {}
             // A column's rule failed: so does the decimation.
-            Err(e @ Error::Rule { .. }) => return Err(e),
+            Err(e @ Error::Rule(_)) => return Err(e),
             Err(_) => {
                 state.report.refused.topology += 1;
                 return Ok(None);

@@ -67,6 +67,7 @@ fn rebuild(
         meta: cols.meta.clone(),
         log_below: 0,
         dirty: false,
+        fallible: cols.fallible,
     }
 }
 
