@@ -58,6 +58,33 @@ pub use catmull_clark::catmull_clark;
 /// [`Error::TooLarge`](crate::Error::TooLarge).
 pub const DEFAULT_MAX_FACES: usize = 10_000_000;
 
+/// Refuse a mesh with a face that is not a triangle, naming the first:
+/// `doing` ("decimation", "remeshing") says what needs the triangles.
+pub(crate) fn check_triangles(
+    mesh: &crate::Mesh,
+    algorithm: &'static str,
+    doing: &str,
+) -> crate::Result<()> {
+    for f in mesh.fids() {
+        if mesh.is_hole(f) {
+            continue;
+        }
+        let h = mesh.face_halfedge(f);
+        if mesh.next(mesh.next(mesh.next(h))) != h {
+            return Err(crate::Error::Unsuitable {
+                algorithm,
+                key: Some(mesh.fkey(f).into()),
+                reason: format!(
+                    "face {} has {} sides; {doing} needs triangles (triangulate first)",
+                    mesh.fkey(f),
+                    mesh.face_degree(f)
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// A rebuilt mesh's positions are all finite (a level's sums of
 /// coordinates near the largest `f64` overflow), else the first vertex
 /// that is not.

@@ -461,7 +461,7 @@ impl Setup {
 
     fn new(mesh: &Mesh, options: &RemeshOptions) -> Result<Setup> {
         let pos = mesh.position_slots().ok_or(Error::NoPositions)?;
-        check_triangles(mesh)?;
+        crate::algo::check_triangles(mesh, ALGORITHM, "remeshing")?;
         let constraints = options.constraints();
         constraints.check(ALGORITHM)?;
         let resample = resample_columns(mesh, &options.resample)?;
@@ -500,27 +500,6 @@ impl Setup {
             resample,
         })
     }
-}
-
-/// Refuse a face that is not a triangle, naming it.
-fn check_triangles(mesh: &Mesh) -> Result<()> {
-    for f in mesh.fids() {
-        if mesh.is_hole(f) {
-            continue;
-        }
-        let h = mesh.face_halfedge(f);
-        if mesh.next(mesh.next(mesh.next(h))) != h {
-            return Err(unsuitable(
-                Some(mesh.fkey(f).into()),
-                format!(
-                    "face {} has {} sides; remeshing needs triangles (triangulate first)",
-                    mesh.fkey(f),
-                    mesh.face_degree(f)
-                ),
-            ));
-        }
-    }
-    Ok(())
 }
 
 /// Per input vertex slot, the target length; whether it is uniform; the

@@ -37,7 +37,7 @@ fn unit_normal(a: V3, b: V3, c: V3) -> (V3, f64) {
 
 pub(super) fn prepare(mesh: &Mesh, options: &DecimateOptions) -> Result<Engine> {
     let pos = mesh.position_slots().ok_or(Error::NoPositions)?;
-    check_triangles(mesh)?;
+    crate::algo::check_triangles(mesh, ALGORITHM, "decimation")?;
     check_numbers(options)?;
     let (centre, scale_) = unit_box(mesh, pos);
     let inv = 1.0 / scale_;
@@ -55,27 +55,6 @@ pub(super) fn prepare(mesh: &Mesh, options: &DecimateOptions) -> Result<Engine> 
         attrs,
         fixed: classified.fixed,
     })
-}
-
-/// Refuse a face that is not a triangle, naming it.
-fn check_triangles(mesh: &Mesh) -> Result<()> {
-    for f in mesh.fids() {
-        if mesh.is_hole(f) {
-            continue;
-        }
-        let h = mesh.face_halfedge(f);
-        if mesh.next(mesh.next(mesh.next(h))) != h {
-            return Err(unsuitable(
-                Some(mesh.fkey(f).into()),
-                format!(
-                    "face {} has {} sides; decimation needs triangles (triangulate first)",
-                    mesh.fkey(f),
-                    mesh.face_degree(f)
-                ),
-            ));
-        }
-    }
-    Ok(())
 }
 
 /// Refuse a `max_error` below zero and a guard or feature angle that is
