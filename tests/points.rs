@@ -42,9 +42,10 @@ fn same_as_f64<P: Point + std::fmt::Debug>(points: &[P]) {
     let (p, f) = octahedron();
     let want = Mesh::from_polygons(&p, &f).unwrap();
     let (offsets, indices) = flat_faces();
+    let by_ref = Mesh::from_buffers(PolygonsRef::new(points, &offsets, &indices)).unwrap();
+    let built = Mesh::build_buffers(PolygonsRef::new(points, &offsets, &indices)).unwrap();
+    #[allow(deprecated)] // the 0.1 name still builds the same mesh
     let flat = Mesh::from_flat_faces(points, &offsets, &indices).unwrap();
-    let by_ref = Mesh::from_buffers_ref(PolygonsRef::new(points, &offsets, &indices)).unwrap();
-    let built = Mesh::build_buffers_ref(PolygonsRef::new(points, &offsets, &indices)).unwrap();
     assert_eq!(built.faces.len(), 8);
     assert!(built.vertices.iter().all(Option::is_some));
     for got in [
@@ -69,7 +70,7 @@ fn both_errors(positions: &[[f64; 3]], offsets: &[u32], indices: &[u32]) -> (Err
     };
     let want = Mesh::from_buffers(&poly).unwrap_err();
     let p32: Vec<[f32; 3]> = positions.iter().map(|q| q.map(|c| c as f32)).collect();
-    let got = Mesh::from_flat_faces(&p32, offsets, indices).unwrap_err();
+    let got = Mesh::from_buffers(PolygonsRef::new(&p32, offsets, indices)).unwrap_err();
     (want, got)
 }
 
@@ -120,7 +121,7 @@ fn flat_buffers_of_f32_give_the_errors_of_from_buffers() {
     assert_eq!(got.to_string(), want.to_string());
     let mut unused = p.iter().map(|q| q.map(|c| c as f32)).collect::<Vec<_>>();
     unused.push([f32::NAN; 3]);
-    let m = Mesh::from_flat_faces(&unused, &offsets, &indices).unwrap();
+    let m = Mesh::from_buffers(PolygonsRef::new(&unused, &offsets, &indices)).unwrap();
     assert_eq!(m.vertex_count(), 6);
     // Topological errors too: a face with a repeated vertex.
     let (want, got) = both_errors(&p, &[0, 3], &[0, 1, 0]);
@@ -139,11 +140,11 @@ fn flat_buffers_borrowed_from_polygons_build_the_same() {
     let (p, f) = octahedron();
     let poly = Mesh::from_polygons(&p, &f).unwrap().to_polygons().0;
     let a = Mesh::from_buffers(&poly).unwrap();
-    let b = Mesh::from_buffers_ref(poly.borrowed()).unwrap();
+    let b = Mesh::from_buffers(poly.borrowed()).unwrap();
     assert_eq!(a.to_polygons().0, b.to_polygons().0);
     // Empty positions: topology only, as from_buffers.
     let topo = PolygonsRef::<[f32; 3]>::new(&[], &poly.offsets, &poly.indices);
-    let t = Mesh::from_buffers_ref(topo).unwrap();
+    let t = Mesh::from_buffers(topo).unwrap();
     assert!(!t.has_positions());
     assert_eq!(t.face_count(), 8);
 }

@@ -113,6 +113,13 @@ pub struct PolygonsRef<'a, P = [f64; 3]> {
     pub indices: &'a [u32],
 }
 
+impl<'a> From<&'a Polygons> for PolygonsRef<'a> {
+    /// The owned buffers, borrowed ([`Polygons::borrowed`]).
+    fn from(polygons: &'a Polygons) -> Self {
+        polygons.borrowed()
+    }
+}
+
 impl<P> Clone for PolygonsRef<'_, P> {
     fn clone(&self) -> Self {
         *self
@@ -233,16 +240,21 @@ impl Mesh {
         Ok(build_lists::<[f64; 3], _, _>(None, vertex_count, faces, false)?.mesh)
     }
 
-    /// Build from compact buffers, as [`Mesh::to_polygons`] returns them. A
-    /// topology-only mesh results when `positions` is empty; then the vertex
-    /// count is one past the largest index, and the vertices no face uses
-    /// are dropped as always.
+    /// Build from flat buffers: positions, `faces + 1` offsets starting at
+    /// 0, and the vertex indices of every face. Takes the owned
+    /// [`Polygons`] (as [`Mesh::to_polygons`] returns them) or a borrowed
+    /// [`PolygonsRef`] whose positions are any [`Point`] type, so an
+    /// engine's or a file's arrays go in as they are. A topology-only mesh
+    /// results when `positions` is empty; then the vertex count is one past
+    /// the largest index, and the vertices no face uses are dropped as
+    /// always.
     ///
     /// # Errors
     /// As [`Mesh::from_polygons`]; [`BuildError::MalformedOffsets`] when the
     /// offsets do not cut the indices into faces;
     /// [`BuildError::IndexOutOfRange`] (naming the face) for an index past
-    /// the positions.
+    /// the positions; [`BuildError::NonFinitePosition`] (naming the vertex)
+    /// for a NaN or infinite coordinate, also in `f32`.
     ///
     /// # Complexity
     /// O(corners) time and memory whatever the index values (O(corners ·
@@ -251,28 +263,22 @@ impl Mesh {
     /// the largest index.
     ///
     /// ```
-    /// use meshloom::{Mesh, Polygons};
+    /// use meshloom::{BuildError, Error, Mesh, Polygons, PolygonsRef};
     /// // Claims four billion vertices and uses three: builds a triangle.
     /// let p = Polygons { positions: vec![], offsets: vec![0, 3], indices: vec![0, 1, u32::MAX] };
     /// let m = Mesh::from_buffers(&p)?;
     /// assert_eq!((m.vertex_count(), m.face_count()), (3, 1));
-    /// # Ok::<(), meshloom::Error>(())
-    /// ```
-    pub fn from_buffers(polygons: &Polygons) -> Result<Mesh> {
-        Ok(build_buffers(polygons.borrowed(), false)?.mesh)
-    }
-
-    /// [`Mesh::from_buffers`] over borrowed flat buffers whose positions
-    /// are any [`Point`] type: an engine's or a file's arrays go in as they
-    /// are, with no copy loop in the caller. Errors and complexity as
-    /// `from_buffers`; a non-finite position (also a NaN in `f32`) is
-    /// [`BuildError::NonFinitePosition`].
     ///
-    /// ```
-    /// use meshloom::{Mesh, PolygonsRef};
+    /// // Borrowed `f32` arrays, as an engine holds them.
     /// let p: Vec<[f32; 3]> = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
-    /// let quad = Mesh::from_buffers_ref(PolygonsRef::new(&p, &[0, 4], &[0, 1, 2, 3]))?;
+    /// let quad = Mesh::from_buffers(PolygonsRef::new(&p, &[0, 4], &[0, 1, 2, 3]))?;
     /// assert_eq!((quad.vertex_count(), quad.face_count()), (4, 1));
+    ///
+    /// let bad = Mesh::from_buffers(PolygonsRef::new(&p, &[0, 3], &[0, 1, 7])).unwrap_err();
+    /// assert!(matches!(bad, Error::Build(BuildError::IndexOutOfRange { face: 0, index: 7, .. })));
+    /// let nan = [[0.0f32, 0.0, 0.0], [f32::NAN, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    /// let bad = Mesh::from_buffers(PolygonsRef::new(&nan, &[0, 3], &[0, 1, 2])).unwrap_err();
+    /// assert!(matches!(bad, Error::Build(BuildError::NonFinitePosition { vertex: 1, .. })));
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     #[cfg_attr(
@@ -286,45 +292,16 @@ use glam::Vec3;
 let p = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z];
 let offsets = [0, 3, 6, 9, 12];
 let indices = [0, 2, 1, 0, 1, 3, 1, 2, 3, 2, 0, 3];
-let tet = Mesh::from_buffers_ref(PolygonsRef::new(&p, &offsets, &indices))?;
+let tet = Mesh::from_buffers(PolygonsRef::new(&p, &offsets, &indices))?;
 assert!(tet.is_closed());
 # Ok::<(), meshloom::Error>(())
 ```
 "#
     )]
-    pub fn from_buffers_ref<P: Point>(polygons: PolygonsRef<'_, P>) -> Result<Mesh> {
-        Ok(build_buffers(polygons, false)?.mesh)
-    }
-
-    /// [`Mesh::from_buffers_ref`] with the three arrays given one by one:
-    /// positions of any [`Point`] type, `faces + 1` offsets starting at 0,
-    /// and the vertex indices of every face.
-    ///
-    /// # Errors
-    /// As [`Mesh::from_buffers`]: [`BuildError::MalformedOffsets`],
-    /// [`BuildError::IndexOutOfRange`] naming the face,
-    /// [`BuildError::NonFinitePosition`] naming the vertex, and the
-    /// topological errors of [`Mesh::from_polygons`].
-    ///
-    /// ```
-    /// use meshloom::{BuildError, Error, Mesh};
-    /// let p = [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-    /// let tri = Mesh::from_flat_faces(&p, &[0, 3], &[0, 1, 2])?;
-    /// assert_eq!(tri.face_count(), 1);
-    ///
-    /// let bad = Mesh::from_flat_faces(&p, &[0, 3], &[0, 1, 7]).unwrap_err();
-    /// assert!(matches!(bad, Error::Build(BuildError::IndexOutOfRange { face: 0, index: 7, .. })));
-    /// let nan = [[0.0f32, 0.0, 0.0], [f32::NAN, 0.0, 0.0], [0.0, 1.0, 0.0]];
-    /// let bad = Mesh::from_flat_faces(&nan, &[0, 3], &[0, 1, 2]).unwrap_err();
-    /// assert!(matches!(bad, Error::Build(BuildError::NonFinitePosition { vertex: 1, .. })));
-    /// # Ok::<(), meshloom::Error>(())
-    /// ```
-    pub fn from_flat_faces<P: Point>(
-        positions: &[P],
-        offsets: &[u32],
-        indices: &[u32],
+    pub fn from_buffers<'a, P: Point + 'a>(
+        polygons: impl Into<PolygonsRef<'a, P>>,
     ) -> Result<Mesh> {
-        Mesh::from_buffers_ref(PolygonsRef::new(positions, offsets, indices))
+        Ok(build_buffers(polygons.into(), false)?.mesh)
     }
 
     /// [`Mesh::from_buffers`], also returning the input's keys.
@@ -334,16 +311,44 @@ assert!(tet.is_closed());
     /// buffers whose largest index is more than twice the number of
     /// indices (plus 64): the returned key map has an entry per input
     /// vertex, and would not be bounded by the input's size.
-    pub fn build_buffers(polygons: &Polygons) -> Result<Built> {
-        build_buffers(polygons.borrowed(), true)
+    pub fn build_buffers<'a, P: Point + 'a>(
+        polygons: impl Into<PolygonsRef<'a, P>>,
+    ) -> Result<Built> {
+        build_buffers(polygons.into(), true)
     }
 
-    /// [`Mesh::from_buffers_ref`], also returning the input's keys.
-    ///
-    /// # Errors
-    /// As [`Mesh::build_buffers`].
+    /// Renamed: [`Mesh::from_buffers`] takes a [`PolygonsRef`] too.
+    #[doc(hidden)]
+    #[deprecated(
+        since = "0.2.0",
+        note = "use Mesh::from_buffers, which takes a PolygonsRef too"
+    )]
+    pub fn from_buffers_ref<P: Point>(polygons: PolygonsRef<'_, P>) -> Result<Mesh> {
+        Mesh::from_buffers(polygons)
+    }
+
+    /// Renamed: `Mesh::from_buffers(PolygonsRef::new(positions, offsets, indices))`.
+    #[doc(hidden)]
+    #[deprecated(
+        since = "0.2.0",
+        note = "use Mesh::from_buffers(PolygonsRef::new(positions, offsets, indices))"
+    )]
+    pub fn from_flat_faces<P: Point>(
+        positions: &[P],
+        offsets: &[u32],
+        indices: &[u32],
+    ) -> Result<Mesh> {
+        Mesh::from_buffers(PolygonsRef::new(positions, offsets, indices))
+    }
+
+    /// Renamed: [`Mesh::build_buffers`] takes a [`PolygonsRef`] too.
+    #[doc(hidden)]
+    #[deprecated(
+        since = "0.2.0",
+        note = "use Mesh::build_buffers, which takes a PolygonsRef too"
+    )]
     pub fn build_buffers_ref<P: Point>(polygons: PolygonsRef<'_, P>) -> Result<Built> {
-        build_buffers(polygons, true)
+        Mesh::build_buffers(polygons)
     }
 
     /// Build, also returning the keys of the input's vertices and faces and
