@@ -32,10 +32,7 @@ const SQUARE: [[f32; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mesh = uv_cube()?;
-    let options = TriangleBufferOptions {
-        columns: vec![ColumnChoice::corner("texcoord")],
-        ..TriangleBufferOptions::default()
-    };
+    let options = TriangleBufferOptions::default().columns(vec![ColumnChoice::corner("texcoord")]);
     let buffers = mesh.to_triangle_buffers(&options)?;
     let (interleaved, layout) = buffers.interleaved();
 

@@ -334,11 +334,9 @@ fn circulate(input: &Input) -> (Elapsed, String) {
 fn smooth_10(input: &Input) -> (Elapsed, String) {
     use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
     let mut mesh = input.mesh.clone();
-    let opts = SmoothOptions {
-        iterations: 10,
-        step: Some(1.0),
-        ..SmoothOptions::with_method(SmoothMethod::Uniform)
-    };
+    let opts = SmoothOptions::with_method(SmoothMethod::Uniform)
+        .iterations(10)
+        .step(Some(1.0));
     let t0 = stamp();
     smooth(&mut mesh, &opts, meshloom::algo::Progress::none()).expect("smooth");
     let e = since(t0);
@@ -826,12 +824,10 @@ fn curvature(input: &Input) -> (Elapsed, String) {
 fn implicit_smoothing(input: &Input) -> (Elapsed, String) {
     use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
     let mut m = input.mesh.clone();
-    let opts = SmoothOptions {
-        iterations: 1,
-        step: Some(0.001),
-        rescale: true,
-        ..SmoothOptions::with_method(SmoothMethod::Implicit)
-    };
+    let opts = SmoothOptions::with_method(SmoothMethod::Implicit)
+        .iterations(1)
+        .step(Some(0.001))
+        .rescale(true);
     let t0 = stamp();
     let r = smooth(&mut m, &opts, meshloom::algo::Progress::none()).expect("smooth");
     let e = since(t0);
@@ -912,12 +908,10 @@ fn uniform_remeshing(input: &Input) -> (Elapsed, String) {
     use meshloom::algo::remesh::{remesh, RemeshOptions, Sizing};
     let mut m = input.mesh.clone();
     let len = mean_edge_length(input);
-    let opts = RemeshOptions {
-        sizing: Sizing::Uniform(len),
-        iterations: 10,
-        project: true,
-        ..RemeshOptions::default()
-    };
+    let opts = RemeshOptions::default()
+        .sizing(Sizing::Uniform(len))
+        .iterations(10)
+        .project(true);
     let t0 = stamp();
     let r = remesh(&mut m, &opts, meshloom::algo::Progress::none()).expect("remesh");
     let e = since(t0);

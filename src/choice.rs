@@ -1,4 +1,4 @@
-//! Option enums spelled as words.
+//! Option enums spelled as words, and options built by chained setters.
 //!
 //! Every unit-only option enum (a boundary rule, a subdivision scheme, a
 //! smoothing method) gets its words from one table through the crate-internal `choices!` macro:
@@ -95,6 +95,30 @@ macro_rules! choices {
     };
 }
 pub(crate) use choices;
+
+/// Give an options struct one chainable setter per field: same name as
+/// the field, taking `self` and returning `Self`, so that options (which
+/// are `#[non_exhaustive]`) are built as
+/// `SmoothOptions::default().iterations(3).boundary(Keep::Slide)`.
+///
+/// ```ignore
+/// setters!(CurvatureOptions { boundary: BoundaryCurvature });
+/// ```
+macro_rules! setters {
+    ($ty:ident { $($field:ident : $fty:ty),+ $(,)? }) => {
+        impl $ty {
+            $(
+                #[doc = concat!("These options with [`", stringify!($field), "`](Self::", stringify!($field), ") set to `", stringify!($field), "`.")]
+                #[must_use]
+                pub fn $field(mut self, $field: $fty) -> Self {
+                    self.$field = $field;
+                    self
+                }
+            )+
+        }
+    };
+}
+pub(crate) use setters;
 
 #[cfg(test)]
 mod tests {

@@ -94,6 +94,7 @@ use policies::Soup;
 /// [`RepairOptions::none`] (the default) none.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub struct RepairOptions {
     /// Weld vertices with bit-identical positions, where the result stays
     /// manifold. Off in [`RepairOptions::all`]: coincident vertices may
@@ -113,13 +114,23 @@ pub struct RepairOptions {
     pub drop_unreferenced_vertices: bool,
 }
 
+crate::choice::setters!(RepairOptions {
+    weld_vertices: bool,
+    drop_degenerate_faces: bool,
+    drop_duplicate_faces: bool,
+    orient_faces: bool,
+    split_nonmanifold_edges: bool,
+    split_nonmanifold_vertices: bool,
+    drop_unreferenced_vertices: bool,
+});
+
 impl RepairOptions {
     /// Every repair of a defect on; welding off (see
     /// [`RepairOptions::weld_vertices`]).
     ///
     /// ```
     /// use meshloom::repair::RepairOptions;
-    /// let weld_too = RepairOptions { weld_vertices: true, ..RepairOptions::all() };
+    /// let weld_too = RepairOptions::all().weld_vertices(true);
     /// assert!(!RepairOptions::all().weld_vertices && weld_too.any());
     /// ```
     pub fn all() -> RepairOptions {
@@ -149,6 +160,7 @@ impl RepairOptions {
 /// warning.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub struct RepairReport {
     /// Vertices merged into an earlier vertex at the same position.
     pub welded_vertices: usize,
@@ -356,7 +368,7 @@ pub fn repair(
 ///     offsets: vec![0, 3, 6],
 ///     indices: vec![0, 1, 2, 3, 4, 5],
 /// };
-/// let weld = RepairOptions { weld_vertices: true, ..RepairOptions::all() };
+/// let weld = RepairOptions::all().weld_vertices(true);
 /// let (report, _) = repair_with(&mut p, &weld, &[0, 0, 0, 1, 1, 1])?;
 /// assert_eq!(report.welded_vertices, 0);
 /// # Ok::<(), meshloom::Error>(())

@@ -67,7 +67,7 @@ fn planes_have_zero_curvature() {
             mesh.set_position(v, [p[0], p[1], z]).unwrap();
         }
         for boundary in [BoundaryCurvature::FromInterior, BoundaryCurvature::OneSided] {
-            let c = curvature(&mesh, &CurvatureOptions { boundary }).unwrap();
+            let c = curvature(&mesh, &CurvatureOptions::default().boundary(boundary)).unwrap();
             for &v in &keys {
                 let i = v.index();
                 if boundary == BoundaryCurvature::OneSided && mesh.vertex(v).unwrap().is_boundary()
@@ -82,7 +82,7 @@ fn planes_have_zero_curvature() {
 }
 
 fn total_gaussian(mesh: &Mesh, boundary: BoundaryCurvature) -> f64 {
-    let c = curvature(mesh, &CurvatureOptions { boundary }).unwrap();
+    let c = curvature(mesh, &CurvatureOptions::default().boundary(boundary)).unwrap();
     mesh.vertices()
         .map(|v| c.gaussian[v.index()] * c.area[v.index()])
         .sum()

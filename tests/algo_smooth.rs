@@ -103,11 +103,7 @@ fn taubin_keeps_volume_where_uniform_shrinks() {
     let v0 = volume(&mesh);
     let run = |method| {
         let mut m = mesh.clone();
-        let opts = SmoothOptions {
-            method,
-            iterations: 20,
-            ..Default::default()
-        };
+        let opts = SmoothOptions::default().method(method).iterations(20);
         smooth(&mut m, &opts, Progress::none()).unwrap();
         m.validate().unwrap();
         (volume(&m) - v0) / v0
@@ -122,11 +118,9 @@ fn taubin_keeps_volume_where_uniform_shrinks() {
     assert!(taubin.abs() < 0.02, "taubin changed volume by {taubin}");
     // Both smooth: the radius spread falls.
     let mut m = mesh.clone();
-    let opts = SmoothOptions {
-        method: SmoothMethod::Taubin,
-        iterations: 20,
-        ..Default::default()
-    };
+    let opts = SmoothOptions::default()
+        .method(SmoothMethod::Taubin)
+        .iterations(20);
     smooth(&mut m, &opts, Progress::none()).unwrap();
     assert!(radius_spread(&m) < 0.5 * radius_spread(&mesh));
 }
@@ -138,13 +132,11 @@ fn implicit_smoothing_evens_a_noisy_sphere() {
     let before = radius_spread(&mesh);
     for (rescale, t) in [(false, 1e-3), (true, 1e-3), (false, 1e-2), (true, 1e-2)] {
         let mut m = mesh.clone();
-        let opts = SmoothOptions {
-            method: SmoothMethod::Implicit,
-            iterations: 1,
-            step: Some(t),
-            rescale,
-            ..Default::default()
-        };
+        let opts = SmoothOptions::default()
+            .method(SmoothMethod::Implicit)
+            .iterations(1)
+            .step(Some(t))
+            .rescale(rescale);
         let report = smooth(&mut m, &opts, Progress::none()).unwrap();
         m.validate().unwrap();
         assert_eq!(report.moved, m.vertex_count());
@@ -168,10 +160,7 @@ fn cotan_and_uniform_smooth_a_noisy_sphere() {
         let mut m = mesh.clone();
         smooth(
             &mut m,
-            &SmoothOptions {
-                method,
-                ..Default::default()
-            },
+            &SmoothOptions::default().method(method),
             Progress::none(),
         )
         .unwrap();
@@ -210,10 +199,7 @@ fn boundary_is_fixed_by_default_and_can_move() {
     }
     // Free boundary: boundary vertices move too.
     let mut m = base.clone();
-    let opts = SmoothOptions {
-        boundary: Keep::Free,
-        ..Default::default()
-    };
+    let opts = SmoothOptions::default().boundary(Keep::Free);
     smooth(&mut m, &opts, Progress::none()).unwrap();
     let corner = m.vertices().next().unwrap();
     assert_ne!(m.position(corner).unwrap(), base.position(corner).unwrap());
@@ -231,10 +217,7 @@ fn a_smooth_leaves_pinned_vertices_bit_identical() {
             m.set_attr(&pinned, v, outside).unwrap();
         }
         let before = snapshot(&m);
-        let opts = SmoothOptions {
-            pinned: Some(pinned.clone()),
-            ..SmoothOptions::with_method(method)
-        };
+        let opts = SmoothOptions::with_method(method).pinned(Some(pinned.clone()));
         let report = smooth(&mut m, &opts, Progress::none()).unwrap();
         m.validate().unwrap();
         let after = snapshot(&m);
@@ -266,10 +249,7 @@ fn cancel_and_failures_leave_the_mesh_unchanged() {
                 Flow::Continue
             }
         };
-        let opts = SmoothOptions {
-            iterations: 3,
-            ..SmoothOptions::with_method(method)
-        };
+        let opts = SmoothOptions::with_method(method).iterations(3);
         let r = smooth(&mut m, &opts, Progress::new(&mut cb));
         assert!(
             matches!(r, Err(Error::Cancelled { .. })),
@@ -285,35 +265,15 @@ fn cancel_and_failures_leave_the_mesh_unchanged() {
         m.set_attr(&all, v, true).unwrap();
     }
     let bad = [
-        SmoothOptions {
-            step: Some(1.5),
-            ..Default::default()
-        },
-        SmoothOptions {
-            step: Some(f64::NAN),
-            ..Default::default()
-        },
-        SmoothOptions {
-            step: Some(-1.0),
-            ..SmoothOptions::with_method(SmoothMethod::Implicit)
-        },
-        SmoothOptions {
-            taubin_mu: Some(-0.1),
-            ..SmoothOptions::with_method(SmoothMethod::Taubin)
-        },
-        SmoothOptions {
-            pinned: Some(all.clone()),
-            ..Default::default()
-        },
-        SmoothOptions {
-            rescale: true,
-            ..Default::default()
-        },
-        SmoothOptions {
-            rescale: true,
-            pinned: Some(all),
-            ..SmoothOptions::with_method(SmoothMethod::Implicit)
-        },
+        SmoothOptions::default().step(Some(1.5)),
+        SmoothOptions::default().step(Some(f64::NAN)),
+        SmoothOptions::with_method(SmoothMethod::Implicit).step(Some(-1.0)),
+        SmoothOptions::with_method(SmoothMethod::Taubin).taubin_mu(Some(-0.1)),
+        SmoothOptions::default().pinned(Some(all.clone())),
+        SmoothOptions::default().rescale(true),
+        SmoothOptions::with_method(SmoothMethod::Implicit)
+            .rescale(true)
+            .pinned(Some(all)),
     ];
     for opts in bad {
         let r = smooth(&mut m, &opts, Progress::none());
@@ -352,14 +312,12 @@ fn degenerate_triangles_give_no_nan() {
     let mesh = Mesh::from_polygons(&p, &faces).unwrap();
     for &method in METHODS {
         let mut m = mesh.clone();
-        let opts = SmoothOptions {
-            boundary: if method == SmoothMethod::Implicit {
+        let opts =
+            SmoothOptions::with_method(method).boundary(if method == SmoothMethod::Implicit {
                 Keep::Free
             } else {
                 Keep::Lock
-            },
-            ..SmoothOptions::with_method(method)
-        };
+            });
         match smooth(&mut m, &opts, Progress::none()) {
             Ok(_) => {}
             Err(Error::Unsuitable { .. }) => {}
@@ -459,11 +417,7 @@ fn one_uniform_step_with_lambda_one_is_the_neighbours_mean() {
                 [0, 1, 2].map(|k| ring.iter().map(|p| p[k]).sum::<f64>() / n)
             })
             .collect();
-        let opts = SmoothOptions {
-            iterations: 1,
-            step: Some(1.0),
-            ..SmoothOptions::default()
-        };
+        let opts = SmoothOptions::default().iterations(1).step(Some(1.0));
         smooth(&mut m, &opts, Progress::none()).unwrap();
         for (i, v) in m.vertices().enumerate() {
             let got = m.position(v).unwrap();

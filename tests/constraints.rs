@@ -139,39 +139,29 @@ fn algorithms() -> Vec<Algorithm> {
 fn run(algorithm: Algorithm, mesh: &mut Mesh, boundary: Keep, pinned: Option<VertexAttr<bool>>) {
     match algorithm {
         Algorithm::Decimate => {
-            let o = DecimateOptions {
-                boundary,
-                pinned,
-                ..DecimateOptions::to(Target::Ratio(0.3))
-            };
+            let o = DecimateOptions::to(Target::Ratio(0.3))
+                .boundary(boundary)
+                .pinned(pinned);
             decimate(mesh, &o, Progress::none()).unwrap();
         }
         Algorithm::Remesh => {
-            let o = RemeshOptions {
-                boundary,
-                pinned,
-                iterations: 5,
-                ..RemeshOptions::default()
-            };
+            let o = RemeshOptions::default()
+                .boundary(boundary)
+                .pinned(pinned)
+                .iterations(5);
             remesh(mesh, &o, Progress::none()).unwrap();
         }
         Algorithm::Smooth(method) => {
-            let o = SmoothOptions {
-                boundary,
-                pinned,
-                step: (method == SmoothMethod::Implicit).then_some(0.1),
-                ..SmoothOptions::with_method(method)
-            };
+            let o = SmoothOptions::with_method(method)
+                .boundary(boundary)
+                .pinned(pinned)
+                .step((method == SmoothMethod::Implicit).then_some(0.1));
             smooth(mesh, &o, Progress::none()).unwrap();
         }
         #[cfg(feature = "sparse")]
         Algorithm::Fair => {
             use meshloom::algo::fair::{fair, FairOptions};
-            let o = FairOptions {
-                boundary,
-                pinned,
-                ..FairOptions::default()
-            };
+            let o = FairOptions::default().boundary(boundary).pinned(pinned);
             fair(mesh, &o, Progress::none()).unwrap();
         }
     }
@@ -274,10 +264,7 @@ fn fair_with_a_free_boundary_moves_it_and_keeps_the_pins() {
     let input = noisy_grid(false);
     // Nothing holds a free boundary: refused, the mesh unchanged.
     let mut mesh = input.clone();
-    let free = FairOptions {
-        boundary: Keep::Free,
-        ..FairOptions::default()
-    };
+    let free = FairOptions::default().boundary(Keep::Free);
     assert!(fair(&mut mesh, &free, Progress::none()).is_err());
     assert_eq!(boundary(&mesh), boundary(&input));
     // Pinned interior vertices hold it.
@@ -290,10 +277,7 @@ fn fair_with_a_free_boundary_moves_it_and_keeps_the_pins() {
             mesh.set_attr(&pinned, v, true).unwrap();
         }
     }
-    let o = FairOptions {
-        pinned: Some(pinned.clone()),
-        ..free
-    };
+    let o = free.pinned(Some(pinned.clone()));
     fair(&mut mesh, &o, Progress::none()).unwrap();
     assert_ne!(boundary(&mesh), boundary(&input));
     for &v in &keys {

@@ -112,21 +112,16 @@ fn face_targets_are_reached_within_one_collapse() {
 #[test]
 fn max_error_stops_and_the_report_says_so() {
     let mut mesh = shapes::icosphere(4);
-    let options = DecimateOptions {
-        target: Target::None,
-        max_error: Some(0.01),
-        ..DecimateOptions::default()
-    };
+    let options = DecimateOptions::default()
+        .target(Target::None)
+        .max_error(Some(0.01));
     let r = decimate(&mut mesh, &options, Progress::none()).unwrap();
     assert_eq!(r.stopped_by, StopReason::MaxError);
     assert!(r.error <= 0.01 && r.error > 0.0, "{r:?}");
     assert!(mesh.vertex_count() < 2562 && mesh.vertex_count() > 12);
     // A smaller bound stops sooner.
     let mut finer = shapes::icosphere(4);
-    let options = DecimateOptions {
-        max_error: Some(0.002),
-        ..options
-    };
+    let options = options.max_error(Some(0.002));
     let rf = decimate(&mut finer, &options, Progress::none()).unwrap();
     assert!(rf.error <= 0.002);
     assert!(finer.vertex_count() > mesh.vertex_count());
@@ -152,13 +147,10 @@ fn bad_input_is_refused_and_the_mesh_is_unchanged() {
         let err = decimate(&mut mesh, &DecimateOptions::to(target), Progress::none()).unwrap_err();
         assert!(matches!(err, Error::Unsuitable { .. }), "{err}");
     }
-    let missing = DecimateOptions {
-        attributes: vec![AttributeWeight {
-            name: "nope".into(),
-            weight: 1.0,
-        }],
-        ..DecimateOptions::default()
-    };
+    let missing = DecimateOptions::default().attributes(vec![AttributeWeight {
+        name: "nope".into(),
+        weight: 1.0,
+    }]);
     assert!(decimate(&mut mesh, &missing, Progress::none()).is_err());
     assert_eq!(mesh.vertex_count(), 162);
 }
@@ -310,10 +302,7 @@ fn a_material_boundary_is_kept_where_asked() {
             })
             .collect()
     };
-    let kept = DecimateOptions {
-        material: Some("material".into()),
-        ..DecimateOptions::to(Target::Ratio(0.1))
-    };
+    let kept = DecimateOptions::to(Target::Ratio(0.1)).material(Some("material".into()));
     let mut mesh = input.clone();
     decimate(&mut mesh, &kept, Progress::none()).unwrap();
     let lines = boundary(&mesh);
@@ -487,10 +476,7 @@ fn attributes_in_the_error_keep_a_curved_colour_closer() {
             let x = mesh.position(v).unwrap()[0] / 30.0;
             mesh.set_attr(&c, v, x * x).unwrap();
         }
-        let options = DecimateOptions {
-            attributes: weights,
-            ..DecimateOptions::to(Target::Ratio(0.2))
-        };
+        let options = DecimateOptions::to(Target::Ratio(0.2)).attributes(weights);
         decimate(&mut mesh, &options, Progress::none()).unwrap();
         // The largest deviation of the surface's colour from x², at face
         // centroids.
@@ -547,10 +533,8 @@ fn bumpy_sphere() -> Mesh {
 #[test]
 fn guard_normal_deviation_refuses_flips() {
     let mut mesh = bumpy_sphere();
-    let options = DecimateOptions {
-        max_normal_deviation: Some(20f64.to_radians()),
-        ..DecimateOptions::to(Target::Ratio(0.05))
-    };
+    let options =
+        DecimateOptions::to(Target::Ratio(0.05)).max_normal_deviation(Some(20f64.to_radians()));
     let r = decimate(&mut mesh, &options, Progress::none()).unwrap();
     assert!(r.refused.normal > 0, "{r:?}");
     // No face turned inside out: every normal still points away from the
@@ -580,10 +564,7 @@ fn guard_min_quality_keeps_triangles_fat() {
         .map(quality)
         .fold(1.0, f64::min);
     let (plain, _) = worst(DecimateOptions::to(Target::Ratio(0.1)));
-    let (guarded, r) = worst(DecimateOptions {
-        min_quality: Some(0.4),
-        ..DecimateOptions::to(Target::Ratio(0.1))
-    });
+    let (guarded, r) = worst(DecimateOptions::to(Target::Ratio(0.1)).min_quality(Some(0.4)));
     assert!(
         plain < 0.4,
         "the test needs slivers without the guard: {plain}"
@@ -610,10 +591,7 @@ fn guard_max_valence() {
     .unwrap();
     assert!(max_valence(&plain) > 7, "{}", max_valence(&plain));
     let mut mesh = shapes::icosphere(4);
-    let options = DecimateOptions {
-        max_valence: Some(7),
-        ..DecimateOptions::to(Target::Ratio(0.1))
-    };
+    let options = DecimateOptions::to(Target::Ratio(0.1)).max_valence(Some(7));
     let r = decimate(&mut mesh, &options, Progress::none()).unwrap();
     assert!(max_valence(&mesh) <= 7, "{}", max_valence(&mesh));
     assert!(r.refused.valence > 0);
@@ -645,10 +623,7 @@ fn guard_boundary_lock_and_slide() {
     let input = hilly_grid(20);
     let before = boundary_vertices(&input);
     let mut locked = input.clone();
-    let options = DecimateOptions {
-        boundary: Keep::Lock,
-        ..DecimateOptions::to(Target::Ratio(0.2))
-    };
+    let options = DecimateOptions::to(Target::Ratio(0.2)).boundary(Keep::Lock);
     let r = decimate(&mut locked, &options, Progress::none()).unwrap();
     assert_eq!(boundary_vertices(&locked), before);
     assert!(r.fixed >= before.len());
@@ -690,10 +665,7 @@ fn guard_locked_vertex_mask() {
             kept.push((v, mesh.position(v).unwrap()));
         }
     }
-    let options = DecimateOptions {
-        pinned: Some(lock),
-        ..DecimateOptions::to(Target::Ratio(0.2))
-    };
+    let options = DecimateOptions::to(Target::Ratio(0.2)).pinned(Some(lock));
     let r = decimate(&mut mesh, &options, Progress::none()).unwrap();
     assert!(r.collapses > 0);
     for (v, p) in kept {
@@ -722,10 +694,7 @@ fn guard_feature_edges_by_angle_and_by_column() {
     };
     let mut by_angle = folded();
     let before = crease(&by_angle);
-    let options = DecimateOptions {
-        feature_angle: Some(30f64.to_radians()),
-        ..DecimateOptions::to(Target::Ratio(0.2))
-    };
+    let options = DecimateOptions::to(Target::Ratio(0.2)).feature_angle(Some(30f64.to_radians()));
     decimate(&mut by_angle, &options, Progress::none()).unwrap();
     assert_eq!(crease(&by_angle), before);
 
@@ -740,10 +709,7 @@ fn guard_feature_edges_by_angle_and_by_column() {
         }
     }
     let before = crease(&flat);
-    let options = DecimateOptions {
-        features: Some(feature),
-        ..DecimateOptions::to(Target::Ratio(0.2))
-    };
+    let options = DecimateOptions::to(Target::Ratio(0.2)).features(Some(feature));
     decimate(&mut flat, &options, Progress::none()).unwrap();
     assert_eq!(crease(&flat), before);
 }
@@ -775,10 +741,7 @@ fn lod_levels_are_nested_valid_and_replayable() {
     }
     assert_eq!(chain.record.len(), chain.levels[2].collapses);
     // Targets out of order are refused.
-    let bad = LodOptions {
-        targets: vec![Target::Ratio(0.1), Target::Ratio(0.5)],
-        ..LodOptions::default()
-    };
+    let bad = LodOptions::default().targets(vec![Target::Ratio(0.1), Target::Ratio(0.5)]);
     assert!(matches!(
         lod_chain(&input, &bad, Progress::none()),
         Err(Error::Unsuitable { .. })

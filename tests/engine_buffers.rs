@@ -94,11 +94,9 @@ fn distinct_corners(mesh: &Mesh, name: &str) -> usize {
 }
 
 fn uv_options(normals: bool) -> TriangleBufferOptions {
-    TriangleBufferOptions {
-        normals: normals.then(CornerNormalOptions::default),
-        columns: vec![ColumnChoice::corner("texcoord")],
-        ..TriangleBufferOptions::default()
-    }
+    TriangleBufferOptions::default()
+        .normals(normals.then(CornerNormalOptions::default))
+        .columns(vec![ColumnChoice::corner("texcoord")])
 }
 
 #[test]
@@ -118,16 +116,10 @@ fn a_cube_with_flat_normals_has_24_vertices() {
         }
     }
     // Smooth normals: one vertex per corner of the cube.
-    let smooth = TriangleBufferOptions {
-        normals: Some(CornerNormalOptions::smooth()),
-        ..TriangleBufferOptions::default()
-    };
+    let smooth = TriangleBufferOptions::default().normals(Some(CornerNormalOptions::smooth()));
     assert_eq!(cube.to_triangle_buffers(&smooth).unwrap().vertex_count(), 8);
     // No normals, no columns: nothing splits.
-    let bare = TriangleBufferOptions {
-        normals: None,
-        ..TriangleBufferOptions::default()
-    };
+    let bare = TriangleBufferOptions::default().normals(None);
     let b = cube.to_triangle_buffers(&bare).unwrap();
     assert_eq!(b.vertex_count(), 8);
     assert!(b.normals.is_empty());
@@ -148,13 +140,9 @@ fn a_hard_edge_splits_the_buffer_vertices_along_it() {
     ];
     let mut mesh = Mesh::from_polygons(&p, &[[0u32, 1, 2, 3], [1, 4, 5, 2]]).unwrap();
     let hard = mesh.add_edge_attr::<bool>("hard").unwrap();
-    let opts = TriangleBufferOptions {
-        normals: Some(CornerNormalOptions {
-            features: Some(hard.clone()),
-            ..CornerNormalOptions::default()
-        }),
-        ..TriangleBufferOptions::default()
-    };
+    let opts = TriangleBufferOptions::default().normals(Some(
+        CornerNormalOptions::default().features(Some(hard.clone())),
+    ));
     let b = mesh.to_triangle_buffers(&opts).unwrap();
     assert_eq!((b.vertex_count(), b.triangle_count()), (6, 4));
     let v: Vec<_> = mesh.vertices().collect();
@@ -218,10 +206,7 @@ fn vertex_columns_stay_vertex_columns_when_copies_agree() {
         let p = cube.position(v).unwrap();
         cube.set_attr(&colour, v, p.map(|c| c as f32)).unwrap();
     }
-    let opts = TriangleBufferOptions {
-        columns: vec![ColumnChoice::vertex("colour")],
-        ..TriangleBufferOptions::default()
-    };
+    let opts = TriangleBufferOptions::default().columns(vec![ColumnChoice::vertex("colour")]);
     let b = cube.to_triangle_buffers(&opts).unwrap();
     assert_eq!(b.vertex_count(), 24); // split by normals, not by colour
     let col = b.column("colour").unwrap();
@@ -266,17 +251,13 @@ fn a_tolerance_welds_near_positions() {
     };
     let exact = Mesh::from_triangle_buffers(&b, &FromBuffersOptions::default()).unwrap();
     assert_eq!((exact.vertex_count(), exact.face_count()), (6, 2));
-    let opts = FromBuffersOptions {
-        weld: Weld::Tolerance(1e-6),
-    };
+    let opts = FromBuffersOptions::default().weld(Weld::Tolerance(1e-6));
     let near = Mesh::from_triangle_buffers(&b, &opts).unwrap();
     assert_eq!((near.vertex_count(), near.edge_count()), (4, 5));
     // A weld that swallows triangles drops them and says so.
     let wide = Mesh::build_triangle_buffers(
         &b,
-        &FromBuffersOptions {
-            weld: Weld::Tolerance(1.0),
-        },
+        &FromBuffersOptions::default().weld(Weld::Tolerance(1.0)),
     )
     .unwrap();
     assert_eq!(wide.collapsed, 2);
@@ -285,9 +266,7 @@ fn a_tolerance_welds_near_positions() {
     assert!(matches!(
         Mesh::from_triangle_buffers(
             &b,
-            &FromBuffersOptions {
-                weld: Weld::Tolerance(-1.0)
-            }
+            &FromBuffersOptions::default().weld(Weld::Tolerance(-1.0))
         ),
         Err(BufferError::Tolerance(_))
     ));

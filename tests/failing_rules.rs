@@ -264,10 +264,7 @@ fn a_failure_inside_an_algorithm_rolls_it_back_whole() {
     let before = snapshot(&m0);
 
     let mut m = m0.clone();
-    let options = algo::DecimateOptions {
-        target: algo::decimate::Target::Vertices(4),
-        ..Default::default()
-    };
+    let options = algo::DecimateOptions::default().target(algo::decimate::Target::Vertices(4));
     rule_error(
         algo::decimate(&mut m, &options, Progress::none()).unwrap_err(),
         ElementKind::Vertex,
@@ -276,10 +273,7 @@ fn a_failure_inside_an_algorithm_rolls_it_back_whole() {
     assert_eq!(snapshot(&m), before);
 
     let mut m = m0.clone();
-    let options = algo::remesh::RemeshOptions {
-        sizing: algo::remesh::Sizing::Uniform(1.5),
-        ..Default::default()
-    };
+    let options = algo::remesh::RemeshOptions::default().sizing(algo::remesh::Sizing::Uniform(1.5));
     rule_error(
         algo::remesh(&mut m, &options, Progress::none()).unwrap_err(),
         ElementKind::Vertex,
@@ -327,10 +321,7 @@ fn a_fallible_rule_that_succeeds_edits_as_an_infallible_one() {
         let e = m.edges().nth(7).unwrap();
         m.split_edge(e, 0.25).unwrap();
         assert!(m.triangulate_all().is_empty());
-        let options = algo::DecimateOptions {
-            target: algo::decimate::Target::Vertices(20),
-            ..Default::default()
-        };
+        let options = algo::DecimateOptions::default().target(algo::decimate::Target::Vertices(20));
         algo::decimate(&mut m, &options, Progress::none()).unwrap();
         algo::loop_subdivide(&mut m, &SubdivisionOptions::default(), Progress::none()).unwrap();
         let vs: Vec<_> = m.vertices().collect();

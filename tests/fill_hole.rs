@@ -159,10 +159,7 @@ fn radius_spread(mesh: &Mesh, vertices: &[VertexKey]) -> (f64, f64) {
 fn a_faired_sphere_cap_lies_close_to_the_sphere() {
     for order in 1..=3 {
         let (mut mesh, hole) = capped_sphere(4, 0.6);
-        let options = FillHoleOptions {
-            fair_order: order,
-            ..Default::default()
-        };
+        let options = FillHoleOptions::default().fair_order(order);
         let report = fill_hole(&mut mesh, hole, &options).unwrap();
         assert!(report.vertices_added > 20, "order {order}");
         let (lo, hi) = radius_spread(&mesh, &report.vertices);
@@ -181,10 +178,7 @@ fn a_faired_sphere_cap_lies_close_to_the_sphere() {
     }
     // Without fairing the relaxed patch is nearly flat: far inside.
     let (mut mesh, hole) = capped_sphere(4, 0.6);
-    let options = FillHoleOptions {
-        fair: false,
-        ..Default::default()
-    };
+    let options = FillHoleOptions::default().fair(false);
     let report = fill_hole(&mut mesh, hole, &options).unwrap();
     let (lo, _) = radius_spread(&mesh, &report.vertices);
     assert!(lo < 0.85, "unfaired radius {lo}");
@@ -222,10 +216,7 @@ fn refined_patch_edges_match_the_rim() {
     );
     // Without refinement there are no new vertices.
     let (mut mesh, hole) = capped_sphere(4, 0.6);
-    let options = FillHoleOptions {
-        refine: false,
-        ..Default::default()
-    };
+    let options = FillHoleOptions::default().refine(false);
     let report = fill_hole(&mut mesh, hole, &options).unwrap();
     assert_eq!(report.vertices_added, 0);
     assert_eq!(report.faces_added, n - 2);
@@ -352,18 +343,12 @@ fn a_cancelled_fill_holes_changes_nothing() {
 fn refusals_change_nothing() {
     let (mut mesh, hole) = capped_sphere(3, 0.6);
     let before = fingerprint(&mesh);
-    let bad_order = FillHoleOptions {
-        fair_order: 4,
-        ..Default::default()
-    };
+    let bad_order = FillHoleOptions::default().fair_order(4);
     assert!(matches!(
         fill_hole(&mut mesh, hole, &bad_order),
         Err(Error::Unsuitable { .. })
     ));
-    let small = FillHoleOptions {
-        max_rim: Some(5),
-        ..Default::default()
-    };
+    let small = FillHoleOptions::default().max_rim(Some(5));
     assert!(matches!(
         fill_hole(&mut mesh, hole, &small),
         Err(Error::Unsuitable { .. })
@@ -665,10 +650,7 @@ fn fill_holes_with_fairing_on_random_holed_grids() {
         }
         let holes = mesh.hole_count();
         let before = fingerprint(&mesh);
-        let options = FillHoleOptions {
-            fair_order: case.fair_order,
-            ..FillHoleOptions::default()
-        };
+        let options = FillHoleOptions::default().fair_order(case.fair_order);
         match fill_holes(&mut mesh, &options, Progress::none()) {
             Ok(report) => {
                 mesh.validate().unwrap();
@@ -767,27 +749,17 @@ fn rim_of_face(mesh: &Mesh, f: FaceKey) -> Vec<V3> {
 #[test]
 fn holes_over_the_optimal_bound_are_ear_clipped() {
     let mut mesh = wavy_tube(500, 0.0, false);
-    let options = FillHoleOptions {
-        refine: false,
-        ..FillHoleOptions::default()
-    };
+    let options = FillHoleOptions::default().refine(false);
     let report = fill_holes(&mut mesh, &options, Progress::none()).unwrap();
     assert_eq!((report.holes_filled, report.ear_clipped), (2, 2));
     assert_eq!(report.faces_added, 2 * 498);
     assert!(mesh.is_closed());
     mesh.validate().unwrap();
     let mut mesh = wavy_tube(40, 0.0, false);
-    let options = FillHoleOptions {
-        max_optimal_rim: 30,
-        refine: false,
-        ..FillHoleOptions::default()
-    };
+    let options = FillHoleOptions::default().max_optimal_rim(30).refine(false);
     let report = fill_holes(&mut mesh, &options, Progress::none()).unwrap();
     assert_eq!(report.ear_clipped, 2);
-    let options = FillHoleOptions {
-        max_optimal_rim: 40,
-        ..options
-    };
+    let options = options.max_optimal_rim(40);
     let mut mesh = wavy_tube(40, 0.0, false);
     let report = fill_holes(&mut mesh, &options, Progress::none()).unwrap();
     assert_eq!(report.ear_clipped, 0);
@@ -805,10 +777,7 @@ fn rims_over_the_refinement_bound_are_filled_unrefined() {
     assert!(mesh.is_closed());
     mesh.validate().unwrap();
     let mut mesh = wavy_tube(60, 0.05, false);
-    let options = FillHoleOptions {
-        max_refined_rim: 59,
-        ..FillHoleOptions::default()
-    };
+    let options = FillHoleOptions::default().max_refined_rim(59);
     let report = fill_holes(&mut mesh, &options, Progress::none()).unwrap();
     assert_eq!((report.unrefined, report.vertices_added), (2, 0));
     let mut mesh = wavy_tube(60, 0.05, false);

@@ -140,10 +140,10 @@ fn the_engine_reads_as_components_and_one_mesh_can_be_picked() {
     let (mesh, _) = io::read_with(&file, &ReadOptions::repair_all()).unwrap();
     mesh.validate().unwrap();
     assert!(mesh.component_stats().len() > 1);
-    let one = io::gltf::GltfOptions { mesh: Some(0) };
+    let one = io::gltf::GltfOptions::default().mesh(Some(0));
     let (part, _) = io::gltf::read_gltf_with(&file, &ReadOptions::repair_all(), &one).unwrap();
     assert!(part.face_count() > 0 && part.face_count() < mesh.face_count());
-    let none = io::gltf::GltfOptions { mesh: Some(10_000) };
+    let none = io::gltf::GltfOptions::default().mesh(Some(10_000));
     let err = io::gltf::read_gltf_with(&file, &ReadOptions::strict(), &none).unwrap_err();
     assert!(err.to_string().contains("no mesh 10000"), "{err}");
 }
@@ -210,10 +210,7 @@ fn damaged_bytes_give_errors_not_panics() {
     let err = io::gltf::read_gltf_bytes(&json, &opts, &pick).unwrap_err();
     assert!(matches!(err, Error::UnsupportedFormat { .. }), "{err}");
     // A byte limit bounds what is read.
-    let small = ReadOptions {
-        max_bytes: 100,
-        ..ReadOptions::strict()
-    };
+    let small = ReadOptions::strict().max_bytes(100);
     assert!(matches!(
         io::read_with(path("gltf/BoxTextured.glb"), &small),
         Err(Error::TooLarge { .. })

@@ -126,10 +126,7 @@ fn many_instances_of_a_mesh_are_bounded_by_the_byte_limit() {
     // The file and its buffer fit the limit; 200 instances of the
     // triangle do not (a quarter of the limit is the budget of values
     // read and corners made).
-    let small = ReadOptions {
-        max_bytes: doc.len() as u64 + 1000,
-        ..ReadOptions::repair_all()
-    };
+    let small = ReadOptions::repair_all().max_bytes(doc.len() as u64 + 1000);
     let err = match read_gltf_bytes(doc.as_bytes(), &small, &pick) {
         Ok((m, _)) => panic!("read {} faces", m.face_count()),
         Err(e) => e,

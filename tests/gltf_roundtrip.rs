@@ -243,10 +243,9 @@ fn two_triangles_touching_at_a_point_stay_two_components() {
 fn write_repro(name: &str, allow_lossy_f32: bool) -> Result<Vec<u8>, Error> {
     let mesh = io::read(Path::new(REPROS).join(name)).unwrap();
     let mut bytes = Vec::new();
-    let options = GltfWriteOptions {
-        encoding: GltfEncoding::Binary,
-        allow_lossy_f32,
-    };
+    let options = GltfWriteOptions::default()
+        .encoding(GltfEncoding::Binary)
+        .allow_lossy_f32(allow_lossy_f32);
     write_gltf_with(&mesh, &mut bytes, &options).map(|()| bytes)
 }
 
@@ -264,10 +263,7 @@ fn positions_that_underflow_f32_are_refused_unless_allowed() {
     std::fs::create_dir_all(&dir).unwrap();
     let mesh = io::read(Path::new(REPROS).join("tiny1e-300.obj")).unwrap();
     assert!(io::write(&mesh, dir.join("tiny.glb")).is_err());
-    let lossy = io::WriteOptions {
-        allow_lossy_f32: true,
-        ..io::WriteOptions::default()
-    };
+    let lossy = io::WriteOptions::default().allow_lossy_f32(true);
     io::write_with(&mesh, dir.join("tiny.glb"), &lossy).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     // Allowed: every position is 0, and the vertices stay apart.

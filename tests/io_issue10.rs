@@ -152,13 +152,8 @@ fn a_polygon_touching_itself_survives_repair() {
         let (m, report) = r.unwrap();
         assert_eq!((m.vertex_count(), m.face_count()), (7, 1), "{report}");
     }
-    let weld = ReadOptions {
-        repair: meshloom::repair::RepairOptions {
-            weld_vertices: true,
-            ..meshloom::repair::RepairOptions::all()
-        },
-        ..ReadOptions::strict()
-    };
+    let weld =
+        ReadOptions::strict().repair(meshloom::repair::RepairOptions::all().weld_vertices(true));
     let (m, report) = io::read_bytes(Format::Obj, obj.as_bytes(), &weld).unwrap();
     assert_eq!(m.face_count(), 1);
     assert_eq!((report.welded_vertices, report.weld_refused), (0, 1));

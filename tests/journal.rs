@@ -235,10 +235,7 @@ fn apply(m: &mut Mesh, op: &Op) {
         }
         Op::Remesh => {
             if m.face_count() <= 64 {
-                let options = algo::RemeshOptions {
-                    iterations: 2,
-                    ..algo::RemeshOptions::default()
-                };
+                let options = algo::RemeshOptions::default().iterations(2);
                 let _ = algo::remesh(m, &options, Progress::none());
             }
         }

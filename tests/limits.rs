@@ -27,7 +27,7 @@ fn repro(name: &str) -> String {
 fn subdivision_past_max_faces_is_refused_with_its_estimate() {
     let base = shapes::icosphere(3);
     let faces = base.face_count() as u64;
-    let opts = SubdivisionOptions::levels(8);
+    let opts = SubdivisionOptions::default().levels(8);
     type Scheme = fn(
         &mut Mesh,
         &SubdivisionOptions,
@@ -57,18 +57,20 @@ fn subdivision_past_max_faces_is_refused_with_its_estimate() {
     }
     // Midpoint too, and a raised limit lets a level through.
     let mut m = base.clone();
-    let err = midpoint_subdivide(&mut m, &MidpointOptions::levels(9), Progress::none());
+    let err = midpoint_subdivide(
+        &mut m,
+        &MidpointOptions::default().levels(9),
+        Progress::none(),
+    );
     assert!(matches!(err, Err(Error::TooLarge { .. })), "{err:?}");
-    let opts = SubdivisionOptions {
-        max_faces: 4 * base.face_count(),
-        ..SubdivisionOptions::levels(1)
-    };
+    let opts = SubdivisionOptions::default()
+        .levels(1)
+        .max_faces(4 * base.face_count());
     loop_subdivide(&mut m, &opts, Progress::none()).unwrap();
     assert_eq!(m.face_count(), 4 * base.face_count());
-    let opts = SubdivisionOptions {
-        max_faces: 4 * m.face_count() - 1,
-        ..SubdivisionOptions::levels(1)
-    };
+    let opts = SubdivisionOptions::default()
+        .levels(1)
+        .max_faces(4 * m.face_count() - 1);
     assert!(loop_subdivide(&mut m, &opts, Progress::none()).is_err());
 }
 
@@ -80,10 +82,7 @@ fn remeshing_to_a_tiny_length_is_refused_with_its_estimate() {
     m.triangulate_all();
     let before = snapshot(&m);
     for l in [1e-6, 1e-12] {
-        let opts = RemeshOptions {
-            sizing: Sizing::Uniform(l),
-            ..RemeshOptions::default()
-        };
+        let opts = RemeshOptions::default().sizing(Sizing::Uniform(l));
         match remesh(&mut m, &opts, Progress::none()) {
             Err(Error::TooLarge { estimate, .. }) => {
                 // 6 unit squares over equilateral triangles of side l

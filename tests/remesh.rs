@@ -55,10 +55,7 @@ fn run(mesh: &mut Mesh, options: &RemeshOptions) -> RemeshReport {
 }
 
 fn uniform(l: f64) -> RemeshOptions {
-    RemeshOptions {
-        sizing: Sizing::Uniform(l),
-        ..RemeshOptions::default()
-    }
+    RemeshOptions::default().sizing(Sizing::Uniform(l))
 }
 
 /// Distance from `p` to segment `ab`.
@@ -151,11 +148,9 @@ fn a_cube_keeps_its_corners_and_sharp_edges_with_a_feature_angle() {
     let mut input = shapes::cube();
     input.triangulate_all();
     let mut mesh = input.clone();
-    let options = RemeshOptions {
-        sizing: Sizing::Uniform(0.15),
-        feature_angle: Some(45f64.to_radians()),
-        ..RemeshOptions::default()
-    };
+    let options = RemeshOptions::default()
+        .sizing(Sizing::Uniform(0.15))
+        .feature_angle(Some(45f64.to_radians()));
     let r = run(&mut mesh, &options);
     assert_eq!(r.feature_edges, 12);
     assert_eq!(r.fixed, 8);
@@ -255,11 +250,9 @@ fn an_open_grid_keeps_its_boundary_square_and_corners() {
 fn a_fixed_boundary_stays_exactly_as_it_was() {
     let input = shapes::grid(4, 4, GridFaces::Triangles);
     let mut mesh = input.clone();
-    let options = RemeshOptions {
-        sizing: Sizing::Uniform(0.5),
-        boundary: Keep::Lock,
-        ..RemeshOptions::default()
-    };
+    let options = RemeshOptions::default()
+        .sizing(Sizing::Uniform(0.5))
+        .boundary(Keep::Lock);
     run(&mut mesh, &options);
     let mut before = boundary_vertices(&input);
     let mut after = boundary_vertices(&mesh);
@@ -318,14 +311,11 @@ fn adaptive_sizing_follows_the_curvature() {
         input.set_position(v, [2.0 * p[0], p[1], p[2]]).unwrap();
     }
     let mut mesh = input.clone();
-    let options = RemeshOptions {
-        sizing: Sizing::Adaptive {
-            tolerance: 0.002,
-            min_length: Some(0.05),
-            max_length: Some(0.5),
-        },
-        ..RemeshOptions::default()
-    };
+    let options = RemeshOptions::default().sizing(Sizing::Adaptive {
+        tolerance: 0.002,
+        min_length: Some(0.05),
+        max_length: Some(0.5),
+    });
     let r = run(&mut mesh, &options);
     assert!(r.edge_lengths.within >= 0.85, "{r:?}");
     assert!(r.edge_lengths.min >= 0.05 * 0.8 * 0.9);
@@ -377,10 +367,7 @@ fn a_vertex_column_is_resampled_from_the_input() {
         let p = mesh2.position(v).unwrap();
         mesh2.set_attr(&colour2, v, f(p)).unwrap();
     }
-    let options = RemeshOptions {
-        resample: Resample::Off,
-        ..uniform(0.45)
-    };
+    let options = uniform(0.45).resample(Resample::Off);
     let r = run(&mut mesh2, &options);
     assert!(r.resampled.is_empty());
     let off = mesh2
@@ -563,10 +550,7 @@ fn bad_input_is_refused_and_changes_nothing() {
         let err = remesh(&mut mesh, &uniform(l), Progress::none()).unwrap_err();
         assert!(matches!(err, Error::Unsuitable { .. }), "{err}");
     }
-    let options = RemeshOptions {
-        resample: Resample::Columns(vec!["nothing".into()]),
-        ..RemeshOptions::default()
-    };
+    let options = RemeshOptions::default().resample(Resample::Columns(vec!["nothing".into()]));
     assert!(matches!(
         remesh(&mut mesh, &options, Progress::none()),
         Err(Error::Unsuitable { .. })
@@ -662,10 +646,7 @@ fn measure_real_meshes() {
         input.triangulate_all();
         for caps in [false, true] {
             let mut mesh = input.clone();
-            let options = RemeshOptions {
-                remove_caps: caps,
-                ..RemeshOptions::default()
-            };
+            let options = RemeshOptions::default().remove_caps(caps);
             let t0 = std::time::Instant::now();
             let r = run(&mut mesh, &options);
             let secs = t0.elapsed().as_secs_f64();
@@ -714,10 +695,7 @@ fn share_below(mesh: &Mesh, l: f64) -> f64 {
 fn a_two_triangle_pillow_remeshes_without_multi_edges() {
     let p = [[0.5, 0.866, 0.0], [-0.5, 0.52, 0.0], [-1.0, 0.0, 0.0]];
     let mut m = Mesh::from_polygons(&p, &[[2u32, 0, 1], [2, 1, 0]]).unwrap();
-    let options = RemeshOptions {
-        sizing: Sizing::Uniform(0.1),
-        ..RemeshOptions::default()
-    };
+    let options = RemeshOptions::default().sizing(Sizing::Uniform(0.1));
     let _ = remesh(&mut m, &options, Progress::none());
     assert_eq!(m.validate(), Ok(()));
 }

@@ -73,13 +73,7 @@ fn valid_files_come_back_unchanged_under_repair() {
         };
         for options in [
             ReadOptions::repair_all(),
-            ReadOptions {
-                repair: RepairOptions {
-                    weld_vertices: false,
-                    ..RepairOptions::all()
-                },
-                ..ReadOptions::strict()
-            },
+            ReadOptions::strict().repair(RepairOptions::all().weld_vertices(false)),
         ] {
             let (repaired, report) = io::read_with(&path, &options).unwrap();
             assert!(report.is_clean(), "{}: {report}", path.display());
@@ -93,19 +87,13 @@ fn valid_files_come_back_unchanged_under_repair() {
 
 #[test]
 fn repair_is_idempotent_on_every_file() {
-    let weld = RepairOptions {
-        weld_vertices: true,
-        ..RepairOptions::all()
-    };
+    let weld = RepairOptions::all().weld_vertices(true);
     let dir = std::env::temp_dir().join(format!("meshloom-idem-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut checked = 0;
     for path in shared_files() {
         for options in [RepairOptions::all(), weld] {
-            let read = ReadOptions {
-                repair: options,
-                ..ReadOptions::strict()
-            };
+            let read = ReadOptions::strict().repair(options);
             let Ok((mesh, _)) = io::read_with(&path, &read) else {
                 continue;
             };
@@ -133,10 +121,7 @@ fn repair_is_idempotent_on_every_file() {
 
 #[test]
 fn welding_never_makes_an_edge_or_vertex_non_manifold() {
-    let weld = RepairOptions {
-        weld_vertices: true,
-        ..RepairOptions::none()
-    };
+    let weld = RepairOptions::none().weld_vertices(true);
     let mut welded_somewhere = 0;
     for path in shared_files() {
         let Ok((mesh, _)) = io::read_with(&path, &ReadOptions::repair_all()) else {

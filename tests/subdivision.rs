@@ -119,7 +119,7 @@ fn loop_counts_on_shapes() {
             let r = loop_subdivide(&mut mesh, &SubdivisionOptions::default(), Progress::none())
                 .unwrap();
             assert_eq!(counts(&mesh), (v + e, 2 * e + 3 * f, 4 * f, h));
-            assert_eq!(r.output().faces, 4 * f);
+            assert_eq!(r.output.faces, 4 * f);
             mesh.validate().unwrap();
         }
     }
@@ -147,12 +147,22 @@ fn catmull_clark_counts_on_shapes() {
 #[test]
 fn report_counts_every_level() {
     let mut mesh = meshloom::shapes::cube();
-    let r = catmull_clark(&mut mesh, &SubdivisionOptions::levels(3), Progress::none()).unwrap();
+    let r = catmull_clark(
+        &mut mesh,
+        &SubdivisionOptions::default().levels(3),
+        Progress::none(),
+    )
+    .unwrap();
     assert_eq!(r.input.faces, 6);
-    let faces: Vec<usize> = r.levels.iter().map(|l| l.counts.faces).collect();
+    let faces: Vec<usize> = r.levels.iter().map(|l| l.output.faces).collect();
     assert_eq!(faces, [24, 96, 384]);
-    assert_eq!(r.output().vertices, mesh.vertex_count());
-    let r = catmull_clark(&mut mesh, &SubdivisionOptions::levels(0), Progress::none()).unwrap();
+    assert_eq!(r.output.vertices, mesh.vertex_count());
+    let r = catmull_clark(
+        &mut mesh,
+        &SubdivisionOptions::default().levels(0),
+        Progress::none(),
+    )
+    .unwrap();
     assert!(r.levels.is_empty());
     assert_eq!(mesh.face_count(), 384);
 }
@@ -461,10 +471,7 @@ fn boundary_stencils_on_an_open_quad_strip() {
         let mut m = quad_strip();
         let old: Vec<VertexKey> = m.vertices().collect();
         let p: Vec<[f64; 3]> = old.iter().map(|&v| m.position(v).unwrap()).collect();
-        let opts = SubdivisionOptions {
-            boundary,
-            ..SubdivisionOptions::default()
-        };
+        let opts = SubdivisionOptions::default().boundary(boundary);
         let r = catmull_clark(&mut m, &opts, Progress::none()).unwrap();
         // Bottom row 0..4, top row 4..8; neighbours along the boundary.
         let along = |i: usize| -> (usize, usize) {
@@ -565,10 +572,7 @@ fn catmull_clark_creases_hard_semi_sharp_and_fractional() {
         let (mut m, old, p) = creased_cube(s);
         let smooth: Vec<[f64; 3]> = old.iter().map(|&v| cc_smooth_cube_vertex(&m, v)).collect();
         let edges = old_edges(&m);
-        let opts = SubdivisionOptions {
-            crease_column: Some("crease".into()),
-            ..SubdivisionOptions::default()
-        };
+        let opts = SubdivisionOptions::default().crease_column(Some("crease".into()));
         let r = catmull_clark(&mut m, &opts, Progress::none()).unwrap();
         assert_eq!(r.levels[0].sharp_edges, 4);
         let crease = m.attr_handle::<EdgeKey, f64, meshloom::attr::Interpolate>("crease");
@@ -654,10 +658,7 @@ fn loop_hard_crease_on_a_tetrahedron() {
         let e = edge_between(&m, old[a], old[b]);
         m.set_attr(&crease, e, f64::INFINITY).unwrap();
     }
-    let opts = SubdivisionOptions {
-        crease_column: Some("crease".into()),
-        ..SubdivisionOptions::default()
-    };
+    let opts = SubdivisionOptions::default().crease_column(Some("crease".into()));
     let r = loop_subdivide(&mut m, &opts, Progress::none()).unwrap();
     assert_eq!(r.levels[0].crease_vertices, 3);
     for (i, a, b) in [(0, 1, 2), (1, 0, 2), (2, 0, 1)] {
@@ -696,18 +697,12 @@ fn nan_sharpness_and_missing_columns_are_refused() {
     let e = m.edges().next().unwrap();
     m.set_attr(&crease, e, f64::NAN).unwrap();
     let snap = snapshot(&m);
-    let opts = SubdivisionOptions {
-        crease_column: Some("crease".into()),
-        ..SubdivisionOptions::default()
-    };
+    let opts = SubdivisionOptions::default().crease_column(Some("crease".into()));
     for scheme in [catmull_clark as Scheme, loop_subdivide] {
         assert!(scheme(&mut m, &opts, Progress::none()).is_err());
         assert_eq!(snapshot(&m), snap);
     }
-    let opts = SubdivisionOptions {
-        crease_column: Some("nope".into()),
-        ..SubdivisionOptions::default()
-    };
+    let opts = SubdivisionOptions::default().crease_column(Some("nope".into()));
     let err = catmull_clark(&mut m, &opts, Progress::none()).unwrap_err();
     assert!(matches!(err, meshloom::Error::AttributeMissing { .. }));
     assert_eq!(snapshot(&m), snap);
@@ -860,7 +855,12 @@ fn spider_uv_seams_stay_seams() {
         // A seam splits into two seams; no new seam appears inside a face.
         assert_eq!(seams(&m2), 2 * before);
     }
-    catmull_clark(&mut m, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+    catmull_clark(
+        &mut m,
+        &SubdivisionOptions::default().levels(2),
+        Progress::none(),
+    )
+    .unwrap();
     assert_eq!(seams(&m), 4 * before);
 }
 
@@ -894,7 +894,12 @@ fn hand_made_seam_stays_a_seam() {
     for scheme in [catmull_clark as Scheme] {
         let mut m = seam_quads();
         assert_eq!(seams(&m), 1);
-        scheme(&mut m, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+        scheme(
+            &mut m,
+            &SubdivisionOptions::default().levels(2),
+            Progress::none(),
+        )
+        .unwrap();
         assert_eq!(seams(&m), 4);
         let tc = m
             .attr_handle::<meshloom::HalfedgeKey, [f64; 2], meshloom::attr::Interpolate>("texcoord")
@@ -1035,7 +1040,7 @@ fn cancel_leaves_the_mesh_as_it_was() {
         let e0 = m.edges().next().unwrap();
         let h0 = m.halfedges().next().unwrap();
         let snap = snapshot(&m);
-        let opts = SubdivisionOptions::levels(2);
+        let opts = SubdivisionOptions::default().levels(2);
         let mut cancelled = 0;
         for k in 0.. {
             let mut calls = 0;
@@ -1200,10 +1205,7 @@ fn sqrt3_refuses_polygons_and_creases() {
         assert_eq!(snapshot(&m), snap);
     }
     let (mut m, _, _) = creased_cube(1.0);
-    let opts = SubdivisionOptions {
-        crease_column: Some("crease".into()),
-        ..SubdivisionOptions::default()
-    };
+    let opts = SubdivisionOptions::default().crease_column(Some("crease".into()));
     assert!(sqrt3_subdivide(&mut m, &opts, Progress::none()).is_err());
 }
 
@@ -1221,11 +1223,9 @@ fn sqrt3_face_columns_and_corner_vertices() {
     let p0 = m.position(v0).unwrap();
     m.set_attr(&pin, v0, true).unwrap();
     let total = face_total(&m, &totals);
-    let opts = SubdivisionOptions {
-        levels: 2,
-        corner_column: Some("pin".into()),
-        ..SubdivisionOptions::default()
-    };
+    let opts = SubdivisionOptions::default()
+        .levels(2)
+        .corner_column(Some("pin".into()));
     let r = sqrt3_subdivide(&mut m, &opts, Progress::none()).unwrap();
     assert_eq!(r.levels[0].corner_vertices, 1);
     assert!((face_total(&m, &totals) - total).abs() < 1e-9);
@@ -1260,10 +1260,7 @@ fn midpoint_keeps_the_shape_and_splits_columns() {
         let edges = old_edges(&m);
         let before = topology(&m);
         let (v, e, f, h) = counts(&m);
-        let opts = MidpointOptions {
-            faces,
-            ..MidpointOptions::levels(1)
-        };
+        let opts = MidpointOptions::default().levels(1).faces(faces);
         midpoint_subdivide(&mut m, &opts, Progress::none()).unwrap();
         let new_v = if face_points { v + e + f } else { v + e };
         assert_eq!(counts(&m).0, new_v, "{faces:?}");
@@ -1287,10 +1284,9 @@ fn midpoint_keeps_the_shape_and_splits_columns() {
     // Triangles only with MidpointFaces::Triangles; the mesh is kept.
     let mut m = meshloom::shapes::cube();
     let snap = snapshot(&m);
-    let opts = MidpointOptions {
-        faces: MidpointFaces::Triangles,
-        ..MidpointOptions::levels(1)
-    };
+    let opts = MidpointOptions::default()
+        .levels(1)
+        .faces(MidpointFaces::Triangles);
     assert!(midpoint_subdivide(&mut m, &opts, Progress::none()).is_err());
     assert_eq!(snapshot(&m), snap);
 }
@@ -1298,7 +1294,12 @@ fn midpoint_keeps_the_shape_and_splits_columns() {
 #[test]
 fn midpoint_seam_stays_a_seam() {
     let mut m = seam_quads();
-    midpoint_subdivide(&mut m, &MidpointOptions::levels(3), Progress::none()).unwrap();
+    midpoint_subdivide(
+        &mut m,
+        &MidpointOptions::default().levels(3),
+        Progress::none(),
+    )
+    .unwrap();
     assert_eq!(seams(&m), 8);
 }
 
@@ -1307,7 +1308,7 @@ fn cancel_sqrt3_and_midpoint() {
     let runs: [(&str, Scheme); 2] = [
         ("sqrt3", sqrt3_subdivide),
         ("midpoint", |m, o, p| {
-            midpoint_subdivide(m, &MidpointOptions::levels(o.levels), p)
+            midpoint_subdivide(m, &MidpointOptions::default().levels(o.levels), p)
         }),
     ];
     for (name, scheme) in runs {
@@ -1326,7 +1327,7 @@ fn cancel_sqrt3_and_midpoint() {
             };
             match scheme(
                 &mut m,
-                &SubdivisionOptions::levels(2),
+                &SubdivisionOptions::default().levels(2),
                 Progress::new(&mut cb),
             ) {
                 Ok(_) => break,
@@ -1367,7 +1368,12 @@ fn sqrt3_keeps_uv_seams() {
     let before = seams(&m);
     assert!(before >= 8, "{before} seams");
     let (v, f) = (m.vertex_count(), m.face_count());
-    sqrt3_subdivide(&mut m, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+    sqrt3_subdivide(
+        &mut m,
+        &SubdivisionOptions::default().levels(2),
+        Progress::none(),
+    )
+    .unwrap();
     m.validate().unwrap();
     assert_eq!((m.vertex_count(), m.face_count()), (v + f + 3 * f, 9 * f));
     // The seam edges are kept, not flipped away: as many seams as before
@@ -1448,7 +1454,12 @@ fn sqrt3_trisects_the_boundary_every_second_level() {
         let (v, e, f, h) = counts(&m);
         let b = boundary_edge_count(&m);
         assert!(b > 0);
-        let r = sqrt3_subdivide(&mut m, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+        let r = sqrt3_subdivide(
+            &mut m,
+            &SubdivisionOptions::default().levels(2),
+            Progress::none(),
+        )
+        .unwrap();
         m.validate().unwrap();
         assert_eq!(topology(&m), before);
         let (v1, e1, f1) = (v + f, e + 3 * f, 3 * f);
@@ -1461,7 +1472,12 @@ fn sqrt3_trisects_the_boundary_every_second_level() {
         assert!(m.faces().all(|f| m.face(f).unwrap().degree() == 3));
         // Four levels: the boundary is trisected twice.
         let mut m4 = m.clone();
-        sqrt3_subdivide(&mut m4, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+        sqrt3_subdivide(
+            &mut m4,
+            &SubdivisionOptions::default().levels(2),
+            Progress::none(),
+        )
+        .unwrap();
         m4.validate().unwrap();
         assert_eq!(boundary_edge_count(&m4), 9 * b);
     }
@@ -1477,7 +1493,12 @@ fn sqrt3_boundary_stencils_on_an_open_mesh() {
     let mut one = bumpy_grid();
     sqrt3_subdivide(&mut one, &SubdivisionOptions::default(), Progress::none()).unwrap();
     let mut two = bumpy_grid();
-    sqrt3_subdivide(&mut two, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+    sqrt3_subdivide(
+        &mut two,
+        &SubdivisionOptions::default().levels(2),
+        Progress::none(),
+    )
+    .unwrap();
     let old: Vec<VertexKey> = one.vertices().collect();
     let p = |v: VertexKey| one.position(v).unwrap();
     let q = |v: VertexKey| two.position(v).unwrap();
@@ -1543,7 +1564,12 @@ fn sqrt3_boundary_stencils_on_an_open_mesh() {
     // Linear precision: a straight, evenly spaced boundary stays straight
     // and evenly spaced (the new points at thirds), away from the corners.
     let mut flat = meshloom::shapes::grid(7, 2, meshloom::shapes::GridFaces::Triangles);
-    sqrt3_subdivide(&mut flat, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+    sqrt3_subdivide(
+        &mut flat,
+        &SubdivisionOptions::default().levels(2),
+        Progress::none(),
+    )
+    .unwrap();
     flat.validate().unwrap();
     let on_line = hole_loops(&flat)[0]
         .iter()
@@ -1587,7 +1613,12 @@ fn sqrt3_boundary_attributes() {
     let total = face_total(&m, &totals);
     let mut one = m.clone();
     sqrt3_subdivide(&mut one, &SubdivisionOptions::default(), Progress::none()).unwrap();
-    sqrt3_subdivide(&mut m, &SubdivisionOptions::levels(2), Progress::none()).unwrap();
+    sqrt3_subdivide(
+        &mut m,
+        &SubdivisionOptions::default().levels(2),
+        Progress::none(),
+    )
+    .unwrap();
     m.validate().unwrap();
     assert_eq!(seams(&m), seams_before);
     assert!((face_total(&m, &totals) - total).abs() < 1e-9);
@@ -1675,20 +1706,12 @@ fn sqrt3_boundary_vertex_columns() {
         m.set_attr(&colour, v, p).unwrap();
         m.set_attr(&t, v, p[0] * p[0] + 0.1 * i as f64).unwrap();
     }
-    let mut opts = SubdivisionOptions::levels(2);
+    let mut opts = SubdivisionOptions::default().levels(2);
     opts.vertex_data = opts
         .vertex_data
         .with("temperature", VertexInterpolation::Linear);
     let mut one = m.clone();
-    sqrt3_subdivide(
-        &mut one,
-        &SubdivisionOptions {
-            levels: 1,
-            ..opts.clone()
-        },
-        Progress::none(),
-    )
-    .unwrap();
+    sqrt3_subdivide(&mut one, &opts.clone().levels(1), Progress::none()).unwrap();
     let r = sqrt3_subdivide(&mut m, &opts, Progress::none()).unwrap();
     m.validate().unwrap();
     assert!(r.levels[1].boundary_trisected);
@@ -1754,21 +1777,12 @@ fn sqrt3_boundary_curve_ends_at_corners() {
     let mut m = input.clone();
     let pin = m.add_vertex_attr::<bool>("pin").unwrap();
     m.set_attr(&pin, pinned, true).unwrap();
-    let opts = SubdivisionOptions {
-        boundary: Boundary::CreaseAndCorners,
-        corner_column: Some("pin".into()),
-        ..SubdivisionOptions::levels(2)
-    };
+    let opts = SubdivisionOptions::default()
+        .levels(2)
+        .boundary(Boundary::CreaseAndCorners)
+        .corner_column(Some("pin".into()));
     let mut one = m.clone();
-    sqrt3_subdivide(
-        &mut one,
-        &SubdivisionOptions {
-            levels: 1,
-            ..opts.clone()
-        },
-        Progress::none(),
-    )
-    .unwrap();
+    sqrt3_subdivide(&mut one, &opts.clone().levels(1), Progress::none()).unwrap();
     let r = sqrt3_subdivide(&mut m, &opts, Progress::none()).unwrap();
     m.validate().unwrap();
     // The grid's corners of a single face (valence 2) and the pinned one.

@@ -19,11 +19,10 @@ fn midpoint(
     o: &SubdivisionOptions,
     p: Progress<'_>,
 ) -> meshloom::Result<SubdivisionReport> {
-    let o = MidpointOptions {
-        levels: o.levels,
-        faces: o.midpoint_faces,
-        max_faces: o.max_faces,
-    };
+    let o = MidpointOptions::default()
+        .levels(o.levels)
+        .faces(o.midpoint_faces)
+        .max_faces(o.max_faces);
     midpoint_subdivide(m, &o, p)
 }
 
@@ -52,20 +51,17 @@ fn open_sphere() -> Mesh {
 
 #[test]
 fn every_scheme_through_subdivide_is_its_own_function() {
-    let creases = SubdivisionOptions {
-        crease_column: Some("crease".into()),
-        corner_column: Some("pin".into()),
-        ..SubdivisionOptions::levels(2)
-    };
-    let plain = SubdivisionOptions {
-        boundary: Boundary::CreaseAndCorners,
-        corner_column: Some("pin".into()),
-        ..SubdivisionOptions::levels(2)
-    };
-    let quads = SubdivisionOptions {
-        midpoint_faces: MidpointFaces::Quads,
-        ..SubdivisionOptions::levels(2)
-    };
+    let creases = SubdivisionOptions::default()
+        .levels(2)
+        .crease_column(Some("crease".into()))
+        .corner_column(Some("pin".into()));
+    let plain = SubdivisionOptions::default()
+        .levels(2)
+        .boundary(Boundary::CreaseAndCorners)
+        .corner_column(Some("pin".into()));
+    let quads = SubdivisionOptions::default()
+        .levels(2)
+        .midpoint_faces(MidpointFaces::Quads);
     let cases: [(Scheme, Run, &SubdivisionOptions); 5] = [
         (Scheme::Loop, loop_subdivide, &creases),
         (Scheme::CatmullClark, catmull_clark, &creases),
@@ -124,10 +120,7 @@ fn a_crease_column_is_refused_where_the_scheme_takes_none() {
         for column in ["crease", "missing"] {
             let mut m = open_sphere();
             let before = snapshot(&m);
-            let options = SubdivisionOptions {
-                crease_column: Some(column.into()),
-                ..SubdivisionOptions::default()
-            };
+            let options = SubdivisionOptions::default().crease_column(Some(column.into()));
             let err = subdivide(&mut m, scheme, &options, Progress::none()).unwrap_err();
             match &err {
                 Error::Unsuitable {
@@ -144,10 +137,7 @@ fn a_crease_column_is_refused_where_the_scheme_takes_none() {
     for scheme in [Scheme::Loop, Scheme::CatmullClark] {
         assert!(scheme.takes_creases());
         let mut m = open_sphere();
-        let options = SubdivisionOptions {
-            crease_column: Some("missing".into()),
-            ..SubdivisionOptions::default()
-        };
+        let options = SubdivisionOptions::default().crease_column(Some("missing".into()));
         let err = subdivide(&mut m, scheme, &options, Progress::none()).unwrap_err();
         assert!(matches!(err, Error::AttributeMissing { .. }), "{err}");
     }
@@ -158,18 +148,12 @@ fn a_crease_column_is_refused_where_the_scheme_takes_none() {
 #[test]
 fn midpoint_through_the_driver() {
     let mut m = meshloom::shapes::icosahedron();
-    let options = SubdivisionOptions {
-        midpoint_faces: MidpointFaces::Quads,
-        ..SubdivisionOptions::default()
-    };
+    let options = SubdivisionOptions::default().midpoint_faces(MidpointFaces::Quads);
     let r = subdivide(&mut m, Scheme::Midpoint, &options, Progress::none()).unwrap();
     assert_eq!(r.scheme, Scheme::Midpoint);
     assert_eq!((m.vertex_count(), m.face_count()), (12 + 30 + 20, 60));
     m.validate().unwrap();
-    let options = SubdivisionOptions {
-        corner_column: Some("missing".into()),
-        ..SubdivisionOptions::default()
-    };
+    let options = SubdivisionOptions::default().corner_column(Some("missing".into()));
     let err = subdivide(&mut m, Scheme::Midpoint, &options, Progress::none()).unwrap_err();
     assert!(matches!(err, Error::AttributeMissing { .. }), "{err}");
 }

@@ -4,6 +4,8 @@ use std::path::PathBuf;
 
 use crate::input::MeshFormat;
 use clap::{Args, Parser, Subcommand};
+use meshloom::algo::laplacian::LaplaceWeights;
+use meshloom::algo::smooth::SmoothMethod;
 use meshloom::algo::subdivision::MidpointFaces;
 use meshloom::algo::Keep;
 use meshloom::algo::Scheme;
@@ -136,6 +138,23 @@ Example:
   meshloom smooth scan.ply smooth.ply --method taubin --iterations 20
   meshloom smooth part.obj part-smooth.obj --method implicit --step 0.01 --normals --json")]
     Smooth(SmoothArgs),
+    /// Fair a region: move its vertices to minimise the Laplacian energy.
+    ///
+    /// Solves Δᵏx = 0 for the free vertices (--order 1: membrane, 2: thin
+    /// plate, the default, 3: minimum variation), with cotangent weights
+    /// (--weights uniform: the graph Laplacian). The region is every
+    /// vertex, or those where the --region vertex column is true (or
+    /// non-zero). The boundary and the order - 1 rings inside it stay put
+    /// (--boundary lock) unless --boundary slide (boundary vertices are
+    /// spread along the input's boundary) or free; --pinned vertices never
+    /// move; --features and --feature-angle edges are lines whose
+    /// vertices slide along them. Normal columns read from the input are
+    /// stale and dropped (--normals computes new ones).
+    #[command(after_help = "\
+Example:
+  meshloom fair patch.obj smooth-patch.obj --region selected
+  meshloom fair scan.ply faired.ply --order 3 --pinned keep --json")]
+    Fair(FairArgs),
     /// Simplify a triangle mesh by quadric error edge collapse.
     ///
     /// Stops at a share of the vertices, a vertex or face count, or before
@@ -301,19 +320,6 @@ pub struct ConvertArgs {
     pub json: bool,
 }
 
-/// `meshloom smooth --method`.
-#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Method {
-    /// Explicit steps toward the neighbours' mean.
-    Uniform,
-    /// Explicit steps toward the cotangent-weighted mean.
-    Cotan,
-    /// Taubin's lambda|mu filter (no shrinkage).
-    Taubin,
-    /// Backward Euler with the cotangent Laplacian.
-    Implicit,
-}
-
 /// `meshloom smooth`.
 #[derive(Args, Debug)]
 pub struct SmoothArgs {
@@ -323,9 +329,10 @@ pub struct SmoothArgs {
     /// The mesh file to write (format from its extension).
     #[arg(value_parser = mesh_path)]
     pub output: PathBuf,
-    /// How to smooth.
-    #[arg(long, value_enum, default_value = "uniform")]
-    pub method: Method,
+    /// How to smooth: uniform, cotan, taubin or implicit.
+    #[arg(long, default_value = "uniform",
+          value_parser = words::<SmoothMethod>(SmoothMethod::WORDS))]
+    pub method: SmoothMethod,
     /// Iterations (implicit: time steps); default 10, implicit 1.
     #[arg(long)]
     pub iterations: Option<u32>,
@@ -345,6 +352,39 @@ pub struct SmoothArgs {
     /// Implicit only: restore the input's surface area and centroid.
     #[arg(long)]
     pub rescale: bool,
+    /// Compute angle-weighted vertex normals and write them where the format
+    /// carries them (OBJ vn, OFF NOFF, PLY nx ny nz, glTF NORMAL).
+    #[arg(long)]
+    pub normals: bool,
+    /// Print the report as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
+/// `meshloom fair`.
+#[derive(Args, Debug)]
+pub struct FairArgs {
+    /// The mesh file to read.
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// The mesh file to write (format from its extension).
+    #[arg(value_parser = mesh_path)]
+    pub output: PathBuf,
+    /// A vertex column whose true (or non-zero) vertices move (default:
+    /// every vertex but the fixed rings).
+    #[arg(long, value_name = "COLUMN")]
+    pub region: Option<String>,
+    /// The power of the Laplacian: 1 membrane, 2 thin plate, 3 minimum
+    /// variation (default 2).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=3))]
+    pub order: Option<u32>,
+    /// The Laplacian's weights: cotan or uniform (default cotan).
+    #[arg(long, value_parser = words::<LaplaceWeights>(LaplaceWeights::WORDS))]
+    pub weights: Option<LaplaceWeights>,
+    #[command(flatten)]
+    pub keep: ConstraintArgs,
     /// Compute angle-weighted vertex normals and write them where the format
     /// carries them (OBJ vn, OFF NOFF, PLY nx ny nz, glTF NORMAL).
     #[arg(long)]
@@ -540,12 +580,12 @@ pub struct ConstraintArgs {
     /// Boundary vertices: free (no constraint), slide (they stay on the
     /// input's boundary; corners stay) or lock (they and the boundary
     /// edges stay). Default: slide for decimate, lod and remesh; lock for
-    /// smooth.
+    /// smooth and fair.
     #[arg(long, value_name = "free|slide|lock", value_parser = keep)]
     pub boundary: Option<Keep>,
     /// UV seams (edges across which a corner column's values differ):
     /// free, slide or lock. Default: slide for decimate, lod and remesh;
-    /// free for smooth.
+    /// free for smooth and fair.
     #[arg(long, value_name = "free|slide|lock", value_parser = keep)]
     pub seams: Option<Keep>,
     /// Edges whose faces meet at more than this many degrees are feature

@@ -20,7 +20,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 use cli::{Cli, Command};
-use commands::{convert, decimate, remesh, render, smooth, stats, subdivide, validate};
+use commands::{convert, decimate, fair, remesh, render, smooth, stats, subdivide, validate};
 
 /// Why a command failed, and the exit code that says so.
 #[derive(Debug)]
@@ -65,6 +65,7 @@ fn main() -> ExitCode {
         Command::Triangulate(a) => convert::triangulate(&a),
         Command::FillHoles(a) => convert::fill_holes(&a),
         Command::Smooth(a) => smooth::run(&a),
+        Command::Fair(a) => fair::run(&a),
         Command::Decimate(a) => decimate::decimate(&a),
         Command::Lod(a) => decimate::lod(&a),
         Command::Render(a) => render::run(&a),

@@ -1,6 +1,6 @@
 //! The constraint flags mean one thing in every command (issue 25): on an
-//! open, noisy grid written to a file, `decimate`, `remesh` and `smooth`
-//! with `--boundary lock` leave every boundary vertex bit for bit, with
+//! open, noisy grid written to a file, `decimate`, `remesh`, `smooth` and
+//! `fair` with `--boundary lock` leave every boundary vertex bit for bit, with
 //! `--boundary slide` keep every boundary vertex on the input's boundary
 //! polyline (within 1e-9 of the bounding box's diagonal), `smooth
 //! --boundary free` moves some off it, and `--pinned COLUMN` vertices stay
@@ -187,11 +187,12 @@ fn diagonal(p: &[V3]) -> f64 {
 }
 
 /// Each command, with what it needs to run on the grid.
-fn commands() -> [Vec<&'static str>; 3] {
+fn commands() -> [Vec<&'static str>; 4] {
     [
         vec!["decimate", "--ratio", "0.3"],
         vec!["remesh", "--iterations", "5"],
         vec!["smooth", "--method", "taubin"],
+        vec!["fair", "--order", "2"],
     ]
 }
 
@@ -235,7 +236,10 @@ fn boundary_lock_slide_and_free_mean_one_thing() {
             let d = distance_to(&line, q.map(f64::from_bits));
             assert!(d <= tolerance, "{command:?} slide: {q:?} is {d} off");
         }
-        assert_ne!(after, before, "{command:?} slide");
+        // Fairing spreads the boundary evenly, as the grid's already is.
+        if command[0] != "fair" {
+            assert_ne!(after, before, "{command:?} slide");
+        }
     }
     // Free: smoothing moves boundary vertices off the boundary.
     apply(&commands()[2], &input, &out, &["--boundary", "free"]);
@@ -336,12 +340,81 @@ fn bad_words_and_missing_columns_are_refused() {
     ]);
     assert_eq!(code(&o), 2, "{}", stderr(&o));
     assert!(stderr(&o).contains("free, slide, lock"), "{}", stderr(&o));
+    // The option enums' words are the library's, listed on a bad one.
+    for (command, flag, words) in [
+        ("smooth", "--method", "uniform, cotan, taubin, implicit"),
+        ("fair", "--weights", "cotan, uniform"),
+    ] {
+        let o = run(&[command, path_str(&input), path_str(&out), flag, "bogus"]);
+        assert_eq!(code(&o), 2, "{}", stderr(&o));
+        assert!(stderr(&o).contains(words), "{command}: {}", stderr(&o));
+    }
+    for method in ["uniform", "cotan", "taubin", "implicit"] {
+        apply(&["smooth", "--method", method], &input, &out, &[]);
+    }
     // Columns the file does not have: bad input, nothing written.
+    let _ = std::fs::remove_file(&out);
     for flag in ["--pinned", "--features"] {
         let o = run(&["smooth", path_str(&input), path_str(&out), flag, "nothing"]);
         assert_eq!(code(&o), 1, "{flag}: {}", stderr(&o));
         assert!(stderr(&o).contains(flag), "{}", stderr(&o));
         assert!(!out.exists());
     }
+    let o = run(&[
+        "fair",
+        path_str(&input),
+        path_str(&out),
+        "--region",
+        "nothing",
+    ]);
+    assert_eq!(code(&o), 1, "{}", stderr(&o));
+    assert!(stderr(&o).contains("--region"), "{}", stderr(&o));
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn fair_moves_its_region_only_and_reports() {
+    let dir = scratch("fair");
+    let (p, t) = noisy_grid();
+    // The region: every seventh vertex (each surrounded by fixed ones).
+    let region: Vec<bool> = (0..p.len()).map(|i| i % 7 == 3).collect();
+    let input = dir.join("grid.ply");
+    write_ply(&input, &p, &t, &region);
+    let out = dir.join("out.obj");
+    for order in ["1", "2", "3"] {
+        for weights in ["cotan", "uniform"] {
+            let o = apply(
+                &["fair", "--order", order, "--weights", weights],
+                &input,
+                &out,
+                &["--region", "pinned", "--json"],
+            );
+            let (p1, _) = read_obj(&out);
+            assert_eq!(p1.len(), p.len());
+            let mut moved = 0;
+            for (i, (a, b)) in p.iter().zip(&p1).enumerate() {
+                if region[i] {
+                    moved += usize::from(bits(*a) != bits(*b));
+                } else {
+                    assert_eq!(bits(*a), bits(*b), "order {order}: vertex {i} moved");
+                }
+            }
+            let inner = (0..p.len())
+                .filter(|&i| region[i] && p[i][2] != 0.0)
+                .count();
+            // The rings next to the locked boundary stay too (order − 1).
+            assert!(moved > 0 && moved <= inner, "order {order} {weights}");
+            let json: serde_json::Value =
+                serde_json::from_slice(&o.stdout).expect("one JSON object");
+            assert_eq!(json["moved"], moved);
+            assert!(json["fixed"].as_u64().unwrap() > 0);
+            assert_eq!(json["weights"], weights);
+            assert_eq!(json["order"], order.parse::<u32>().unwrap());
+        }
+    }
+    // Order 4 is out of range: a usage error.
+    let o = run(&["fair", path_str(&input), path_str(&out), "--order", "4"]);
+    assert_eq!(code(&o), 2, "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }

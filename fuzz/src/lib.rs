@@ -19,10 +19,7 @@ use meshloom::{shapes, BuildError, EdgeKey, FaceKey, HalfedgeKey, Mesh, Polygons
 
 /// Repair options with welding too.
 fn weld_all() -> RepairOptions {
-    RepairOptions {
-        weld_vertices: true,
-        ..RepairOptions::all()
-    }
+    RepairOptions::all().weld_vertices(true)
 }
 
 /// Read `data` as `format` strictly, with every repair, and with welding;
@@ -34,10 +31,7 @@ fn read_format(format: Format, data: &[u8]) {
         m.validate().expect("a strict read validates");
     }
     for repair in [RepairOptions::all(), weld_all()] {
-        let options = ReadOptions {
-            repair,
-            ..ReadOptions::strict()
-        };
+        let options = ReadOptions::strict().repair(repair);
         let Ok((m, report)) = io::read_bytes(format, data, &options) else {
             continue;
         };
@@ -82,10 +76,7 @@ pub fn gzip(data: &[u8]) {
     let Some((&pick, rest)) = data.split_first() else {
         return;
     };
-    let options = ReadOptions {
-        max_bytes: 1 << 24,
-        ..ReadOptions::repair_all()
-    };
+    let options = ReadOptions::repair_all().max_bytes(1 << 24);
     let read = match pick % 4 {
         0 => io::read_obj_with(rest, &options),
         1 => io::read_off_with(rest, &options),
@@ -105,10 +96,7 @@ pub fn gltf(data: &[u8]) {
     use meshloom::io::gltf::{read_gltf_bytes, write_gltf, GltfEncoding, GltfOptions};
     let pick = GltfOptions::default();
     for repair in [RepairOptions::none(), RepairOptions::all()] {
-        let options = ReadOptions {
-            repair,
-            max_bytes: 1 << 20,
-        };
+        let options = ReadOptions::default().repair(repair).max_bytes(1 << 20);
         let Ok((m, _)) = read_gltf_bytes(data, &options, &pick) else {
             continue;
         };
@@ -228,15 +216,14 @@ pub fn repair_target(data: &[u8]) {
         0 => RepairOptions::all(),
         1 => weld_all(),
         2 => RepairOptions::none(),
-        _ => RepairOptions {
-            weld_vertices: pick & 4 != 0,
-            drop_degenerate_faces: pick & 8 != 0,
-            drop_duplicate_faces: pick & 16 != 0,
-            orient_faces: pick & 32 != 0,
-            split_nonmanifold_edges: pick & 64 != 0,
-            split_nonmanifold_vertices: pick & 128 != 0,
-            drop_unreferenced_vertices: true,
-        },
+        _ => RepairOptions::default()
+            .weld_vertices(pick & 4 != 0)
+            .drop_degenerate_faces(pick & 8 != 0)
+            .drop_duplicate_faces(pick & 16 != 0)
+            .orient_faces(pick & 32 != 0)
+            .split_nonmanifold_edges(pick & 64 != 0)
+            .split_nonmanifold_vertices(pick & 128 != 0)
+            .drop_unreferenced_vertices(true),
     };
     let mut q = p.clone();
     match repair(&mut q, &options) {

@@ -112,29 +112,11 @@ impl<'py> Callback<'py> {
     }
 }
 
-fn weight_of(s: &str) -> PyResult<NormalWeight> {
-    Ok(match s {
-        "angle" => NormalWeight::Angle,
-        "area" => NormalWeight::Area,
-        "uniform" => NormalWeight::Uniform,
-        other => {
-            return Err(PyValueError::new_err(format!(
-                "weight is \"angle\", \"area\" or \"uniform\", not {other:?}"
-            )))
-        }
-    })
-}
-
-fn laplace_weights(s: &str) -> PyResult<LaplaceWeights> {
-    Ok(match s {
-        "cotan" => LaplaceWeights::Cotan,
-        "uniform" => LaplaceWeights::Uniform,
-        other => {
-            return Err(PyValueError::new_err(format!(
-                "weights is \"cotan\" or \"uniform\", not {other:?}"
-            )))
-        }
-    })
+/// An option enum read from its library words (`FromStr`); an unknown
+/// word raises `ValueError` listing the words.
+pub(crate) fn parse_word<T: std::str::FromStr<Err = UnknownChoice>>(s: &str) -> PyResult<T> {
+    s.parse()
+        .map_err(|e: UnknownChoice| PyValueError::new_err(e.to_string()))
 }
 
 /// `(n, 3)` float64 array of `values[slot]` for each element's slot.
@@ -385,19 +367,6 @@ impl KeepKw {
     }
 }
 
-/// Set the five constraint fields of an options struct from a
-/// `Constraints`.
-macro_rules! set_constraints {
-    ($o:expr, $c:expr) => {{
-        let c = $c;
-        $o.boundary = c.boundary;
-        $o.seams = c.seams;
-        $o.feature_angle = c.feature_angle;
-        $o.features = c.features;
-        $o.pinned = c.pinned;
-    }};
-}
-
 fn counts_dict<'py>(py: Python<'py>, c: &meshloom::algo::Counts) -> PyResult<Bound<'py, PyDict>> {
     let d = fields_dict!(py, c; vertices, edges, faces, holes);
     Ok(d)
@@ -407,10 +376,10 @@ fn subdivision_report<'py>(py: Python<'py>, r: &SubdivisionReport) -> PyResult<B
     let d = PyDict::new(py);
     d.set_item("scheme", r.scheme.word())?;
     d.set_item("input", counts_dict(py, &r.input)?)?;
-    d.set_item("output", counts_dict(py, &r.output())?)?;
+    d.set_item("output", counts_dict(py, &r.output)?)?;
     let levels = PyList::empty(py);
     for l in &r.levels {
-        let ld = counts_dict(py, &l.counts)?;
+        let ld = counts_dict(py, &l.output)?;
         ld.set_item("sharp_edges", l.sharp_edges)?;
         ld.set_item("crease_vertices", l.crease_vertices)?;
         ld.set_item("corner_vertices", l.corner_vertices)?;
@@ -422,11 +391,8 @@ fn subdivision_report<'py>(py: Python<'py>, r: &SubdivisionReport) -> PyResult<B
 }
 
 fn decimate_report<'py>(py: Python<'py>, r: &DecimateReport) -> PyResult<Bound<'py, PyDict>> {
-    let stopped = match r.stopped_by {
-        meshloom::algo::decimate::StopReason::Target => "target",
-        meshloom::algo::decimate::StopReason::MaxError => "max_error",
-        meshloom::algo::decimate::StopReason::NoCollapses => "no_collapses",
-    };
+    // Python's words use `_` where the library's use `-`.
+    let stopped = r.stopped_by.word().replace('-', "_");
     let d = fields_dict!(py, r; error, collapses, passes, fixed);
     d.set_item("input", counts_dict(py, &r.input)?)?;
     d.set_item("output", counts_dict(py, &r.output)?)?;
@@ -473,23 +439,22 @@ struct DecimateKw {
 impl DecimateKw {
     /// The options but the constraints.
     fn base(&self, target: Target) -> DecimateOptions {
-        DecimateOptions {
-            target,
-            max_error: self.max_error,
-            max_normal_deviation: self.max_normal_deviation,
-            min_quality: self.min_quality,
-            max_valence: self.max_valence,
-            material: self.material.clone(),
-            attributes: self
-                .attributes
-                .iter()
-                .map(|(name, weight)| meshloom::algo::decimate::AttributeWeight {
-                    name: name.clone(),
-                    weight: *weight,
-                })
-                .collect(),
-            ..DecimateOptions::default()
-        }
+        DecimateOptions::default()
+            .target(target)
+            .max_error(self.max_error)
+            .max_normal_deviation(self.max_normal_deviation)
+            .min_quality(self.min_quality)
+            .max_valence(self.max_valence)
+            .material(self.material.clone())
+            .attributes(
+                self.attributes
+                    .iter()
+                    .map(|(name, weight)| meshloom::algo::decimate::AttributeWeight {
+                        name: name.clone(),
+                        weight: *weight,
+                    })
+                    .collect(),
+            )
     }
 
     /// The options, and the temporary pinned column to drop (an array).
@@ -498,19 +463,17 @@ impl DecimateKw {
         mesh: &mut Mesh,
         target: Target,
     ) -> meshloom::Result<(DecimateOptions, Option<VertexAttr<bool>>)> {
-        let mut o = self.base(target);
+        let o = self.base(target);
         let (c, temp) = self.keep.apply(mesh, o.constraints())?;
-        set_constraints!(o, c);
-        Ok((o, temp))
+        Ok((o.with_constraints(c), temp))
     }
 
     /// The options of a chain over `mesh`, which is not changed (columns
     /// by name only).
     fn lod_options(&self, mesh: &Mesh) -> meshloom::Result<DecimateOptions> {
-        let mut o = self.base(Target::Ratio(0.5));
+        let o = self.base(Target::Ratio(0.5));
         let c = self.keep.apply_named(mesh, o.constraints())?;
-        set_constraints!(o, c);
-        Ok(o)
+        Ok(o.with_constraints(c))
     }
 }
 
@@ -693,7 +656,7 @@ impl PyMesh {
         hard_edges: Option<String>,
     ) -> PyResult<Py<PyAny>> {
         let py = slf.py();
-        let weight = weight_of(weight)?;
+        let weight: NormalWeight = parse_word(weight)?;
         let mut feature_angle = feature_angle;
         if let Some(a) = crease_angle {
             deprecated(py, "crease_angle", "feature_angle")?;
@@ -702,13 +665,12 @@ impl PyMesh {
         let mut features = features;
         KeepKw::old_column(py, &mut features, hard_edges, "hard_edges", "features")?;
         let corner = |m: &Mesh| -> meshloom::Result<CornerNormalOptions> {
-            Ok(CornerNormalOptions {
-                weight,
-                feature_angle,
-                features: flag_column(m, features.as_deref())?,
-            })
+            Ok(CornerNormalOptions::default()
+                .weight(weight)
+                .feature_angle(feature_angle)
+                .features(flag_column(m, features.as_deref())?))
         };
-        let vertex = VertexNormalOptions { weight };
+        let vertex = VertexNormalOptions::default().weight(weight);
         if store {
             match kind {
                 "face" => edit(slf, |m| add_face_normals(m).map(drop))?,
@@ -756,17 +718,8 @@ impl PyMesh {
     #[pyo3(signature = (*, boundary = "from_interior", store = false))]
     fn curvature(slf: &Bound<'_, Self>, boundary: &str, store: bool) -> PyResult<Py<PyDict>> {
         let py = slf.py();
-        let options = CurvatureOptions {
-            boundary: match boundary {
-                "from_interior" => BoundaryCurvature::FromInterior,
-                "one_sided" => BoundaryCurvature::OneSided,
-                other => {
-                    return Err(PyValueError::new_err(format!(
-                        "boundary is \"from_interior\" or \"one_sided\", not {other:?}"
-                    )))
-                }
-            },
-        };
+        let options =
+            CurvatureOptions::default().boundary(parse_word::<BoundaryCurvature>(boundary)?);
         if store {
             edit(slf, |m| add_curvature(m, &options).map(drop))?;
         }
@@ -815,15 +768,13 @@ impl PyMesh {
         let py = slf.py();
         let word = |e: UnknownChoice| PyValueError::new_err(e.to_string());
         let scheme: Scheme = scheme.parse().map_err(word)?;
-        let mut options = SubdivisionOptions {
-            levels,
-            boundary: boundary.parse().map_err(word)?,
-            corner_column,
-            crease_column,
-            midpoint_faces: faces.parse().map_err(word)?,
-            max_faces,
-            ..SubdivisionOptions::default()
-        };
+        let mut options = SubdivisionOptions::default()
+            .levels(levels)
+            .boundary(boundary.parse().map_err(word)?)
+            .corner_column(corner_column)
+            .crease_column(crease_column)
+            .midpoint_faces(faces.parse().map_err(word)?)
+            .max_faces(max_faces);
         for c in &linear_columns {
             options.vertex_data = options
                 .vertex_data
@@ -868,17 +819,7 @@ impl PyMesh {
         mask: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Py<PyDict>> {
         let py = slf.py();
-        let method = match method {
-            "uniform" => SmoothMethod::Uniform,
-            "cotan" => SmoothMethod::Cotan,
-            "taubin" => SmoothMethod::Taubin,
-            "implicit" => SmoothMethod::Implicit,
-            other => {
-                return Err(PyValueError::new_err(format!(
-                    "method is \"uniform\", \"cotan\", \"taubin\" or \"implicit\", not {other:?}"
-                )))
-            }
-        };
+        let method: SmoothMethod = parse_word(method)?;
         let mut options = SmoothOptions::with_method(method);
         if let Some(i) = iterations {
             options.iterations = i;
@@ -899,8 +840,7 @@ impl PyMesh {
                 keep.pinned = complement(m, &mask)?;
             }
             let (c, temp) = keep.apply(m, options.constraints())?;
-            let mut o = options.clone();
-            set_constraints!(o, c);
+            let o = options.clone().with_constraints(c);
             let out = cb.run(|p| smooth(m, &o, p));
             drop_mask(m, temp, &keep.pinned);
             out
@@ -918,7 +858,7 @@ impl PyMesh {
     /// vertices are spread along the input's boundary; `"free"`), `seams`
     /// (default `"free"`), `feature_angle` (radians), `features` (a bool
     /// edge column), `pinned` (a bool vertex column name or array: true =
-    /// never moves). Returns the report (a dict: `moved`, `constraints`,
+    /// never moves). Returns the report (a dict: `moved`, `fixed`,
     /// `max_displacement`).
     #[pyo3(signature = (region = None, *, order = 2, weights = "cotan", boundary = None, seams = None, feature_angle = None, features = None, pinned = None, progress = None))]
     #[allow(clippy::too_many_arguments)]
@@ -935,7 +875,7 @@ impl PyMesh {
         progress: Option<Bound<'_, PyAny>>,
     ) -> PyResult<Py<PyDict>> {
         let py = slf.py();
-        let weights = laplace_weights(weights)?;
+        let weights: LaplaceWeights = parse_word(weights)?;
         let keys = region_keys(slf, region)?;
         let mask = if keys.is_some() {
             Mask::None
@@ -951,14 +891,12 @@ impl PyMesh {
                 (None, Some(h)) => FairRegion::Mask(h.clone()),
                 (None, None) => FairRegion::All,
             };
-            let mut o = FairOptions {
-                region,
-                order,
-                weights,
-                ..FairOptions::default()
-            };
+            let o = FairOptions::default()
+                .region(region)
+                .order(order)
+                .weights(weights);
             let out = keep.apply(m, o.constraints()).and_then(|(c, temp)| {
-                set_constraints!(o, c);
+                let o = o.with_constraints(c);
                 let out = cb.run(|p| fair(m, &o, p));
                 drop_mask(m, temp, &keep.pinned);
                 out
@@ -966,7 +904,7 @@ impl PyMesh {
             drop_mask(m, h, &mask);
             out
         }))?;
-        let d = fields_dict!(py, r; moved, constraints, max_displacement);
+        let d = fields_dict!(py, r; moved, fixed, max_displacement);
         Ok(d.unbind())
     }
 
@@ -1047,17 +985,15 @@ impl PyMesh {
         .onto(py, &mut keep)?;
         let cb = Callback::new(progress)?;
         let r = cb.finish(edit(slf, |m| {
-            let mut o = RemeshOptions {
-                sizing,
-                iterations,
-                smoothing_steps,
-                project,
-                resample: resample.clone(),
-                max_faces,
-                ..RemeshOptions::default()
-            };
+            let o = RemeshOptions::default()
+                .sizing(sizing)
+                .iterations(iterations)
+                .smoothing_steps(smoothing_steps)
+                .project(project)
+                .resample(resample.clone())
+                .max_faces(max_faces);
             let (c, temp) = keep.apply(m, o.constraints())?;
-            set_constraints!(o, c);
+            let o = o.with_constraints(c);
             let out = cb.run(|p| remesh(m, &o, p));
             drop_mask(m, temp, &keep.pinned);
             out
@@ -1078,7 +1014,8 @@ impl PyMesh {
     /// face values from the neighbouring face, rim corners (UVs) continue
     /// the outer corners, new vertices interpolate. Returns the report (a
     /// dict: `holes_filled`, `faces_added`, `vertices_added`,
-    /// `ear_clipped`, `unrefined`, `skipped`). One undo unit; a cancelled
+    /// `ear_clipped`, `unrefined`, `skipped`, the `input` and `output`
+    /// counts). One undo unit; a cancelled
     /// or failed run leaves the mesh as it was.
     #[pyo3(signature = (*, refine = true, fair = true, fair_order = 2, max_rim = None, progress = None, max_refined_rim = None))]
     #[allow(clippy::too_many_arguments)]
@@ -1093,19 +1030,20 @@ impl PyMesh {
     ) -> PyResult<Py<PyDict>> {
         let py = slf.py();
         let defaults = FillHoleOptions::default();
-        let o = FillHoleOptions {
-            max_rim,
-            refine,
-            fair,
-            fair_order,
-            max_refined_rim: max_refined_rim.unwrap_or(defaults.max_refined_rim),
-            ..defaults
-        };
+        let max_refined_rim = max_refined_rim.unwrap_or(defaults.max_refined_rim);
+        let o = defaults
+            .max_rim(max_rim)
+            .refine(refine)
+            .fair(fair)
+            .fair_order(fair_order)
+            .max_refined_rim(max_refined_rim);
         let cb = Callback::new(progress)?;
         let r = cb.finish(edit(slf, |m| cb.run(|p| fill_holes(m, &o, p))))?;
         let d =
             fields_dict!(py, r; holes_filled, faces_added, vertices_added, ear_clipped, unrefined);
         d.set_item("skipped", r.skipped.len())?;
+        d.set_item("input", counts_dict(py, &r.input)?)?;
+        d.set_item("output", counts_dict(py, &r.output)?)?;
         Ok(d.unbind())
     }
 
@@ -1234,12 +1172,11 @@ impl PyMesh {
             let this = slf.try_borrow().map_err(busy)?;
             let m = &this.mesh;
             let result = kw.lod_options(m).and_then(|decimate| {
-                let o = LodOptions {
-                    targets,
-                    decimate,
-                    meshes: true,
-                    record: false,
-                };
+                let o = LodOptions::default()
+                    .targets(targets)
+                    .decimate(decimate)
+                    .meshes(true)
+                    .record(false);
                 cb.run(|p| lod_chain(m, &o, p))
             });
             let result = result.map_err(|e| crate::errors::mesh_err(py, &slf.clone().unbind(), e));

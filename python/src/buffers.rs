@@ -6,8 +6,8 @@
 
 use crate::errors::busy;
 use meshloom::buffers::{
-    BufferColumn, ColumnChoice, ColumnSource, FromBuffersOptions, IndexWidth, Indices,
-    TriangleBufferOptions, TriangleBuffers, Weld,
+    BufferColumn, ColumnChoice, ColumnSource, FromBuffersOptions, Indices, TriangleBufferOptions,
+    TriangleBuffers, Weld,
 };
 use meshloom::keys::ElementKind;
 use meshloom::Mesh;
@@ -66,13 +66,11 @@ fn flat_rows(ob: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<f64>, usize, us
 }
 
 fn source_of(s: &str) -> PyResult<ColumnSource> {
-    match s {
-        "vertex" => Ok(ColumnSource::Vertex),
-        "corner" | "halfedge" => Ok(ColumnSource::Corner),
-        other => Err(PyValueError::new_err(format!(
-            "a column's source is \"vertex\" or \"corner\", not {other:?}"
-        ))),
+    // "halfedge" is Python's older name of a corner column.
+    if s == "halfedge" {
+        return Ok(ColumnSource::Corner);
     }
+    crate::algo::parse_word(s)
 }
 
 /// A column choice: a name (a half-edge column of that name if there is
@@ -104,37 +102,27 @@ fn normal_options(
     crease_angle: Option<f64>,
     hard_edges: Option<meshloom::attr::EdgeAttr<bool>>,
 ) -> PyResult<meshloom::algo::CornerNormalOptions> {
-    let weight = match weight {
-        "angle" => meshloom::algo::NormalWeight::Angle,
-        "area" => meshloom::algo::NormalWeight::Area,
-        "uniform" => meshloom::algo::NormalWeight::Uniform,
-        other => {
-            return Err(PyValueError::new_err(format!(
-                "weight is \"angle\", \"area\" or \"uniform\", not {other:?}"
-            )))
-        }
-    };
-    Ok(meshloom::algo::CornerNormalOptions {
-        weight,
-        feature_angle: crease_angle,
-        features: hard_edges,
-    })
+    let weight: meshloom::algo::NormalWeight = crate::algo::parse_word(weight)?;
+    Ok(meshloom::algo::CornerNormalOptions::default()
+        .weight(weight)
+        .feature_angle(crease_angle)
+        .features(hard_edges))
 }
 
 /// The index width `index_type` names, set in `options`; whether uint16
 /// indices are required (an error when they do not fit).
 fn index_width(index_type: &str, options: &mut TriangleBufferOptions) -> PyResult<bool> {
-    match index_type {
-        "auto" => Ok(false),
-        "uint16" => Ok(true),
-        "uint32" => {
-            options.index_width = IndexWidth::U32;
-            Ok(false)
-        }
-        other => Err(PyValueError::new_err(format!(
-            "index_type is \"auto\", \"uint16\" or \"uint32\", not {other:?}"
-        ))),
-    }
+    // numpy's names: "uint32" is the library's `u32`; "uint16" is `auto`
+    // that must come out as 16 bits.
+    let word = match index_type {
+        "uint16" => return Ok(true),
+        "uint32" => "u32",
+        other => other,
+    };
+    options.index_width = word.parse().map_err(|e: meshloom::choice::UnknownChoice| {
+        PyValueError::new_err(format!("index_type: {e}, uint16 or uint32"))
+    })?;
+    Ok(false)
 }
 
 /// What `to_triangle_buffers` takes from the buffers after the vertex
@@ -324,12 +312,10 @@ impl PyMesh {
                 });
             }
         }
-        let options = FromBuffersOptions {
-            weld: match weld {
-                Some(t) => Weld::Tolerance(t),
-                None => Weld::Exact,
-            },
-        };
+        let options = FromBuffersOptions::default().weld(match weld {
+            Some(t) => Weld::Tolerance(t),
+            None => Weld::Exact,
+        });
         let mesh = Mesh::from_triangle_buffers(&b, &options).map_err(|e| buffer_err(py, e))?;
         Ok(PyMesh::wrap(mesh))
     }

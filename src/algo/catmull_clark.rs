@@ -36,7 +36,7 @@
 //! ```
 //! use meshloom::algo::{catmull_clark, Progress, SubdivisionOptions};
 //! let mut cube = meshloom::shapes::cube();
-//! catmull_clark(&mut cube, &SubdivisionOptions::levels(3), Progress::none())?;
+//! catmull_clark(&mut cube, &SubdivisionOptions::default().levels(3), Progress::none())?;
 //! assert_eq!(cube.face_count(), 6 * 4 * 4 * 4);
 //! // The cube shrinks toward its limit surface, inside the unit cube.
 //! for v in cube.vertices() {
@@ -74,7 +74,7 @@ use crate::mesh::Mesh;
 /// let r = catmull_clark(&mut mesh, &SubdivisionOptions::default(), Progress::none())?;
 /// assert_eq!(mesh.vertex_count(), 4 + 6 + 4); // V + E + F
 /// assert_eq!(mesh.face_count(), 12); // the sum of the face degrees
-/// assert_eq!(r.output().faces, 12);
+/// assert_eq!(r.output.faces, 12);
 /// # Ok::<(), meshloom::Error>(())
 /// ```
 pub fn catmull_clark(

@@ -96,7 +96,7 @@ crate::choice::choices!(Keep {
 /// ```
 /// use meshloom::algo::{Constraints, Keep};
 /// use meshloom::algo::smooth::SmoothOptions;
-/// let o = SmoothOptions { boundary: Keep::Slide, ..SmoothOptions::default() };
+/// let o = SmoothOptions::default().boundary(Keep::Slide);
 /// let c: Constraints = o.constraints();
 /// assert_eq!((c.boundary, c.seams), (Keep::Slide, Keep::Free));
 /// ```

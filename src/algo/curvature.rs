@@ -79,13 +79,23 @@ pub enum BoundaryCurvature {
     OneSided,
 }
 
+crate::choice::choices!(BoundaryCurvature {
+    FromInterior = "from-interior",
+    OneSided = "one-sided",
+});
+
 /// Options of [`curvature`] and [`add_curvature`].
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct CurvatureOptions {
     /// What boundary vertices get (default: their interior neighbours'
     /// average).
     pub boundary: BoundaryCurvature,
 }
+
+crate::choice::setters!(CurvatureOptions {
+    boundary: BoundaryCurvature,
+});
 
 /// Curvatures by vertex slot (vacant slots hold zeros).
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -132,6 +132,7 @@ pub struct AttributeWeight {
 /// Options of [`decimate`]. `DecimateOptions::default()` decimates to half
 /// the vertices; [`DecimateOptions::to`] names the target.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct DecimateOptions {
     /// When to stop by count (default: half the vertices).
     pub target: Target,
@@ -173,6 +174,21 @@ pub struct DecimateOptions {
     pub attributes: Vec<AttributeWeight>,
 }
 
+crate::choice::setters!(DecimateOptions {
+    target: Target,
+    max_error: Option<f64>,
+    max_normal_deviation: Option<f64>,
+    min_quality: Option<f64>,
+    max_valence: Option<usize>,
+    boundary: Keep,
+    seams: Keep,
+    feature_angle: Option<f64>,
+    features: Option<EdgeAttr<bool>>,
+    pinned: Option<VertexAttr<bool>>,
+    material: Option<String>,
+    attributes: Vec<AttributeWeight>,
+});
+
 impl Default for DecimateOptions {
     fn default() -> Self {
         DecimateOptions {
@@ -211,6 +227,18 @@ impl DecimateOptions {
             pinned: self.pinned.clone(),
         }
     }
+
+    /// These options with the five fields of `c` (the setters
+    /// `boundary`, `seams`, `feature_angle`, `features` and `pinned` in
+    /// one): the inverse of [`constraints`](Self::constraints).
+    #[must_use]
+    pub fn with_constraints(self, c: Constraints) -> Self {
+        self.boundary(c.boundary)
+            .seams(c.seams)
+            .feature_angle(c.feature_angle)
+            .features(c.features)
+            .pinned(c.pinned)
+    }
 }
 
 /// Why decimation stopped.
@@ -226,10 +254,17 @@ pub enum StopReason {
     NoCollapses,
 }
 
+crate::choice::choices!(StopReason {
+    Target = "target",
+    MaxError = "max-error",
+    NoCollapses = "no-collapses",
+});
+
 /// Collapses refused, by what refused them. A candidate refused in one
 /// pass is counted again if it is tried again in a later one.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub struct Refused {
     /// By the operator (the link condition, a non-manifold result), or
     /// because the collapse would close a kept boundary's triangular hole.
@@ -245,6 +280,7 @@ pub struct Refused {
 /// What [`decimate`] did.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub struct DecimateReport {
     /// What stopped it.
     pub stopped_by: StopReason,

@@ -67,7 +67,7 @@
 //! let p = mesh.position(centre)?;
 //! mesh.set_position(centre, [p[0], p[1], 1.0])?;
 //! let region = FairRegion::Vertices(vec![centre]);
-//! let report = fair(&mut mesh, &FairOptions { region, ..Default::default() }, Progress::none())?;
+//! let report = fair(&mut mesh, &FairOptions::default().region(region), Progress::none())?;
 //! assert_eq!(report.moved, 1);
 //! assert!(mesh.position(centre)?[2].abs() < 1e-12);
 //! # Ok::<(), meshloom::Error>(())
@@ -94,6 +94,17 @@ use crate::vec3::{norm, sub, V3};
 const ALGORITHM: &str = "fair";
 
 /// The vertices [`fair`] may move.
+///
+/// Its one word is `all`: the other two carry what no word can name (a
+/// column handle, a list of vertices), so the command line names a mask
+/// column (`meshloom fair --region NAME`) and Python passes an array.
+///
+/// ```
+/// use meshloom::algo::fair::FairRegion;
+/// assert_eq!("all".parse::<FairRegion>()?, FairRegion::All);
+/// assert!("mask".parse::<FairRegion>().is_err());
+/// # Ok::<(), meshloom::choice::UnknownChoice>(())
+/// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 pub enum FairRegion {
     /// Every vertex (default): only the boundary rings are fixed.
@@ -105,8 +116,30 @@ pub enum FairRegion {
     Vertices(Vec<VertexKey>),
 }
 
+impl FairRegion {
+    /// The words [`FairRegion`] reads: `all` (see its docs).
+    pub const WORDS: &'static [&'static str] = &["all"];
+}
+
+impl std::str::FromStr for FairRegion {
+    type Err = crate::choice::UnknownChoice;
+
+    fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
+        if crate::choice::spells(s, "all") {
+            Ok(FairRegion::All)
+        } else {
+            Err(crate::choice::UnknownChoice {
+                option: "FairRegion",
+                given: s.to_owned(),
+                choices: Self::WORDS,
+            })
+        }
+    }
+}
+
 /// Options of [`fair`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct FairOptions {
     /// The vertices to move (default: all but the boundary rings).
     pub region: FairRegion,
@@ -134,6 +167,17 @@ pub struct FairOptions {
     pub pinned: Option<VertexAttr<bool>>,
 }
 
+crate::choice::setters!(FairOptions {
+    region: FairRegion,
+    order: u32,
+    weights: LaplaceWeights,
+    boundary: Keep,
+    seams: Keep,
+    feature_angle: Option<f64>,
+    features: Option<EdgeAttr<bool>>,
+    pinned: Option<VertexAttr<bool>>,
+});
+
 impl FairOptions {
     /// The constraints these options name.
     pub fn constraints(&self) -> Constraints {
@@ -144,6 +188,18 @@ impl FairOptions {
             features: self.features.clone(),
             pinned: self.pinned.clone(),
         }
+    }
+
+    /// These options with the five fields of `c` (the setters
+    /// `boundary`, `seams`, `feature_angle`, `features` and `pinned` in
+    /// one): the inverse of [`constraints`](Self::constraints).
+    #[must_use]
+    pub fn with_constraints(self, c: Constraints) -> Self {
+        self.boundary(c.boundary)
+            .seams(c.seams)
+            .feature_angle(c.feature_angle)
+            .features(c.features)
+            .pinned(c.pinned)
     }
 }
 
@@ -164,11 +220,13 @@ impl Default for FairOptions {
 
 /// What [`fair`] did.
 #[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
 pub struct FairReport {
     /// Vertices that moved: solved for, or spread along a sliding line.
     pub moved: usize,
-    /// Fixed vertices that entered the system as boundary conditions.
-    pub constraints: usize,
+    /// Vertices kept in place that entered the system as boundary
+    /// conditions (the fixed rings, pinned vertices, line corners).
+    pub fixed: usize,
     /// The largest distance a vertex moved.
     pub max_displacement: f64,
 }
@@ -288,7 +346,7 @@ fn fair_run(
     let max_displacement = write_back(mesh, &moves)?;
     Ok(FairReport {
         moved: moves.len(),
-        constraints: solution.constraints,
+        fixed: solution.constraints,
         max_displacement,
     })
 }
@@ -638,7 +696,7 @@ mod tests {
                 }
                 let report = fair(&mut whole, &options, Progress::none()).unwrap();
                 assert_eq!(report.moved, free.len());
-                assert_eq!(report.constraints, local.constraints);
+                assert_eq!(report.fixed, local.constraints);
                 let q = whole.position_slots().unwrap();
                 for (&v, x) in free.iter().zip(&local.positions) {
                     for c in 0..3 {

@@ -107,6 +107,7 @@ use std::collections::{BTreeSet, HashMap, HashSet};
 
 use super::laplacian::LaplaceWeights;
 use super::progress::Progress;
+use super::subdivision::Counts;
 use crate::error::{Error, Refusal, Result};
 use crate::keys::{FaceKey, HalfedgeKey, VertexKey};
 use crate::layout::{Eid, Fid, Hid, Vid};
@@ -137,6 +138,7 @@ const AREA_TIE: f64 = 1e-9;
 
 /// Options of [`fill_hole`] and [`fill_holes`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct FillHoleOptions {
     /// Holes whose rim has more edges than this are not filled:
     /// [`fill_holes`] skips them (listed in the report), [`fill_hole`]
@@ -164,6 +166,15 @@ pub struct FillHoleOptions {
     pub max_refined_rim: usize,
 }
 
+crate::choice::setters!(FillHoleOptions {
+    max_rim: Option<usize>,
+    refine: bool,
+    fair: bool,
+    fair_order: u32,
+    max_optimal_rim: usize,
+    max_refined_rim: usize,
+});
+
 impl Default for FillHoleOptions {
     fn default() -> Self {
         FillHoleOptions {
@@ -179,7 +190,12 @@ impl Default for FillHoleOptions {
 
 /// What [`fill_hole`] or [`fill_holes`] did.
 #[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
 pub struct FillHoleReport {
+    /// Counts of the input.
+    pub input: Counts,
+    /// Counts of the result.
+    pub output: Counts,
     /// Holes closed.
     pub holes_filled: usize,
     /// Faces the mesh gained (every face of every patch).
@@ -331,7 +347,7 @@ pub fn fill_holes_at(
         return Err(Error::NoPositions);
     }
     mesh.transaction(|m| {
-        let mut report = FillHoleReport::default();
+        let mut report = FillHoleReport::starting(m);
         let mut tables = Tables::default();
         for &border in borders {
             let h = m.check_halfedge(border)?;
@@ -341,7 +357,7 @@ pub fn fill_holes_at(
             let start = checked_start(m, h, options)?;
             report.add(fill_one(m, start, options, &mut tables)?);
         }
-        Ok(report)
+        Ok(report.finished(m))
     })
 }
 
@@ -368,10 +384,10 @@ fn fill_from(mesh: &mut Mesh, start: Hid, options: &FillHoleOptions) -> Result<F
     }
     let start = checked_start(mesh, start, options)?;
     mesh.transaction(|m| {
-        let mut report = FillHoleReport::default();
+        let mut report = FillHoleReport::starting(m);
         let patch = fill_one(m, start, options, &mut Tables::default())?;
         report.add(patch);
-        Ok(report)
+        Ok(report.finished(m))
     })
 }
 
@@ -416,7 +432,7 @@ pub fn fill_holes(
     let holes: Vec<FaceKey> = mesh.holes().collect();
     let total = holes.len() as u64;
     mesh.transaction(|m| {
-        let mut report = FillHoleReport::default();
+        let mut report = FillHoleReport::starting(m);
         let mut tables = Tables::default();
         for (i, &hole) in holes.iter().enumerate() {
             progress.report(ALGORITHM_ALL, "holes", i as u64, total)?;
@@ -431,11 +447,27 @@ pub fn fill_holes(
             report.add(patch);
         }
         progress.report(ALGORITHM_ALL, "holes", total, total)?;
-        Ok(report)
+        Ok(report.finished(m))
     })
 }
 
 impl FillHoleReport {
+    /// An empty report with the counts of `mesh` as both input and output.
+    fn starting(mesh: &Mesh) -> FillHoleReport {
+        let counts = Counts::of(mesh);
+        FillHoleReport {
+            input: counts,
+            output: counts,
+            ..FillHoleReport::default()
+        }
+    }
+
+    /// The report with the output counts of `mesh`.
+    fn finished(mut self, mesh: &Mesh) -> FillHoleReport {
+        self.output = Counts::of(mesh);
+        self
+    }
+
     fn add(&mut self, patch: Patch) {
         self.holes_filled += 1;
         self.faces_added += patch.faces.len();

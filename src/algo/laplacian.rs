@@ -187,12 +187,18 @@ crate::choice::choices!(LaplaceWeights {
 
 /// Options of [`laplacian`].
 #[derive(Copy, Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct LaplacianOptions {
     /// Cotangent (default) or uniform weights.
     pub weights: LaplaceWeights,
     /// Negative off-diagonal weights become zero (default `true`).
     pub clamp_negative: bool,
 }
+
+crate::choice::setters!(LaplacianOptions {
+    weights: LaplaceWeights,
+    clamp_negative: bool,
+});
 
 impl Default for LaplacianOptions {
     fn default() -> Self {
@@ -290,7 +296,7 @@ impl Laplacian {
 /// ```
 /// use meshloom::algo::laplacian::{laplacian, LaplaceWeights, LaplacianOptions};
 /// let grid = meshloom::shapes::grid(3, 3, meshloom::shapes::GridFaces::Triangles);
-/// let opts = LaplacianOptions { weights: LaplaceWeights::Uniform, ..Default::default() };
+/// let opts = LaplacianOptions::default().weights(LaplaceWeights::Uniform);
 /// let l = laplacian(&grid, &opts)?;
 /// // A uniform row holds one entry per neighbour.
 /// let v = grid.vertices().next().unwrap();

@@ -35,8 +35,8 @@
 //! use meshloom::algo::{loop_subdivide, Progress, SubdivisionOptions};
 //! let mut mesh = meshloom::shapes::icosahedron();
 //! let v = mesh.vertices().next().unwrap();
-//! let report = loop_subdivide(&mut mesh, &SubdivisionOptions::levels(2), Progress::none())?;
-//! assert_eq!(report.levels[0].counts.faces, 80);
+//! let report = loop_subdivide(&mut mesh, &SubdivisionOptions::default().levels(2), Progress::none())?;
+//! assert_eq!(report.levels[0].output.faces, 80);
 //! assert_eq!((mesh.vertex_count(), mesh.face_count()), (162, 320));
 //! // Vertex keys from before still name their (moved) vertex.
 //! assert!(mesh.position(v)?.iter().all(|c| c.is_finite()));

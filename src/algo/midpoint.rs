@@ -24,7 +24,7 @@
 //! ```
 //! use meshloom::algo::{midpoint_subdivide, MidpointOptions, Progress};
 //! let mut cube = meshloom::shapes::cube();
-//! midpoint_subdivide(&mut cube, &MidpointOptions::levels(2), Progress::none())?;
+//! midpoint_subdivide(&mut cube, &MidpointOptions::default().levels(2), Progress::none())?;
 //! assert_eq!(cube.face_count(), 6 * 16);
 //! // Nothing moved off the cube.
 //! for v in cube.vertices() {
@@ -46,6 +46,7 @@ pub use crate::algo::subdivision::MidpointFaces;
 /// Options of [`midpoint_subdivide`]: the part of [`SubdivisionOptions`]
 /// midpoint subdivision reads.
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct MidpointOptions {
     /// Levels to apply (default 1).
     pub levels: u32,
@@ -57,22 +58,18 @@ pub struct MidpointOptions {
     pub max_faces: usize,
 }
 
+crate::choice::setters!(MidpointOptions {
+    levels: u32,
+    faces: MidpointFaces,
+    max_faces: usize,
+});
+
 impl Default for MidpointOptions {
     fn default() -> Self {
         MidpointOptions {
             levels: 1,
             faces: MidpointFaces::Auto,
             max_faces: super::DEFAULT_MAX_FACES,
-        }
-    }
-}
-
-impl MidpointOptions {
-    /// `levels` levels, faces cut by the mesh.
-    pub fn levels(levels: u32) -> MidpointOptions {
-        MidpointOptions {
-            levels,
-            ..MidpointOptions::default()
         }
     }
 }
@@ -101,7 +98,7 @@ impl From<&MidpointOptions> for SubdivisionOptions {
 /// ```
 /// use meshloom::algo::{midpoint_subdivide, MidpointFaces, MidpointOptions, Progress};
 /// let mut mesh = meshloom::shapes::tetrahedron();
-/// let opts = MidpointOptions { faces: MidpointFaces::Quads, ..MidpointOptions::levels(1) };
+/// let opts = MidpointOptions::default().levels(1).faces(MidpointFaces::Quads);
 /// midpoint_subdivide(&mut mesh, &opts, Progress::none())?;
 /// assert_eq!((mesh.vertex_count(), mesh.face_count()), (4 + 6 + 4, 12));
 /// # Ok::<(), meshloom::Error>(())

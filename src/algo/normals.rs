@@ -99,15 +99,27 @@ pub enum NormalWeight {
     Uniform,
 }
 
+crate::choice::choices!(NormalWeight {
+    Angle = "angle",
+    Area = "area",
+    Uniform = "uniform",
+});
+
 /// Options of [`vertex_normals`] and [`add_vertex_normals`].
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct VertexNormalOptions {
     /// How faces are weighted (default: by corner angle).
     pub weight: NormalWeight,
 }
 
+crate::choice::setters!(VertexNormalOptions {
+    weight: NormalWeight,
+});
+
 /// Options of [`corner_normals`] and [`add_corner_normals`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct CornerNormalOptions {
     /// How faces are weighted within a fan (default: by corner angle).
     pub weight: NormalWeight,
@@ -122,6 +134,12 @@ pub struct CornerNormalOptions {
     /// none.
     pub features: Option<EdgeAttr<bool>>,
 }
+
+crate::choice::setters!(CornerNormalOptions {
+    weight: NormalWeight,
+    feature_angle: Option<f64>,
+    features: Option<EdgeAttr<bool>>,
+});
 
 impl Default for CornerNormalOptions {
     fn default() -> Self {
@@ -434,7 +452,7 @@ fn accumulate(
 /// ```
 /// use meshloom::algo::{vertex_normals, NormalWeight, VertexNormalOptions};
 /// let mesh = meshloom::shapes::grid(4, 3, meshloom::shapes::GridFaces::Triangles);
-/// let n = vertex_normals(&mesh, &VertexNormalOptions { weight: NormalWeight::Area })?;
+/// let n = vertex_normals(&mesh, &VertexNormalOptions::default().weight(NormalWeight::Area))?;
 /// assert!(mesh.vertices().all(|v| n[v.index()] == [0.0, 0.0, 1.0]));
 /// # Ok::<(), meshloom::Error>(())
 /// ```

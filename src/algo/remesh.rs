@@ -94,7 +94,7 @@
 //! use meshloom::algo::remesh::{remesh, RemeshOptions, Sizing};
 //! use meshloom::algo::Progress;
 //! let mut mesh = meshloom::shapes::icosphere(3); // 642 vertices, unit radius
-//! let options = RemeshOptions { sizing: Sizing::Uniform(0.1), ..RemeshOptions::default() };
+//! let options = RemeshOptions::default().sizing(Sizing::Uniform(0.1));
 //! let report = remesh(&mut mesh, &options, Progress::none())?;
 //! assert_eq!(report.iterations, 10);
 //! assert!(report.edge_lengths.within > 0.8); // 84 % here within [4/5, 4/3] of 0.1
@@ -168,6 +168,7 @@ pub enum Resample {
 
 /// Options of [`remesh`].
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct RemeshOptions {
     /// The target edge length (default: the input's mean edge length).
     pub sizing: Sizing,
@@ -213,6 +214,21 @@ pub struct RemeshOptions {
     pub max_faces: usize,
 }
 
+crate::choice::setters!(RemeshOptions {
+    sizing: Sizing,
+    iterations: usize,
+    smoothing_steps: usize,
+    project: bool,
+    boundary: Keep,
+    seams: Keep,
+    feature_angle: Option<f64>,
+    features: Option<EdgeAttr<bool>>,
+    pinned: Option<VertexAttr<bool>>,
+    resample: Resample,
+    remove_caps: bool,
+    max_faces: usize,
+});
+
 impl RemeshOptions {
     /// The constraints these options name.
     pub fn constraints(&self) -> Constraints {
@@ -223,6 +239,18 @@ impl RemeshOptions {
             features: self.features.clone(),
             pinned: self.pinned.clone(),
         }
+    }
+
+    /// These options with the five fields of `c` (the setters
+    /// `boundary`, `seams`, `feature_angle`, `features` and `pinned` in
+    /// one): the inverse of [`constraints`](Self::constraints).
+    #[must_use]
+    pub fn with_constraints(self, c: Constraints) -> Self {
+        self.boundary(c.boundary)
+            .seams(c.seams)
+            .feature_angle(c.feature_angle)
+            .features(c.features)
+            .pinned(c.pinned)
     }
 }
 
@@ -248,6 +276,7 @@ impl Default for RemeshOptions {
 /// Edge lengths of the result.
 #[derive(Copy, Clone, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub struct EdgeLengthStats {
     /// The shortest edge.
     pub min: f64,
@@ -263,6 +292,7 @@ pub struct EdgeLengthStats {
 /// What [`remesh`] did.
 #[derive(Clone, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub struct RemeshReport {
     /// Rounds run.
     pub iterations: usize,
@@ -323,7 +353,7 @@ pub struct RemeshReport {
 /// use meshloom::algo::Progress;
 /// use meshloom::shapes::{grid, GridFaces};
 /// let mut mesh = grid(4, 4, GridFaces::Triangles); // cells of 1 × 1
-/// let options = RemeshOptions { sizing: Sizing::Uniform(0.5), ..RemeshOptions::default() };
+/// let options = RemeshOptions::default().sizing(Sizing::Uniform(0.5));
 /// let report = remesh(&mut mesh, &options, Progress::none())?;
 /// assert!(report.splits > 0 && mesh.face_count() > 100);
 /// assert_eq!(mesh.hole_count(), 1); // the boundary is kept

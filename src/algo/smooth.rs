@@ -53,7 +53,7 @@
 //! use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
 //! use meshloom::algo::Progress;
 //! let mut sphere = meshloom::shapes::icosphere(3);
-//! let opts = SmoothOptions { method: SmoothMethod::Taubin, iterations: 5, ..Default::default() };
+//! let opts = SmoothOptions::default().method(SmoothMethod::Taubin).iterations(5);
 //! let report = smooth(&mut sphere, &opts, Progress::none())?;
 //! assert_eq!(report.moved, sphere.vertex_count());
 //! sphere.validate()?;
@@ -91,8 +91,16 @@ pub enum SmoothMethod {
     Implicit,
 }
 
+crate::choice::choices!(SmoothMethod {
+    Uniform = "uniform",
+    Cotan = "cotan",
+    Taubin = "taubin",
+    Implicit = "implicit",
+});
+
 /// Options of [`smooth`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct SmoothOptions {
     /// The method (default [`SmoothMethod::Uniform`]).
     pub method: SmoothMethod,
@@ -126,6 +134,19 @@ pub struct SmoothOptions {
     pub rescale: bool,
 }
 
+crate::choice::setters!(SmoothOptions {
+    method: SmoothMethod,
+    iterations: u32,
+    step: Option<f64>,
+    taubin_mu: Option<f64>,
+    boundary: Keep,
+    seams: Keep,
+    feature_angle: Option<f64>,
+    features: Option<EdgeAttr<bool>>,
+    pinned: Option<VertexAttr<bool>>,
+    rescale: bool,
+});
+
 impl Default for SmoothOptions {
     fn default() -> Self {
         SmoothOptions {
@@ -144,7 +165,9 @@ impl Default for SmoothOptions {
 }
 
 impl SmoothOptions {
-    /// The defaults with another method.
+    /// The defaults with another method, and that method's default
+    /// `iterations` (1 for implicit, else 10); the setter
+    /// [`method`](Self::method) changes the method alone.
     pub fn with_method(method: SmoothMethod) -> SmoothOptions {
         SmoothOptions {
             method,
@@ -167,10 +190,23 @@ impl SmoothOptions {
             pinned: self.pinned.clone(),
         }
     }
+
+    /// These options with the five fields of `c` (the setters
+    /// `boundary`, `seams`, `feature_angle`, `features` and `pinned` in
+    /// one): the inverse of [`constraints`](Self::constraints).
+    #[must_use]
+    pub fn with_constraints(self, c: Constraints) -> Self {
+        self.boundary(c.boundary)
+            .seams(c.seams)
+            .feature_angle(c.feature_angle)
+            .features(c.features)
+            .pinned(c.pinned)
+    }
 }
 
 /// What [`smooth`] did.
 #[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
 pub struct SmoothReport {
     /// Vertices that were free to move.
     pub moved: usize,

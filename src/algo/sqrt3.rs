@@ -77,7 +77,7 @@
 //! ```
 //! use meshloom::algo::{sqrt3_subdivide, Progress, SubdivisionOptions};
 //! let mut mesh = meshloom::shapes::icosahedron();
-//! sqrt3_subdivide(&mut mesh, &SubdivisionOptions::levels(2), Progress::none())?;
+//! sqrt3_subdivide(&mut mesh, &SubdivisionOptions::default().levels(2), Progress::none())?;
 //! assert_eq!((mesh.vertex_count(), mesh.face_count()), (12 + 20 + 60, 180));
 //! mesh.validate()?;
 //! # Ok::<(), meshloom::Error>(())
@@ -117,7 +117,7 @@ const ALGORITHM: &str = "sqrt3_subdivide";
 /// use meshloom::algo::{sqrt3_subdivide, Progress, SubdivisionOptions};
 /// let mut mesh = meshloom::shapes::tetrahedron();
 /// let r = sqrt3_subdivide(&mut mesh, &SubdivisionOptions::default(), Progress::none())?;
-/// assert_eq!(r.output().vertices, 4 + 4); // V + F
+/// assert_eq!(r.output.vertices, 4 + 4); // V + F
 /// assert_eq!(mesh.face_count(), 12); // 3F
 /// // Quads are refused, and the mesh is left alone.
 /// let mut cube = meshloom::shapes::cube();

@@ -54,7 +54,7 @@ impl Mesh {
     ///     let island = if i < 4 { 0.0 } else { 10.0 }; // one UV island per quad
     ///     mesh.set_attr(&uv, h, [x + island, 0.0])?;
     /// }
-    /// let options = TriangleBufferOptions { columns: vec![ColumnChoice::corner("texcoord")], ..Default::default() };
+    /// let options = TriangleBufferOptions::default().columns(vec![ColumnChoice::corner("texcoord")]);
     /// let b = mesh.to_triangle_buffers(&options)?;
     /// // 6 mesh vertices; the 2 on the seam are split: 8 buffer vertices.
     /// assert_eq!((b.vertex_count(), b.triangle_count()), (8, 4));

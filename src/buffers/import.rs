@@ -10,6 +10,18 @@ use crate::keys::{FaceKey, HalfedgeKey, VertexKey};
 use crate::mesh::Mesh;
 
 /// Which buffer vertices become one mesh vertex.
+///
+/// Its words: `exact`, or the tolerance as a number (`0.001`): the variant
+/// that carries data is spelled by its data.
+///
+/// ```
+/// use meshloom::buffers::Weld;
+/// assert_eq!("exact".parse::<Weld>()?, Weld::Exact);
+/// assert_eq!("0.5".parse::<Weld>()?, Weld::Tolerance(0.5));
+/// assert_eq!(Weld::Tolerance(0.5).to_string(), "0.5");
+/// assert!("-1".parse::<Weld>().is_err());
+/// # Ok::<(), meshloom::choice::UnknownChoice>(())
+/// ```
 #[derive(Copy, Clone, Debug, Default, PartialEq)]
 pub enum Weld {
     /// Those at exactly the same position (`-0.0` and `0.0` are the same).
@@ -22,12 +34,48 @@ pub enum Weld {
     Tolerance(f64),
 }
 
+impl Weld {
+    /// The word of [`Weld::Exact`]; a tolerance is spelled as its number.
+    pub const WORDS: &'static [&'static str] = &["exact"];
+}
+
+impl std::fmt::Display for Weld {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Weld::Exact => f.write_str("exact"),
+            Weld::Tolerance(t) => write!(f, "{t}"),
+        }
+    }
+}
+
+impl std::str::FromStr for Weld {
+    type Err = crate::choice::UnknownChoice;
+
+    /// `exact`, or a finite number `≥ 0`: the tolerance.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        if crate::choice::spells(s, "exact") {
+            return Ok(Weld::Exact);
+        }
+        match s.trim().parse::<f64>() {
+            Ok(t) if t.is_finite() && t >= 0.0 => Ok(Weld::Tolerance(t)),
+            _ => Err(crate::choice::UnknownChoice {
+                option: "Weld",
+                given: s.to_owned(),
+                choices: &["exact", "a tolerance (a number >= 0)"],
+            }),
+        }
+    }
+}
+
 /// How [`Mesh::from_triangle_buffers`] builds.
 #[derive(Copy, Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
 pub struct FromBuffersOptions {
     /// How vertices weld (default: exact positions).
     pub weld: Weld,
 }
+
+crate::choice::setters!(FromBuffersOptions { weld: Weld });
 
 /// A mesh built from buffers, with where each buffer element went.
 #[derive(Clone, Debug)]

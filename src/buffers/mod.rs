@@ -53,10 +53,7 @@
 //! use bevy::render::render_asset::RenderAssetUsages;
 //! use meshloom::buffers::{ColumnChoice, TriangleBufferOptions};
 //!
-//! let options = TriangleBufferOptions {
-//!     columns: vec![ColumnChoice::corner("texcoord")],
-//!     ..Default::default()
-//! };
+//! let options = TriangleBufferOptions::default().columns(vec![ColumnChoice::corner("texcoord")]);
 //! let b = my_mesh.to_triangle_buffers(&options)?;
 //! let mut mesh = Mesh::new(PrimitiveTopology::TriangleList, RenderAssetUsages::default());
 //! mesh.insert_attribute(Mesh::ATTRIBUTE_POSITION, b.positions.clone());
@@ -136,6 +133,11 @@ pub enum ColumnSource {
     Corner,
 }
 
+crate::choice::choices!(ColumnSource {
+    Vertex = "vertex",
+    Corner = "corner",
+});
+
 /// A column to put in the buffers: its name and arena.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct ColumnChoice {
@@ -174,9 +176,15 @@ pub enum IndexWidth {
     U32,
 }
 
+crate::choice::choices!(IndexWidth {
+    Auto = "auto",
+    U32 = "u32",
+});
+
 /// What [`Mesh::to_triangle_buffers`](crate::Mesh::to_triangle_buffers)
 /// puts in the buffers.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct TriangleBufferOptions {
     /// Corner normals and where they split (`None`: no normals). Default:
     /// angle-weighted, split at edges sharper than 30°
@@ -190,6 +198,12 @@ pub struct TriangleBufferOptions {
     /// Index width (default: `u16` when it fits).
     pub index_width: IndexWidth,
 }
+
+crate::choice::setters!(TriangleBufferOptions {
+    normals: Option<CornerNormalOptions>,
+    columns: Vec<ColumnChoice>,
+    index_width: IndexWidth,
+});
 
 impl Default for TriangleBufferOptions {
     fn default() -> Self {

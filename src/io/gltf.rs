@@ -120,11 +120,16 @@ const VERTEX_ID: &str = "VERTEX_ID";
 
 /// How to read a glTF file beyond [`ReadOptions`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct GltfOptions {
     /// Read only the mesh of this index in the file's `meshes` (every
     /// instance of it in the scene); `None`: every mesh.
     pub mesh: Option<usize>,
 }
+
+crate::choice::setters!(GltfOptions {
+    mesh: Option<usize>,
+});
 
 /// The two glTF encodings.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -143,6 +148,7 @@ crate::choice::choices!(GltfEncoding {
 
 /// How to write glTF.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct GltfWriteOptions {
     /// JSON or binary.
     pub encoding: GltfEncoding,
@@ -153,6 +159,11 @@ pub struct GltfWriteOptions {
     /// off: the writer never loses a position silently).
     pub allow_lossy_f32: bool,
 }
+
+crate::choice::setters!(GltfWriteOptions {
+    encoding: GltfEncoding,
+    allow_lossy_f32: bool,
+});
 
 /// Whether the path names a glTF file (`.gltf` or `.glb`,
 /// case-insensitive), and which encoding.
@@ -187,7 +198,7 @@ pub fn read_gltf(path: impl AsRef<Path>) -> Result<Mesh, Error> {
 /// use meshloom::io::ReadOptions;
 /// # let path = "../shared/data/meshes/gltf/2CylinderEngine.glb";
 /// # if std::path::Path::new(path).exists() {
-/// let one = GltfOptions { mesh: Some(0) };
+/// let one = GltfOptions::default().mesh(Some(0));
 /// let (mesh, _) = read_gltf_with(path, &ReadOptions::repair_all(), &one)?;
 /// assert!(mesh.face_count() > 0);
 /// # }
@@ -267,7 +278,7 @@ pub fn write_gltf(mesh: &Mesh, writer: impl Write, encoding: GltfEncoding) -> Re
 /// }
 /// let strict = GltfWriteOptions::default();
 /// assert!(write_gltf_with(&tiny, Vec::new(), &strict).is_err());
-/// let lossy = GltfWriteOptions { allow_lossy_f32: true, ..strict };
+/// let lossy = strict.allow_lossy_f32(true);
 /// assert!(write_gltf_with(&tiny, Vec::new(), &lossy).is_ok());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```

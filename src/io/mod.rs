@@ -70,6 +70,7 @@ use crate::mesh::Mesh;
 
 /// How to read: which repairs to run, and how many bytes to accept.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct ReadOptions {
     /// The repair policies (all off by default: strict).
     pub repair: RepairOptions,
@@ -77,6 +78,11 @@ pub struct ReadOptions {
     /// 4 GiB).
     pub max_bytes: u64,
 }
+
+crate::choice::setters!(ReadOptions {
+    repair: RepairOptions,
+    max_bytes: u64,
+});
 
 impl Default for ReadOptions {
     fn default() -> Self {
@@ -213,6 +219,7 @@ fn read_soup(
 
 /// How to write the formats that have several encodings.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct WriteOptions {
     /// PLY body encoding (default binary little endian).
     pub ply: PlyEncoding,
@@ -223,6 +230,12 @@ pub struct WriteOptions {
     /// an error; see `gltf::GltfWriteOptions::allow_lossy_f32`).
     pub allow_lossy_f32: bool,
 }
+
+crate::choice::setters!(WriteOptions {
+    ply: PlyEncoding,
+    stl: StlEncoding,
+    allow_lossy_f32: bool,
+});
 
 impl Default for WriteOptions {
     fn default() -> Self {

@@ -1,4 +1,4 @@
-//! The constraint flags shared by decimate, lod, remesh and smooth, in the
+//! The constraint flags shared by decimate, fair, lod, remesh and smooth, in the
 //! library's words (`--boundary free|slide|lock`, `--seams`,
 //! `--feature-angle`, `--features COLUMN`, `--pinned COLUMN`); the old
 //! flags mapped to the one meaning with a warning; and the columns they
@@ -16,6 +16,8 @@ use crate::Failure;
 const PINNED: &str = "meshloom-cli pinned";
 /// The temporary column behind `--features`.
 const FEATURES: &str = "meshloom-cli features";
+/// The temporary column behind `fair --region`.
+const REGION: &str = "meshloom-cli region";
 
 /// The temporary columns a command added; [`Temps::remove`] takes them off
 /// the mesh.
@@ -23,6 +25,7 @@ const FEATURES: &str = "meshloom-cli features";
 pub struct Temps {
     pinned: Option<VertexAttr<bool>>,
     features: Option<EdgeAttr<bool>>,
+    region: Option<VertexAttr<bool>>,
 }
 
 impl Temps {
@@ -34,6 +37,28 @@ impl Temps {
         if let Some(h) = self.features {
             let _ = mesh.remove_attr(&h);
         }
+        if let Some(h) = self.region {
+            let _ = mesh.remove_attr(&h);
+        }
+    }
+
+    /// The vertex column `name` (`bool`, or any number: non-zero is true)
+    /// read into a temporary boolean column, removed with the others;
+    /// `flag` names the flag in messages.
+    pub fn region(
+        &mut self,
+        mesh: &mut Mesh,
+        name: &str,
+        flag: &str,
+    ) -> Result<VertexAttr<bool>, Failure> {
+        let keys: Vec<VertexKey> = mesh.vertices().collect();
+        let on = flags(mesh, &keys, name, flag, false)?;
+        let h = mesh
+            .add_vertex_attr::<bool>(REGION)
+            .map_err(Failure::input)?;
+        write(mesh, &h, &keys, &on)?;
+        self.region = Some(h.clone());
+        Ok(h)
     }
 }
 

@@ -253,14 +253,12 @@ fn fill_holes_liepa(args: &FillHolesArgs) -> Result<(), Failure> {
         .holes()
         .filter(|&h| max.is_some_and(|m| mesh.face(h).map_or(0, |f| f.degree()) > m))
         .count();
-    let options = FillHoleOptions {
-        max_rim: max,
-        refine: true,
-        fair: args.fair,
-        fair_order: args.fair_order.unwrap_or(2),
-        max_refined_rim: args.max_refined_rim,
-        ..Default::default()
-    };
+    let options = FillHoleOptions::default()
+        .max_rim(max)
+        .refine(true)
+        .fair(args.fair)
+        .fair_order(args.fair_order.unwrap_or(2))
+        .max_refined_rim(args.max_refined_rim);
     let report = {
         let _progress = Progress::spinner("filling holes");
         fill_holes(&mut mesh, &options, meshloom::algo::Progress::none()).map_err(Failure::input)?

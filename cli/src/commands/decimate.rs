@@ -27,11 +27,7 @@ fn options(
 ) -> Result<(DecimateOptions, Temps), Failure> {
     let mut o = DecimateOptions::default();
     let (c, temps) = constraints::resolve(mesh, keep, o.constraints(), None)?;
-    o.boundary = c.boundary;
-    o.seams = c.seams;
-    o.feature_angle = c.feature_angle;
-    o.features = c.features;
-    o.pinned = c.pinned;
+    o = o.with_constraints(c);
     if keep_boundary {
         constraints::deprecated("--keep-boundary", "--boundary lock");
         o.boundary = Keep::Lock;
@@ -125,12 +121,11 @@ pub fn level_path(prefix: &Path, level: usize) -> PathBuf {
 pub fn lod(args: &LodArgs) -> Result<(), Failure> {
     let (mut mesh, _) = input::read(&args.input, args.read, false)?;
     let (decimate, temps) = options(&mut mesh, &args.keep, args.keep_boundary, args.keep_seams)?;
-    let opts = LodOptions {
-        targets: args.ratios.iter().map(|&r| Target::Ratio(r)).collect(),
-        decimate,
-        meshes: true,
-        record: false,
-    };
+    let opts = LodOptions::default()
+        .targets(args.ratios.iter().map(|&r| Target::Ratio(r)).collect())
+        .decimate(decimate)
+        .meshes(true)
+        .record(false);
     let chain = {
         let bar = Progress::bar("decimating", 1);
         let mut cb = |p: &ProgressInfo<'_>| {

@@ -3,6 +3,7 @@
 pub mod constraints;
 pub mod convert;
 pub mod decimate;
+pub mod fair;
 pub mod normals;
 pub mod remesh;
 pub mod render;

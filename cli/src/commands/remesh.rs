@@ -25,18 +25,12 @@ fn options(mesh: &mut Mesh, args: &RemeshArgs) -> Result<(RemeshOptions, Temps),
         },
         (None, None) => Sizing::MeanEdgeLength,
     };
-    let mut o = RemeshOptions {
-        sizing,
-        iterations: args.iterations,
-        max_faces: args.max_faces,
-        ..RemeshOptions::default()
-    };
+    let mut o = RemeshOptions::default()
+        .sizing(sizing)
+        .iterations(args.iterations)
+        .max_faces(args.max_faces);
     let (c, temps) = constraints::resolve(mesh, &args.keep, o.constraints(), None)?;
-    o.boundary = c.boundary;
-    o.seams = c.seams;
-    o.feature_angle = c.feature_angle;
-    o.features = c.features;
-    o.pinned = c.pinned;
+    o = o.with_constraints(c);
     if args.keep_boundary {
         constraints::deprecated("--keep-boundary", "--boundary lock");
         o.boundary = Keep::Lock;

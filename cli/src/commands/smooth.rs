@@ -1,11 +1,11 @@
 //! `meshloom smooth IN OUT --method uniform|cotan|taubin|implicit`: move
 //! the vertices with `meshloom::algo::smooth`, then write.
 
-use meshloom::algo::smooth::{smooth, SmoothMethod, SmoothOptions};
+use meshloom::algo::smooth::{smooth, SmoothOptions};
 use meshloom::algo::{Flow, Keep, ProgressInfo};
 use serde_json::json;
 
-use crate::cli::{Method, SmoothArgs};
+use crate::cli::SmoothArgs;
 use crate::commands::{constraints, normals};
 use crate::output;
 use crate::progress::Progress;
@@ -14,19 +14,13 @@ use crate::{input, Failure};
 /// Read, smooth, optionally add normals, write, report.
 pub fn run(args: &SmoothArgs) -> Result<(), Failure> {
     let (mut mesh, _) = input::read(&args.input, args.read, false)?;
-    let method = match args.method {
-        Method::Uniform => SmoothMethod::Uniform,
-        Method::Cotan => SmoothMethod::Cotan,
-        Method::Taubin => SmoothMethod::Taubin,
-        Method::Implicit => SmoothMethod::Implicit,
-    };
+    let method = args.method;
     let defaults = SmoothOptions::with_method(method);
-    let mut options = SmoothOptions {
-        iterations: args.iterations.unwrap_or(defaults.iterations),
-        step: args.step,
-        rescale: args.rescale,
-        ..defaults
-    };
+    let iterations = args.iterations.unwrap_or(defaults.iterations);
+    let mut options = defaults
+        .iterations(iterations)
+        .step(args.step)
+        .rescale(args.rescale);
     if args.mask_column.is_some() {
         constraints::deprecated("--mask-column NAME", "--pinned with the complement");
     }
@@ -36,11 +30,7 @@ pub fn run(args: &SmoothArgs) -> Result<(), Failure> {
         options.constraints(),
         args.mask_column.as_deref(),
     )?;
-    options.boundary = c.boundary;
-    options.seams = c.seams;
-    options.feature_angle = c.feature_angle;
-    options.features = c.features;
-    options.pinned = c.pinned;
+    options = options.with_constraints(c);
     if args.free_boundary {
         constraints::deprecated("--free-boundary", "--boundary free");
         options.boundary = Keep::Free;
@@ -70,7 +60,7 @@ pub fn run(args: &SmoothArgs) -> Result<(), Failure> {
         return output::json(&json!({
             "input": args.input.display().to_string(),
             "output": args.output.display().to_string(),
-            "method": format!("{method:?}").to_lowercase(),
+            "method": method.word(),
             "iterations": report.iterations,
             "step": args.step,
             "moved": report.moved,

@@ -16,19 +16,17 @@ use crate::{input, Failure};
 /// Read, subdivide, write, report the counts of every level.
 pub fn run(args: &SubdivideArgs) -> Result<(), Failure> {
     let (mut mesh, _) = input::read(&args.input, args.read, false)?;
-    let options = SubdivisionOptions {
-        levels: args.levels,
-        boundary: if args.corners {
+    let options = SubdivisionOptions::default()
+        .levels(args.levels)
+        .boundary(if args.corners {
             Boundary::CreaseAndCorners
         } else {
             Boundary::Crease
-        },
-        corner_column: args.corner_column.clone(),
-        crease_column: args.crease_column.clone(),
-        midpoint_faces: args.midpoint_faces,
-        max_faces: args.max_faces,
-        ..SubdivisionOptions::default()
-    };
+        })
+        .corner_column(args.corner_column.clone())
+        .crease_column(args.crease_column.clone())
+        .midpoint_faces(args.midpoint_faces)
+        .max_faces(args.max_faces);
     let scheme = args.scheme;
     let report = {
         let bar = Progress::spinner(format!("subdividing ({scheme})"));
@@ -58,7 +56,7 @@ pub fn run(args: &SubdivideArgs) -> Result<(), Failure> {
         c.vertices, c.edges, c.faces, c.holes
     ));
     for (i, level) in report.levels.iter().enumerate() {
-        let c = level.counts;
+        let c = level.output;
         text.push_str(&format!(
             "level {}: {} vertices, {} edges, {} faces, {} holes\n",
             i + 1,

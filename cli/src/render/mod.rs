@@ -136,9 +136,7 @@ pub fn render_with_progress(
         Shading::Smooth => Some(
             vertex_normals(
                 mesh,
-                &VertexNormalOptions {
-                    weight: NormalWeight::Area,
-                },
+                &VertexNormalOptions::default().weight(NormalWeight::Area),
             )
             .map_err(|_| RenderError::NoPositions)?,
         ),

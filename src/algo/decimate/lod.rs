@@ -9,6 +9,7 @@ use crate::mesh::Mesh;
 /// Options of [`lod_chain`]: the levels' targets, in order, and what to
 /// keep of each.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct LodOptions {
     /// The levels, coarser and coarser (each target at most as many
     /// vertices and faces as the one before it). Default: ratios 0.5,
@@ -22,6 +23,13 @@ pub struct LodOptions {
     /// Keep the record of collapses (default: true).
     pub record: bool,
 }
+
+crate::choice::setters!(LodOptions {
+    targets: Vec<Target>,
+    decimate: DecimateOptions,
+    meshes: bool,
+    record: bool,
+});
 
 impl Default for LodOptions {
     fn default() -> Self {

@@ -126,17 +126,14 @@ impl Scheme {
 /// use meshloom::algo::{subdivide, Progress, Scheme, SubdivisionOptions};
 /// let mut mesh = meshloom::shapes::icosahedron();
 /// let v = mesh.vertices().next().unwrap();
-/// let report = subdivide(&mut mesh, Scheme::Loop, &SubdivisionOptions::levels(2), Progress::none())?;
-/// assert_eq!(report.levels[0].counts.faces, 80);
+/// let report = subdivide(&mut mesh, Scheme::Loop, &SubdivisionOptions::default().levels(2), Progress::none())?;
+/// assert_eq!(report.levels[0].output.faces, 80);
 /// assert_eq!((mesh.vertex_count(), mesh.face_count()), (162, 320));
 /// // Vertex keys from before still name their (moved) vertex.
 /// assert!(mesh.position(v)?.iter().all(|c| c.is_finite()));
 ///
 /// // A crease column is for Loop and Catmull-Clark only; the mesh is left alone.
-/// let options = SubdivisionOptions {
-///     crease_column: Some("sharpness".into()),
-///     ..SubdivisionOptions::default()
-/// };
+/// let options = SubdivisionOptions::default().crease_column(Some("sharpness".into()));
 /// assert!(subdivide(&mut mesh, Scheme::Sqrt3, &options, Progress::none()).is_err());
 /// assert_eq!(mesh.face_count(), 320);
 /// # Ok::<(), meshloom::Error>(())
@@ -237,6 +234,7 @@ fn run_levels(
     let mut report = SubdivisionReport {
         scheme,
         input: Counts::of(mesh),
+        output: Counts::of(mesh),
         levels: Vec::with_capacity(levels.count as usize),
     };
     let mut current: Option<Mesh> = None;
@@ -247,7 +245,8 @@ fn run_levels(
         }
         let (next, mut level_report) = level(source, i, progress)?;
         next.debug_validate();
-        level_report.counts = Counts::of(&next);
+        level_report.output = Counts::of(&next);
+        report.output = level_report.output;
         report.levels.push(level_report);
         current = Some(next);
     }

@@ -11,7 +11,7 @@
 //! use meshloom::algo::{subdivide, Progress, Scheme, SubdivisionOptions};
 //! let scheme: Scheme = "catmull-clark".parse()?;
 //! let mut cube = meshloom::shapes::cube();
-//! let report = subdivide(&mut cube, scheme, &SubdivisionOptions::levels(2), Progress::none())?;
+//! let report = subdivide(&mut cube, scheme, &SubdivisionOptions::default().levels(2), Progress::none())?;
 //! assert_eq!(report.scheme, Scheme::CatmullClark);
 //! assert_eq!(cube.face_count(), 6 * 4 * 4);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
@@ -216,6 +216,7 @@ impl VertexData {
 /// `crease_column` (the others refuse one, see [`Scheme::takes_creases`]);
 /// only midpoint reads `midpoint_faces`.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct SubdivisionOptions {
     /// Levels to apply (default 1; 0 leaves the mesh as it is).
     pub levels: u32,
@@ -243,6 +244,16 @@ pub struct SubdivisionOptions {
     pub max_faces: usize,
 }
 
+crate::choice::setters!(SubdivisionOptions {
+    levels: u32,
+    boundary: Boundary,
+    corner_column: Option<String>,
+    crease_column: Option<String>,
+    vertex_data: VertexData,
+    midpoint_faces: MidpointFaces,
+    max_faces: usize,
+});
+
 impl Default for SubdivisionOptions {
     fn default() -> Self {
         SubdivisionOptions {
@@ -257,19 +268,10 @@ impl Default for SubdivisionOptions {
     }
 }
 
-impl SubdivisionOptions {
-    /// `levels` levels, everything else by default.
-    pub fn levels(levels: u32) -> SubdivisionOptions {
-        SubdivisionOptions {
-            levels,
-            ..SubdivisionOptions::default()
-        }
-    }
-}
-
 /// Element counts of a mesh.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub struct Counts {
     /// Vertices.
     pub vertices: usize,
@@ -296,9 +298,10 @@ impl Counts {
 /// What one level did.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub struct LevelReport {
     /// Counts after the level.
-    pub counts: Counts,
+    pub output: Counts,
     /// Interior edges of the parent with a positive sharpness.
     pub sharp_edges: usize,
     /// Parent vertices moved by the crease (curve) rule: boundary vertices
@@ -317,20 +320,16 @@ pub struct LevelReport {
 /// rules it used. Time-independent: the same input gives the same report.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub struct SubdivisionReport {
     /// The scheme.
     pub scheme: Scheme,
     /// Counts of the input.
     pub input: Counts,
+    /// Counts after the last level (the input's when no level ran).
+    pub output: Counts,
     /// One entry per level, in order.
     pub levels: Vec<LevelReport>,
-}
-
-impl SubdivisionReport {
-    /// Counts after the last level (the input's when no level ran).
-    pub fn output(&self) -> Counts {
-        self.levels.last().map_or(self.input, |l| l.counts)
-    }
 }
 
 /// A vertex on a hole, in the position passes' valence counts (which
