@@ -20,7 +20,7 @@ pub(crate) struct VertexOutgoing<'m> {
 impl<'m> VertexOutgoing<'m> {
     #[inline]
     pub(crate) fn new(mesh: &'m Mesh, v: Vid) -> Self {
-        let start = mesh.v_halfedge.get(v).copied().unwrap_or(Hid::NONE);
+        let start = mesh.try_vertex_halfedge(v).unwrap_or(Hid::NONE);
         Self::from_halfedge(mesh, start)
     }
 
@@ -31,7 +31,7 @@ impl<'m> VertexOutgoing<'m> {
             mesh,
             start: h,
             cur: h,
-            budget: mesh.he.len(),
+            budget: mesh.halfedge_slots(),
         }
     }
 }
@@ -46,7 +46,10 @@ impl Iterator for VertexOutgoing<'_> {
         }
         self.budget -= 1;
         let h = self.cur;
-        let n = self.mesh.he.get(h.twin()).map_or(Hid::NONE, |r| r.next);
+        let n = self
+            .mesh
+            .try_halfedge_record(h.twin())
+            .map_or(Hid::NONE, |r| r.next);
         self.cur = if n == self.start { Hid::NONE } else { n };
         Some(h)
     }
@@ -65,8 +68,7 @@ impl<'m> FaceHalfedges<'m> {
     #[inline]
     pub(crate) fn new(mesh: &'m Mesh, f: Fid) -> Self {
         let start = mesh
-            .f_halfedge
-            .get(f)
+            .try_face_link(f)
             .map_or(Hid::NONE, |link| link.halfedge());
         Self::from_halfedge(mesh, start)
     }
@@ -74,12 +76,16 @@ impl<'m> FaceHalfedges<'m> {
     /// The loop through `h`, starting at `h`.
     #[inline]
     pub(crate) fn from_halfedge(mesh: &'m Mesh, h: Hid) -> Self {
-        let start = if mesh.he.contains(h) { h } else { Hid::NONE };
+        let start = if h.index() < mesh.halfedge_slots() {
+            h
+        } else {
+            Hid::NONE
+        };
         FaceHalfedges {
             mesh,
             start,
             cur: start,
-            budget: mesh.he.len(),
+            budget: mesh.halfedge_slots(),
         }
     }
 }
@@ -94,7 +100,10 @@ impl Iterator for FaceHalfedges<'_> {
         }
         self.budget -= 1;
         let h = self.cur;
-        let n = self.mesh.he.get(h).map_or(Hid::NONE, |r| r.next);
+        let n = self
+            .mesh
+            .try_halfedge_record(h)
+            .map_or(Hid::NONE, |r| r.next);
         self.cur = if n == self.start { Hid::NONE } else { n };
         Some(h)
     }
@@ -127,7 +136,7 @@ impl Iterator for FaceCorners<'_> {
             return None;
         }
         l.budget -= 1;
-        let r = l.mesh.he.get(l.cur)?;
+        let r = l.mesh.try_halfedge_record(l.cur)?;
         l.cur = if r.next == l.start { Hid::NONE } else { r.next };
         Some(r.origin)
     }
@@ -172,12 +181,12 @@ pub(crate) struct VertexNeighbors<'m> {
 impl<'m> VertexNeighbors<'m> {
     #[inline]
     pub(crate) fn new(mesh: &'m Mesh, v: Vid) -> Self {
-        let start = mesh.v_halfedge.get(v).copied().unwrap_or(Hid::NONE);
+        let start = mesh.try_vertex_halfedge(v).unwrap_or(Hid::NONE);
         VertexNeighbors {
             mesh,
             start,
             cur: start,
-            budget: mesh.he.len(),
+            budget: mesh.halfedge_slots(),
         }
     }
 }
@@ -191,7 +200,7 @@ impl Iterator for VertexNeighbors<'_> {
             return None;
         }
         self.budget -= 1;
-        let twin = self.mesh.he.get(self.cur.twin())?;
+        let twin = self.mesh.try_halfedge_record(self.cur.twin())?;
         self.cur = if twin.next == self.start {
             Hid::NONE
         } else {

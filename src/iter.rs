@@ -100,7 +100,7 @@ impl Iterator for Vertices<'_> {
 
     #[inline]
     fn next(&mut self) -> Option<VertexKey> {
-        let end = self.mesh.v_slots.slot_count();
+        let end = self.mesh.vertex_slots();
         while self.left > 0 && self.slot < end {
             let i = self.slot;
             self.slot += 1;
@@ -141,11 +141,11 @@ impl<'m> Edges<'m> {
     /// The next live edge slot.
     #[inline]
     fn next_eid(&mut self) -> Option<(Eid, u32)> {
-        let end = self.mesh.e_slots.slot_count();
+        let end = self.mesh.edge_slots();
         while self.left > 0 && self.slot < end {
             let i = self.slot;
             self.slot += 1;
-            if let Some((i, g)) = self.mesh.e_slots.live_at(i) {
+            if let Some((i, g)) = self.mesh.edge_arena().live_at(i) {
                 self.left -= 1;
                 return Some((Eid::new(i), g));
             }
@@ -251,11 +251,11 @@ impl Iterator for Faces<'_> {
 
     #[inline]
     fn next(&mut self) -> Option<FaceKey> {
-        let end = self.mesh.f_slots.slot_count();
+        let end = self.mesh.face_slots();
         while self.left > 0 && self.slot < end {
             let i = self.slot;
             self.slot += 1;
-            let Some((i, g)) = self.mesh.f_slots.live_at(i) else {
+            let Some((i, g)) = self.mesh.face_arena().live_at(i) else {
                 continue;
             };
             let f = Fid::new(i);

@@ -117,7 +117,7 @@ impl RawEdit<'_> {
     /// ```
     pub fn origin(&self, h: HalfedgeKey) -> Result<Option<VertexKey>> {
         let h = self.mesh.check_halfedge(h)?;
-        let o = self.mesh.he[h].origin;
+        let o = self.mesh.origin(h);
         Ok(self.live_vertex(o))
     }
 
@@ -140,11 +140,8 @@ impl RawEdit<'_> {
     /// ```
     pub fn next(&self, h: HalfedgeKey) -> Result<Option<HalfedgeKey>> {
         let h = self.mesh.check_halfedge(h)?;
-        let n = self.mesh.he[h].next;
-        Ok(
-            (!n.is_none() && self.mesh.e_slots.is_live(n.edge().index()))
-                .then(|| self.mesh.hkey(n)),
-        )
+        let n = self.mesh.next(h);
+        Ok((!n.is_none() && self.mesh.edge_live(n.edge().index())).then(|| self.mesh.hkey(n)))
     }
 
     /// The face link of `h`, if set.
@@ -166,12 +163,12 @@ impl RawEdit<'_> {
     /// ```
     pub fn face(&self, h: HalfedgeKey) -> Result<Option<FaceKey>> {
         let h = self.mesh.check_halfedge(h)?;
-        let f = self.mesh.he[h].face;
-        Ok((!f.is_none() && self.mesh.f_slots.is_live(f.index())).then(|| self.mesh.fkey(f)))
+        let f = self.mesh.face_of(h);
+        Ok((!f.is_none() && self.mesh.face_live(f.index())).then(|| self.mesh.fkey(f)))
     }
 
     fn live_vertex(&self, v: Vid) -> Option<VertexKey> {
-        (!v.is_none() && self.mesh.v_slots.is_live(v.index())).then(|| self.mesh.vkey(v))
+        (!v.is_none() && self.mesh.vertex_live(v.index())).then(|| self.mesh.vkey(v))
     }
 
     /// Set `origin(h) = v` and reflect it: `v`'s half-edge becomes `h`.

@@ -26,6 +26,9 @@ use crate::store::rules::Interpolate;
 use crate::store::{AttrStore, Column, POSITION};
 
 mod hooks;
+mod read;
+mod topology;
+pub(crate) use topology::Topology;
 mod recording;
 
 /// A polygon mesh stored as a half-edge graph.

@@ -430,7 +430,7 @@ impl<'m> VertexView<'m> {
     pub fn halfedge(self) -> HalfedgeView<'m> {
         HalfedgeView {
             mesh: self.mesh,
-            h: self.mesh.v_halfedge[self.v],
+            h: self.mesh.vertex_halfedge(self.v),
         }
     }
 
@@ -448,7 +448,7 @@ impl<'m> VertexView<'m> {
     #[inline]
     pub fn position(self) -> Option<[f64; 3]> {
         self.mesh
-            .attrs
+            .attrs()
             .positions()
             .and_then(|c| c.get(self.v.index()).copied())
     }

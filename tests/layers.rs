@@ -150,6 +150,240 @@ pub use mesh::Mesh;
     );
 }
 
+/// The modules that own `Mesh`'s storage fields (`v_halfedge`, `v_slots`,
+/// `he`, `e_slots`, `f_halfedge`, `f_slots`, `holes`, `attrs`, `rec`); the
+/// rest of the crate reads through the read API in `src/mesh/read.rs`
+/// (and the navigation in `mesh.rs`, `circulate`, `iter`) and builds new
+/// topology through `mesh::Topology`:
+///
+/// - `mesh`: declares the fields; `mesh/read.rs` is the read API,
+///   `mesh/topology.rs` the bulk-build primitive.
+/// - `ops`, `journal`, `record`: the editing operators and the undo log,
+///   which write links and record the old values.
+/// - `slots`, `store`, `layout`: the arenas, the attribute columns and the
+///   link arrays the fields are made of.
+/// - `build`: builds a mesh's arenas from polygons in one pass.
+/// - `validate`: checks the raw links, including ones the read API trusts.
+/// - `serde_impl`: (de)serializes the fields as they are stored.
+/// - `attr`: the public attribute API over the column store (`attrs`).
+const STORAGE_OWNERS: &[&str] = &[
+    "mesh",
+    "ops",
+    "journal",
+    "record",
+    "slots",
+    "store",
+    "layout",
+    "build",
+    "validate",
+    "serde_impl",
+    "attr",
+];
+
+/// Storage field names no other struct in the crate uses.
+const DISTINCT_FIELDS: &[&str] = &["v_halfedge", "v_slots", "e_slots", "f_halfedge", "f_slots"];
+/// Storage field names other structs use too: flagged only on a receiver
+/// that is a `Mesh` (a binding typed `Mesh`, `self.mesh`, or `self` in an
+/// `impl Mesh` block).
+const SHARED_FIELDS: &[&str] = &["he", "holes", "attrs", "rec"];
+
+#[test]
+fn mesh_storage_fields_are_touched_only_by_their_owners() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Files::new();
+    read_tree(&root.join("src"), root, &mut files);
+    let problems = storage_touches(&files);
+    assert!(
+        problems.is_empty(),
+        "Mesh storage fields used outside their owners (use src/mesh/read.rs):\n{}",
+        problems.join("\n")
+    );
+}
+
+/// The storage check flags a distinct field anywhere outside the owners
+/// and a shared one on a `Mesh` receiver, and leaves other structs' fields
+/// of the same names, method calls, owners and test code alone.
+#[test]
+fn the_check_catches_a_storage_field_read_outside_the_core() {
+    let clean = [
+        ("src/ops/flip.rs", "fn f(m: &mut Mesh) { m.he[h].next = n; }"),
+        (
+            "src/algo/a.rs",
+            "fn f(mesh: &Mesh, s: &Stats) -> usize { mesh.attrs().x + s.holes + mesh.halfedge_slots() }\n#[cfg(test)]\nmod tests { fn g(mesh: &Mesh) { mesh.he.len(); } }",
+        ),
+        ("src/io/b.rs", "fn f(soup: &mut Soup) { soup.attrs.push(1); } // mesh.he"),
+    ];
+    let files: Files = clean
+        .iter()
+        .map(|(p, t)| (PathBuf::from(p), t.to_string()))
+        .collect();
+    assert_eq!(storage_touches(&files), Vec::<String>::new());
+    for (path, text, field) in [
+        (
+            "src/algo/c.rs",
+            "fn f(mesh: &Mesh) { let n = mesh.he[h].next; }",
+            "he",
+        ),
+        (
+            "src/algo/c.rs",
+            "fn f(m: &'a mut Mesh) { m.attrs.vertex.clear(); }",
+            "attrs",
+        ),
+        (
+            "src/iter.rs",
+            "fn f(&self) -> usize { self.mesh.holes }",
+            "holes",
+        ),
+        (
+            "src/stats.rs",
+            "impl Mesh {\n    fn f(&self) -> usize { self.rec.is_some() as usize }\n}",
+            "rec",
+        ),
+        (
+            "src/io/d.rs",
+            "fn f(x: &Foo) -> usize { x.inner.f_slots.live() }",
+            "f_slots",
+        ),
+        (
+            "src/algo/e.rs",
+            "fn f() -> Mesh { Mesh { v_halfedge: a, he: b } }",
+            "v_halfedge",
+        ),
+    ] {
+        let mut files = files.clone();
+        files.insert(PathBuf::from(path), text.to_string());
+        let found = storage_touches(&files);
+        assert!(
+            found.len() == 1 && found[0].contains(field) && found[0].starts_with(path),
+            "{path}: {text:?} -> {found:?}"
+        );
+    }
+}
+
+/// Every use of a storage field outside [`STORAGE_OWNERS`], as
+/// `path:line: field`.
+fn storage_touches(files: &Files) -> Vec<String> {
+    let mut out = Vec::new();
+    for (path, text) in files {
+        let rel: Vec<String> = path
+            .iter()
+            .skip(1)
+            .map(|c| c.to_string_lossy().trim_end_matches(".rs").to_string())
+            .collect();
+        if rel
+            .first()
+            .is_some_and(|top| STORAGE_OWNERS.contains(&top.as_str()))
+        {
+            continue;
+        }
+        let src = drop_test_items(&blank_literals(text));
+        let bound = mesh_bindings(&src);
+        let mut in_impl_mesh = false;
+        for (n, line) in src.lines().enumerate() {
+            if line.starts_with("impl Mesh ")
+                || line.starts_with("impl<") && line.contains("> Mesh ")
+            {
+                in_impl_mesh = true;
+            } else if line.starts_with('}') {
+                in_impl_mesh = false;
+            }
+            for (field, receiver) in field_uses(line) {
+                let distinct = DISTINCT_FIELDS.contains(&field.as_str());
+                let shared = SHARED_FIELDS.contains(&field.as_str())
+                    && receiver.as_deref().is_some_and(|r| {
+                        r == "self.mesh" || bound.contains(r) || (r == "self" && in_impl_mesh)
+                    });
+                if distinct || shared {
+                    out.push(format!("{}:{}: {field}", path.display(), n + 1));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The names bound with a `Mesh` type in `src` (`name: &Mesh`,
+/// `name: &'a mut Mesh`, `name: Mesh`).
+fn mesh_bindings(src: &str) -> BTreeSet<String> {
+    let c: Vec<char> = src.chars().collect();
+    let mut out = BTreeSet::new();
+    let mut i = 0;
+    while i < c.len() {
+        if c[i] == ':' && c.get(i + 1) != Some(&':') && (i == 0 || c[i - 1] != ':') {
+            let rest: String = c[i + 1..c.len().min(i + 40)].iter().collect();
+            let ty = rest.trim_start().trim_start_matches('&');
+            let ty = if let Some(t) = ty.strip_prefix('\'') {
+                t.trim_start_matches(|ch: char| ch.is_alphanumeric() || ch == '_')
+            } else {
+                ty
+            };
+            let ty = ty.trim_start().trim_start_matches("mut ").trim_start();
+            let is_mesh = ty.starts_with("Mesh")
+                && !ty[4..].starts_with(|ch: char| ch.is_alphanumeric() || ch == '_');
+            let mut j = i;
+            while j > 0 && c[j - 1] == ' ' {
+                j -= 1;
+            }
+            let end = j;
+            while j > 0 && (c[j - 1].is_alphanumeric() || c[j - 1] == '_') {
+                j -= 1;
+            }
+            if is_mesh && j < end {
+                out.insert(c[j..end].iter().collect());
+            }
+        }
+        i += 1;
+    }
+    out
+}
+
+/// The storage-named fields a line touches: `.field` not followed by `(`
+/// or `::` (a field, not a method), with its receiver (`self.mesh`, or the
+/// identifier before the dot), and `field:` (a struct literal) with none.
+fn field_uses(line: &str) -> Vec<(String, Option<String>)> {
+    let c: Vec<char> = line.chars().collect();
+    let word = |ch: char| ch.is_alphanumeric() || ch == '_';
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < c.len() {
+        if !word(c[i]) || (i > 0 && word(c[i - 1])) {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < c.len() && word(c[i]) {
+            i += 1;
+        }
+        let name: String = c[start..i].iter().collect();
+        let all = DISTINCT_FIELDS.iter().chain(SHARED_FIELDS);
+        if !all.clone().any(|f| *f == name) {
+            continue;
+        }
+        let after: String = c[i..].iter().collect();
+        let after = after.trim_start();
+        if start > 0 && c[start - 1] == '.' {
+            if after.starts_with('(') || after.starts_with("::") {
+                continue;
+            }
+            let mut j = start - 1;
+            while j > 0 && word(c[j - 1]) {
+                j -= 1;
+            }
+            let mut receiver: String = c[j..start - 1].iter().collect();
+            if receiver == "mesh" && j >= 5 && c[j - 5..j].iter().collect::<String>() == "self." {
+                receiver = "self.mesh".into();
+            }
+            out.push((name, Some(receiver)));
+        } else if DISTINCT_FIELDS.contains(&name.as_str())
+            && after.starts_with(':')
+            && !after.starts_with("::")
+        {
+            out.push((name, None));
+        }
+    }
+    out
+}
+
 /// What the check found.
 struct Report {
     /// Top-level modules, as the layer list orders them.

@@ -120,7 +120,7 @@ impl Mask for CatmullClark {
     #[inline]
     fn smooth_edge<S: Sink>(&self, mesh: &Mesh, h: Hid, w: f64, sink: &mut S) {
         let t = h.twin();
-        let (rh, rt) = (mesh.he[h], mesh.he[t]);
+        let (rh, rt) = (mesh.halfedge_record(h), mesh.halfedge_record(t));
         sink.vertex(rh.origin, 0.25 * w);
         sink.vertex(rt.origin, 0.25 * w);
         sink.face(rh.face, 0.25 * w);
@@ -143,16 +143,16 @@ impl SmoothRules for CatmullClark {
         pass: &mut Pass<'_, '_>,
     ) -> Result<()> {
         // Face points, in face-slot order (their rank order).
-        let nf = mesh.f_slots.slot_count();
+        let nf = mesh.face_slots();
         let mut stage = pass.stage("face points", nf)?;
         let mut ring = Vec::new();
         let mut k = 0usize;
         for fi in 0..nf {
             stage.tick(fi)?;
-            if !mesh.f_slots.is_live(fi) {
+            if !mesh.face_live(fi) {
                 continue;
             }
-            let link = mesh.f_halfedge[Fid::new(fi as u32)];
+            let link = mesh.face_link(Fid::new(fi as u32));
             face_ring(mesh, link.halfedge(), &mut ring);
             if link.is_hole() {
                 for &h in &ring {
@@ -175,7 +175,7 @@ impl SmoothRules for CatmullClark {
     #[inline(always)]
     fn edge_point(&self, mesh: &Mesh, h: Hid, points: &PointSink<'_>) -> [f64; 3] {
         let p = points.p;
-        let (rh, rt) = (mesh.he[h], mesh.he[h.twin()]);
+        let (rh, rt) = (mesh.halfedge_record(h), mesh.halfedge_record(h.twin()));
         let (a, b) = (p[rh.origin.index()], p[rt.origin.index()]);
         let (fa, fb) = (points.face_point(rh.face), points.face_point(rt.face));
         [

@@ -212,7 +212,13 @@ impl<'m> LineSources<'m> {
     /// `features`, edge bits as asked.
     pub(crate) fn all_corner_columns(mesh: &'m Mesh, features: Keep, edge_bits: bool) -> Self {
         LineSources {
-            seam_columns: mesh.attrs.halfedge.cols.iter().map(|(_, c)| &**c).collect(),
+            seam_columns: mesh
+                .attrs()
+                .halfedge
+                .cols
+                .iter()
+                .map(|(_, c)| &**c)
+                .collect(),
             material: None,
             features,
             edge_bits,
@@ -473,7 +479,7 @@ impl<'m> Classifier<'m> {
         }
         let mut fixed = 0;
         for (i, s) in state.iter_mut().enumerate() {
-            if !mesh.v_slots.is_live(i) {
+            if !mesh.vertex_live(i) {
                 *s = FIXED;
                 continue;
             }

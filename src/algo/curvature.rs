@@ -178,7 +178,7 @@ struct Sums {
 /// into [`curvature`]: as a call of its own it costs more instructions.
 #[inline(always)]
 fn face_sums(mesh: &Mesh, p: &[V3]) -> Sums {
-    let nv = mesh.v_halfedge.len();
+    let nv = mesh.vertex_slots();
     // Per vertex slot: L x, area, angle sum, angle-weighted normal.
     let mut lx = vec![[0.0; 3]; nv];
     let mut area = vec![0.0; nv];
@@ -188,7 +188,7 @@ fn face_sums(mesh: &Mesh, p: &[V3]) -> Sums {
     let (mut pairs, mut parea) = (Vec::new(), Vec::new());
     for (_, h0) in live_faces(mesh) {
         if let Some(hs) = as_triangle(mesh, h0) {
-            let [a, b, c] = hs.map(|h| mesh.he[h].origin.index());
+            let [a, b, c] = hs.map(|h| mesh.origin(h).index());
             let q = [p[a], p[b], p[c]];
             let (t, d, twice) = triangle(q);
             let [w0, w1, w2] = t.half_cot;
@@ -220,7 +220,7 @@ fn face_sums(mesh: &Mesh, p: &[V3]) -> Sums {
             continue;
         }
         vs.clear();
-        vs.extend(mesh.face_loop_from(h0).map(|h| mesh.he[h].origin));
+        vs.extend(mesh.face_loop_from(h0).map(|h| mesh.origin(h)));
         ps.clear();
         ps.extend(vs.iter().map(|v| p[v.index()]));
         polygon(&ps, &mut pairs, &mut parea);

@@ -542,8 +542,8 @@ impl Engine {
     #[inline]
     fn evaluate(&self, mesh: &Mesh, pos: &[[f64; 3]], e: Eid) -> Option<Choice> {
         let [h0, h1] = e.halfedges();
-        let a = mesh.he[h0].origin;
-        let b = mesh.he[h1].origin;
+        let a = mesh.origin(h0);
+        let b = mesh.origin(h1);
         let (ka, kb) = (self.kind(a), self.kind(b));
         let (pa, pb) = (pos[a.index()], pos[b.index()]);
         let q = self.quadrics[a.index()]
@@ -615,17 +615,17 @@ impl Engine {
         let (mut old_q, mut new_q) = (f64::INFINITY, f64::INFINITY);
         let mut degree = 0usize;
         for start in [h, t] {
-            let v = mesh.he[start].origin;
+            let v = mesh.origin(start);
             let pv = pos[v.index()];
             let mut o = start;
-            let mut budget = mesh.he.len();
+            let mut budget = mesh.halfedge_slots();
             loop {
                 degree += 1;
                 let f = mesh.face_of(o);
                 if !mesh.is_hole(f) {
                     let n1 = mesh.next(o);
-                    let v1 = pos[mesh.he[n1].origin.index()];
-                    let v2 = pos[mesh.he[mesh.next(n1)].origin.index()];
+                    let v1 = pos[mesh.origin(n1).index()];
+                    let v2 = pos[mesh.origin(mesh.next(n1)).index()];
                     if min_q.is_some() {
                         old_q = old_q.min(quality(pv, v1, v2));
                     }

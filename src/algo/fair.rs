@@ -297,7 +297,7 @@ fn fair_run(
         return Err(unsuitable(None, "the region holds no vertex that may move"));
     }
     let loose = if options.region == FairRegion::All {
-        let mut free = vec![false; mesh.v_halfedge.len()];
+        let mut free = vec![false; mesh.vertex_slots()];
         for v in &solve {
             free[v.index()] = true;
         }
@@ -422,7 +422,7 @@ fn whole_movers(mesh: &Mesh, p: &[V3], held: &Classifier<'_>, boundary: Keep, k:
 /// (a breadth-first search from the boundary, `k − 1` steps deep).
 fn boundary_rings(mesh: &Mesh, k: u32) -> Vec<bool> {
     let mut front: Vec<Vid> = mesh.vids().filter(|&v| mesh.on_boundary(v)).collect();
-    let mut near = vec![false; mesh.v_halfedge.len()];
+    let mut near = vec![false; mesh.vertex_slots()];
     for &v in &front {
         near[v.index()] = true;
     }

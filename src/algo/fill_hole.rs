@@ -538,9 +538,9 @@ fn fill_one(
     let f = hole.id();
     for &h in &rim {
         let across = mesh.next(h.twin());
-        mesh.attrs.halfedge.copy(across.index(), h.index());
+        mesh.attrs_mut().halfedge.copy(across.index(), h.index());
     }
-    mesh.attrs
+    mesh.attrs_mut()
         .face
         .interpolate(f.index(), &[(neighbour.index(), 1.0)]);
 
@@ -943,7 +943,7 @@ fn cut_by_plan(
 // ---------------------------------------------------------------------------
 
 fn live_edge(mesh: &Mesh, e: Eid) -> bool {
-    mesh.e_slots.is_live(e.index())
+    mesh.edge_live(e.index())
 }
 
 fn point(mesh: &Mesh, v: Vid) -> V3 {

@@ -148,20 +148,20 @@ pub(crate) fn polygon(p: &[V3], pairs: &mut Vec<(usize, usize, f64)>, area: &mut
 /// The live faces (not holes) and one half-edge of each.
 #[inline]
 pub(crate) fn live_faces(mesh: &Mesh) -> impl Iterator<Item = (Fid, Hid)> + '_ {
-    let n = mesh.f_halfedge.len();
+    let n = mesh.face_slots();
     (0..n).filter_map(move |i| {
         let f = Fid::new(i as u32);
-        let link = mesh.f_halfedge[f];
-        (!link.is_hole() && mesh.f_slots.is_live(i)).then(|| (f, link.halfedge()))
+        let link = mesh.face_link(f);
+        (!link.is_hole() && mesh.face_live(i)).then(|| (f, link.halfedge()))
     })
 }
 
 /// The triangle through `h0`, if its face is one: its half-edges.
 #[inline(always)]
 pub(crate) fn as_triangle(mesh: &Mesh, h0: Hid) -> Option<[Hid; 3]> {
-    let h1 = mesh.he[h0].next;
-    let h2 = mesh.he[h1].next;
-    (mesh.he[h2].next == h0).then_some([h0, h1, h2])
+    let h1 = mesh.next(h0);
+    let h2 = mesh.next(h1);
+    (mesh.next(h2) == h0).then_some([h0, h1, h2])
 }
 
 /// The positions, or [`Error::NoPositions`].
@@ -315,7 +315,7 @@ pub fn laplacian(mesh: &Mesh, options: &LaplacianOptions) -> Result<Laplacian> {
 pub(crate) fn laplacian_at(mesh: &Mesh, p: &[V3], options: &LaplacianOptions) -> Laplacian {
     // Per half-edge: its share of its edge's weight. Polygons add pairs of
     // corners that share no edge.
-    let nh = mesh.he.len();
+    let nh = mesh.halfedge_slots();
     let mut hw: IdVec<Hid, f64> = IdVec::filled(0.0, nh);
     let mut extra: Vec<(u32, u32, f64)> = Vec::new();
     match options.weights {
@@ -330,7 +330,7 @@ pub(crate) fn laplacian_at(mesh: &Mesh, p: &[V3], options: &LaplacianOptions) ->
             let (mut pairs, mut area) = (Vec::new(), Vec::new());
             for (_, h0) in live_faces(mesh) {
                 if let Some(hs) = as_triangle(mesh, h0) {
-                    let v = hs.map(|h| mesh.he[h].origin);
+                    let v = hs.map(|h| mesh.origin(h));
                     let (t, _, _) = triangle(v.map(|v| p[v.index()]));
                     // Half-edge k runs from corner k to k + 1; the corner
                     // opposite is k + 2.
@@ -342,7 +342,7 @@ pub(crate) fn laplacian_at(mesh: &Mesh, p: &[V3], options: &LaplacianOptions) ->
                 ring.clear();
                 ring.extend(mesh.face_loop_from(h0));
                 ps.clear();
-                ps.extend(ring.iter().map(|&h| p[mesh.he[h].origin.index()]));
+                ps.extend(ring.iter().map(|&h| p[mesh.origin(h).index()]));
                 polygon(&ps, &mut pairs, &mut area);
                 let n = ring.len();
                 for &(k, m, w) in &pairs {
@@ -351,7 +351,7 @@ pub(crate) fn laplacian_at(mesh: &Mesh, p: &[V3], options: &LaplacianOptions) ->
                     } else if k == 0 && m == n - 1 {
                         hw[ring[m]] += w;
                     } else {
-                        let (a, b) = (mesh.he[ring[k]].origin, mesh.he[ring[m]].origin);
+                        let (a, b) = (mesh.origin(ring[k]), mesh.origin(ring[m]));
                         extra.push((a.raw(), b.raw(), w));
                     }
                 }
@@ -369,9 +369,9 @@ fn assemble(
     extra: &[(u32, u32, f64)],
     clamp: bool,
 ) -> Laplacian {
-    let nv = mesh.v_halfedge.len();
+    let nv = mesh.vertex_slots();
     let mut offsets = Vec::with_capacity(nv + 1);
-    let mut cols: Vec<u32> = Vec::with_capacity(mesh.he.len() + 2 * extra.len());
+    let mut cols: Vec<u32> = Vec::with_capacity(mesh.halfedge_slots() + 2 * extra.len());
     let mut weights: Vec<f64> = Vec::with_capacity(cols.capacity());
     let mut diagonal = Vec::with_capacity(nv);
     // Extra pairs by row (both directions).
@@ -388,10 +388,10 @@ fn assemble(
     for i in 0..nv {
         let v = Vid::new(i as u32);
         row.clear();
-        if mesh.v_slots.is_live(i) {
+        if mesh.vertex_live(i) {
             for h in mesh.outgoing(v) {
                 let t = h.twin();
-                row.push((mesh.he[t].origin.raw(), hw[h] + hw[t]));
+                row.push((mesh.origin(t).raw(), hw[h] + hw[t]));
             }
             if let Some(e) = extra_rows.get(i) {
                 row.extend_from_slice(e);
@@ -456,13 +456,13 @@ pub fn mass_matrix(mesh: &Mesh) -> Result<Vec<f64>> {
 
 /// [`mass_matrix`] with positions `p` by vertex slot.
 pub(crate) fn mass_matrix_at(mesh: &Mesh, p: &[V3]) -> Vec<f64> {
-    let mut m = vec![0.0; mesh.v_halfedge.len()];
+    let mut m = vec![0.0; mesh.vertex_slots()];
     let mut ps: Vec<V3> = Vec::new();
     let mut vs: Vec<Vid> = Vec::new();
     let (mut pairs, mut area) = (Vec::new(), Vec::new());
     for (_, h0) in live_faces(mesh) {
         if let Some(hs) = as_triangle(mesh, h0) {
-            let v = hs.map(|h| mesh.he[h].origin);
+            let v = hs.map(|h| mesh.origin(h));
             let (t, _, _) = triangle(v.map(|v| p[v.index()]));
             for k in 0..3 {
                 m[v[k].index()] += t.area[k];
@@ -470,7 +470,7 @@ pub(crate) fn mass_matrix_at(mesh: &Mesh, p: &[V3]) -> Vec<f64> {
             continue;
         }
         vs.clear();
-        vs.extend(mesh.face_loop_from(h0).map(|h| mesh.he[h].origin));
+        vs.extend(mesh.face_loop_from(h0).map(|h| mesh.origin(h)));
         ps.clear();
         ps.extend(vs.iter().map(|v| p[v.index()]));
         polygon(&ps, &mut pairs, &mut area);

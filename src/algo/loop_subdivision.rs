@@ -130,7 +130,7 @@ impl Mask for Loop {
     #[inline]
     fn smooth_edge<S: Sink>(&self, mesh: &Mesh, h: Hid, w: f64, sink: &mut S) {
         let t = h.twin();
-        let (rh, rt) = (mesh.he[h], mesh.he[t]);
+        let (rh, rt) = (mesh.halfedge_record(h), mesh.halfedge_record(t));
         let c = mesh.origin(rh.next.twin());
         let d = mesh.origin(rt.next.twin());
         sink.vertex(rh.origin, 0.375 * w);
@@ -168,7 +168,7 @@ impl SmoothRules for Loop {
     #[inline(always)]
     fn edge_point(&self, mesh: &Mesh, h: Hid, points: &PointSink<'_>) -> [f64; 3] {
         let p = points.p;
-        let (rh, rt) = (mesh.he[h], mesh.he[h.twin()]);
+        let (rh, rt) = (mesh.halfedge_record(h), mesh.halfedge_record(h.twin()));
         let (a, b) = (p[rh.origin.index()], p[rt.origin.index()]);
         let c = p[mesh.origin(rh.next.twin()).index()];
         let d = p[mesh.origin(rt.next.twin()).index()];

@@ -368,16 +368,16 @@ fn accumulate(
     // corners from `Mesh::he`, no key checks.
     for i in range {
         let f = Fid::new(i as u32);
-        let link = mesh.f_halfedge[f];
-        if link.is_hole() || !mesh.f_slots.is_live(i) {
+        let link = mesh.face_link(f);
+        if link.is_hole() || !mesh.face_live(i) {
             continue;
         }
         let h0 = link.halfedge();
-        let h1 = mesh.he[h0].next;
-        let h2 = mesh.he[h1].next;
-        let tri = mesh.he[h2].next == h0;
+        let h1 = mesh.next(h0);
+        let h2 = mesh.next(h1);
+        let tri = mesh.next(h2) == h0;
         if tri {
-            let [a, b, d] = [h0, h1, h2].map(|h| mesh.he[h].origin.index());
+            let [a, b, d] = [h0, h1, h2].map(|h| mesh.origin(h).index());
             // A triangle: every corner's |cross| is twice the area.
             let (e0, e1, e2) = (sub(p[b], p[a]), sub(p[d], p[b]), sub(p[a], p[d]));
             let n = cross(e0, e1);
@@ -414,7 +414,7 @@ fn accumulate(
             continue;
         }
         c.clear();
-        c.extend(mesh.face_loop_from(h0).map(|h| mesh.he[h].origin.index()));
+        c.extend(mesh.face_loop_from(h0).map(|h| mesh.origin(h).index()));
         let n = newell(p, &c);
         let u = unit(n);
         if u == [0.0; 3] {

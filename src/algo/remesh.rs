@@ -500,7 +500,7 @@ impl Setup {
             seam_columns: resample
                 .iter()
                 .filter(|c| c.corner)
-                .map(|c| &*mesh.attrs.halfedge.cols[c.index].1)
+                .map(|c| &*mesh.attrs().halfedge.cols[c.index].1)
                 .collect(),
             material: None,
             features: Keep::Slide,
@@ -596,9 +596,9 @@ fn sizing(mesh: &Mesh, pos: &[V3], sizing: Sizing, kinds: &[u8]) -> Result<(Vec<
 
 /// The columns `what` names, checked.
 fn resample_columns(mesh: &Mesh, what: &Resample) -> Result<Vec<ResampleColumn>> {
-    let position = mesh.attrs.position;
-    let vertex = &mesh.attrs.vertex.cols;
-    let corner = &mesh.attrs.halfedge.cols;
+    let position = mesh.attrs().position;
+    let vertex = &mesh.attrs().vertex.cols;
+    let corner = &mesh.attrs().halfedge.cols;
     let mut out = Vec::new();
     match what {
         Resample::Off => {}
@@ -624,7 +624,7 @@ fn resample_columns(mesh: &Mesh, what: &Resample) -> Result<Vec<ResampleColumn>>
         }
         Resample::Columns(names) => {
             for name in names {
-                let (corner_col, index) = match mesh.attrs.vertex.find(name) {
+                let (corner_col, index) = match mesh.attrs().vertex.find(name) {
                     Some(i) if Some(i) != position => (false, i),
                     Some(_) => {
                         return Err(unsuitable(
@@ -632,7 +632,7 @@ fn resample_columns(mesh: &Mesh, what: &Resample) -> Result<Vec<ResampleColumn>>
                             "positions are projected, not resampled".into(),
                         ))
                     }
-                    None => match mesh.attrs.halfedge.find(name) {
+                    None => match mesh.attrs().halfedge.find(name) {
                         Some(i) => (true, i),
                         None => {
                             return Err(unsuitable(
@@ -816,7 +816,7 @@ impl Engine {
         let nv = work.slot_counts()[0];
         let mut hint = vec![0u32; nv];
         for v in input.vids() {
-            let h = input.v_halfedge[v];
+            let h = input.vertex_halfedge(v);
             // A vertex on a boundary names a half-edge in a hole: its twin's
             // next leaves v in a face.
             let h = if input.in_hole(h) {
@@ -880,9 +880,9 @@ impl Engine {
             // The edges there are now: one level of splits a pass (edges
             // made by this pass wait for the next, as in pmp-library;
             // splitting the new ones at once can run away).
-            for i in 0..mesh.e_slots.slot_count() {
+            for i in 0..mesh.edge_slots() {
                 let e = Eid::new(i as u32);
-                if !mesh.e_slots.is_live(e.index()) || self.eflags[e.index()] & E_LOCKED != 0 {
+                if !mesh.edge_live(e.index()) || self.eflags[e.index()] & E_LOCKED != 0 {
                     continue;
                 }
                 let [h, t] = e.halfedges();
@@ -952,9 +952,9 @@ impl Engine {
         let mut collapses = 0;
         for _ in 0..10 {
             let mut any = false;
-            for i in 0..mesh.e_slots.slot_count() {
+            for i in 0..mesh.edge_slots() {
                 let e = Eid::new(i as u32);
-                if !mesh.e_slots.is_live(i) || self.eflags[i] & E_LOCKED != 0 {
+                if !mesh.edge_live(i) || self.eflags[i] & E_LOCKED != 0 {
                     continue;
                 }
                 let [h0, h1] = e.halfedges();
@@ -1051,7 +1051,7 @@ impl Engine {
     fn ring_fits(&self, mesh: &Mesh, h: Hid, pb: V3) -> bool {
         let (a, b) = (mesh.origin(h), mesh.dest(h));
         let pos = positions(mesh);
-        let mut o = mesh.v_halfedge[a];
+        let mut o = mesh.vertex_halfedge(a);
         let start = o;
         loop {
             let w = mesh.dest(o);
@@ -1081,7 +1081,7 @@ impl Engine {
         let mut flips = 0;
         for _ in 0..10 {
             let mut any = false;
-            for i in 0..mesh.e_slots.slot_count() {
+            for i in 0..mesh.edge_slots() {
                 let Some((e, vs)) = self.flip_candidate(mesh, i) else {
                     continue;
                 };
@@ -1124,7 +1124,7 @@ impl Engine {
     /// fixed; with its vertices `[a, b, c, d]` (the edge `a–b`, `c` and `d`
     /// opposite it in the faces of `a → b` and `b → a`).
     fn flip_candidate(&self, mesh: &Mesh, i: usize) -> Option<(Eid, [Vid; 4])> {
-        if !mesh.e_slots.is_live(i) || self.eflags[i] != 0 {
+        if !mesh.edge_live(i) || self.eflags[i] != 0 {
             return None;
         }
         let e = Eid::new(i as u32);
@@ -1149,7 +1149,7 @@ impl Engine {
     fn remove_caps(&mut self, mesh: &mut Mesh) -> usize {
         self.fit(mesh);
         let mut flips = 0;
-        for i in 0..mesh.e_slots.slot_count() {
+        for i in 0..mesh.edge_slots() {
             let Some((e, [a, b, c, d])) = self.flip_candidate(mesh, i) else {
                 continue;
             };
@@ -1182,7 +1182,7 @@ impl Engine {
             let pos = positions(mesh);
             for i in 0..nv {
                 let kind = self.kind[i];
-                if kind == FIXED || !mesh.v_slots.is_live(i) {
+                if kind == FIXED || !mesh.vertex_live(i) {
                     continue;
                 }
                 let v = Vid::new(i as u32);
@@ -1215,14 +1215,14 @@ impl Engine {
         let mut n = [0.0; 3];
         let mut c = [0.0; 3];
         let mut ww = 0.0;
-        let start = mesh.v_halfedge[v];
+        let start = mesh.vertex_halfedge(v);
         let mut o = start;
         loop {
-            let r = mesh.he[o];
-            let tw = mesh.he[o.twin()];
+            let r = mesh.halfedge_record(o);
+            let tw = mesh.halfedge_record(o.twin());
             if !mesh.is_hole(r.face) {
                 let w1 = tw.origin;
-                let w2 = mesh.he[mesh.he[r.next].next].origin;
+                let w2 = mesh.origin(mesh.next(r.next));
                 let (p1, p2) = (pos[w1.index()], pos[w2.index()]);
                 let x = cross(sub(p1, p), sub(p2, p));
                 let mut area = dot(x, x).sqrt();
@@ -1326,8 +1326,8 @@ impl Engine {
         let nv = mesh.slot_counts()[0];
         let adaptive = self.uniform.is_none();
         let reference = &self.reference;
-        let live = &mesh.v_slots;
-        let Some(pos) = mesh.attrs.positions_mut().map(|c| c.raw_mut()) else {
+        let (live, attrs) = mesh.vertex_arena_and_attrs_mut();
+        let Some(pos) = attrs.positions_mut().map(|c| c.raw_mut()) else {
             return;
         };
         for (i, p) in pos.iter_mut().enumerate().take(nv) {
@@ -1393,9 +1393,10 @@ impl Engine {
             if col.corner {
                 continue;
             }
-            let src = &*input.attrs.vertex.cols[col.index].1;
-            let dst = &mut work.attrs.vertex.cols[col.index].1;
-            for v in work.v_slots.live_indices() {
+            let src = &*input.attrs().vertex.cols[col.index].1;
+            let (live, attrs) = work.vertex_arena_and_attrs_mut();
+            let dst = &mut attrs.vertex.cols[col.index].1;
+            for v in live.live_indices() {
                 let (t, b) = at[v as usize];
                 if t == u32::MAX {
                     continue;
@@ -1471,8 +1472,8 @@ impl Engine {
                     writes.push((h, t, b));
                 }
             }
-            let src = &*input.attrs.halfedge.cols[ci].1;
-            let dst = &mut work.attrs.halfedge.cols[ci].1;
+            let src = &*input.attrs().halfedge.cols[ci].1;
+            let dst = &mut work.attrs_mut().halfedge.cols[ci].1;
             for (h, t, b) in writes {
                 let cs = reference.corners[t as usize];
                 let inputs = [
@@ -1534,7 +1535,7 @@ impl Reference {
     /// column `ci`: triangles joined by edges across which the corner
     /// values agree at both ends.
     fn islands(&self, input: &Mesh, ci: usize) -> Vec<u32> {
-        let col = &*input.attrs.halfedge.cols[ci].1;
+        let col = &*input.attrs().halfedge.cols[ci].1;
         let n = self.corners.len();
         let mut parent: Vec<u32> = (0..n as u32).collect();
         fn find(parent: &mut [u32], mut x: u32) -> u32 {

@@ -298,7 +298,7 @@ fn smooth_run(
             let x = implicit_run(mesh, p0, &free, n, step, &mut held, &mut progress)?;
             let (x, moves) = if options.rescale {
                 // A rescale moves every vertex.
-                let live = (0..x.len()).map(|i| mesh.v_slots.is_live(i)).collect();
+                let live = (0..x.len()).map(|i| mesh.vertex_live(i)).collect();
                 (rescaled(mesh, p0, x), live)
             } else {
                 (x, free)
@@ -530,9 +530,9 @@ impl FreeRings {
     /// fixed.
     fn of(mesh: &Mesh, kinds: &[u8]) -> FreeRings {
         let mut rings = FreeRings {
-            degree: vec![0; mesh.v_halfedge.len()],
+            degree: vec![0; mesh.vertex_slots()],
             many: Vec::new(),
-            cols: Vec::with_capacity(mesh.he.len()),
+            cols: Vec::with_capacity(mesh.halfedge_slots()),
             moving: 0,
         };
         for v in mesh.vids() {
@@ -704,12 +704,9 @@ pub(crate) fn area_and_centroid(mesh: &Mesh, x: &[V3]) -> (f64, V3) {
     for (_, h0) in live_faces(mesh) {
         ring.clear();
         if let Some(hs) = as_triangle(mesh, h0) {
-            ring.extend(hs.map(|h| x[mesh.he[h].origin.index()]));
+            ring.extend(hs.map(|h| x[mesh.origin(h).index()]));
         } else {
-            ring.extend(
-                mesh.face_loop_from(h0)
-                    .map(|h| x[mesh.he[h].origin.index()]),
-            );
+            ring.extend(mesh.face_loop_from(h0).map(|h| x[mesh.origin(h).index()]));
         }
         // Fan from the first corner.
         for k in 1..ring.len() - 1 {

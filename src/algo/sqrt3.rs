@@ -210,7 +210,7 @@ fn sqrt3_level(
         ..LevelReport::default()
     };
     let dense = mesh
-        .attrs
+        .attrs()
         .positions()
         .filter(|c| c.present_bits().is_none())
         .map(|c| c.raw());
@@ -268,7 +268,7 @@ impl<'a> VertexRules<'a> {
     #[inline(always)]
     fn of_vertex(&self, v: Vid) -> VertexMove {
         let m = self.mesh;
-        if !m.in_hole(m.v_halfedge[v]) {
+        if !m.in_hole(m.vertex_halfedge(v)) {
             if self.features.is_special(v) {
                 VertexMove::Stay
             } else {
@@ -360,7 +360,7 @@ fn positions(
     let mut stage = pass.stage("vertices", nv)?;
     for (vi, out) in out.iter_mut().enumerate() {
         stage.tick(vi)?;
-        if !mesh.v_slots.is_live(vi) {
+        if !mesh.vertex_live(vi) {
             continue;
         }
         let v = Vid::new(vi as u32);
@@ -400,7 +400,7 @@ fn positions(
             continue;
         }
         let h = mesh.face_halfedge(f);
-        let (a, b) = (mesh.next(h), mesh.he[mesh.next(h)].next);
+        let (a, b) = (mesh.next(h), mesh.next(mesh.next(h)));
         let (pa, pb, pc) = (
             p[mesh.origin(h).index()],
             p[mesh.origin(a).index()],

@@ -49,7 +49,7 @@ pub struct Components {
 /// # Ok::<(), meshloom::Error>(())
 /// ```
 pub fn components(mesh: &Mesh) -> Components {
-    let nv = mesh.v_slots.slot_count();
+    let nv = mesh.vertex_slots();
     let mut vertex = vec![(0, NONE); nv];
     let mut sizes = Vec::new();
     let mut stack = Vec::new();
@@ -73,7 +73,7 @@ pub fn components(mesh: &Mesh) -> Components {
         }
         sizes.push(size);
     }
-    let mut face = vec![(0, NONE); mesh.f_slots.slot_count()];
+    let mut face = vec![(0, NONE); mesh.face_slots()];
     for f in mesh.fids() {
         let a = mesh.origin(mesh.face_halfedge(f));
         face[f.index()] = (mesh.fkey(f).generation(), vertex[a.index()].1);

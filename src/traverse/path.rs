@@ -102,7 +102,7 @@ pub fn shortest_path(
 ) -> Result<Option<Path>> {
     let s = mesh.check_vertex(from)?;
     let t = mesh.check_vertex(to)?;
-    let n = mesh.v_slots.slot_count();
+    let n = mesh.vertex_slots();
     let mut dist = IdVec::filled(f64::INFINITY, n);
     // The half-edge by which each vertex was reached.
     let mut via = IdVec::filled(Hid::NONE, n);

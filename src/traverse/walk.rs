@@ -40,7 +40,7 @@ impl Node for VertexKey {
         Ok(mesh.check_vertex(key)?.index())
     }
     fn visitable(mesh: &Mesh, i: usize) -> bool {
-        mesh.v_slots.is_live(i)
+        mesh.vertex_live(i)
     }
     fn key_of(mesh: &Mesh, i: usize) -> Self {
         mesh.vkey(Vid::new(i as u32))
@@ -66,7 +66,7 @@ impl Node for FaceKey {
         Ok(f.index())
     }
     fn visitable(mesh: &Mesh, i: usize) -> bool {
-        mesh.f_slots.is_live(i) && !mesh.is_hole(Fid::new(i as u32))
+        mesh.face_live(i) && !mesh.is_hole(Fid::new(i as u32))
     }
     fn key_of(mesh: &Mesh, i: usize) -> Self {
         mesh.fkey(Fid::new(i as u32))

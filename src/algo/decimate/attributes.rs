@@ -78,9 +78,9 @@ impl Column {
     fn refresh(&mut self, mesh: &Mesh, i: usize, scratch: &mut Vec<f64>) {
         let weight = self.weight;
         let arena = if self.corner {
-            &mesh.attrs.halfedge
+            &mesh.attrs().halfedge
         } else {
-            &mesh.attrs.vertex
+            &mesh.attrs().vertex
         };
         scratch.clear();
         let ok = arena.cols[self.index]
@@ -120,9 +120,9 @@ impl AttrError {
                     aw.weight, aw.name
                 )));
             }
-            let (corner, index) = match mesh.attrs.vertex.find(&aw.name) {
+            let (corner, index) = match mesh.attrs().vertex.find(&aw.name) {
                 Some(i) => (false, i),
-                None => match mesh.attrs.halfedge.find(&aw.name) {
+                None => match mesh.attrs().halfedge.find(&aw.name) {
                     Some(i) => (true, i),
                     None => {
                         return Err(Error::AttributeMissing {
@@ -133,9 +133,9 @@ impl AttrError {
                 },
             };
             let arena = if corner {
-                &mesh.attrs.halfedge
+                &mesh.attrs().halfedge
             } else {
-                &mesh.attrs.vertex
+                &mesh.attrs().vertex
             };
             let col = &arena.cols[index].1;
             // The dimension, from the first value present.
@@ -261,8 +261,8 @@ impl AttrError {
     /// The attribute cost of collapsing `h` (origin into dest) to `x` (unit
     /// box) at weight `t`.
     pub(super) fn cost(&self, mesh: &Mesh, h: Hid, x: V3, t: f64) -> f64 {
-        let a = mesh.he[h].origin.index();
-        let b = mesh.he[h.twin()].origin.index();
+        let a = mesh.origin(h).index();
+        let b = mesh.origin(h.twin()).index();
         let area = f64::from(self.area[a]) + f64::from(self.area[b]);
         if area.is_nan() || area <= 0.0 {
             return 0.0;

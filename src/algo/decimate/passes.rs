@@ -124,18 +124,18 @@ impl Engine {
     /// Score every edge and keep each vertex's cheapest: `cands` becomes
     /// the sorted, distinct keys (error bits above the half-edge).
     fn candidates(&self, mesh: &Mesh, cands: &mut Vec<u64>) -> Result<()> {
-        let nv = mesh.v_slots.slot_count();
+        let nv = mesh.vertex_slots();
         cands.clear();
         cands.resize(nv, u64::MAX);
         let pos = mesh.position_slots().ok_or(Error::NoPositions)?;
-        for e in mesh.e_slots.live_indices() {
+        for e in mesh.edge_arena().live_indices() {
             let e = Eid::new(e);
             let Some(c) = self.evaluate(mesh, pos, e) else {
                 continue;
             };
             let key = (u64::from((c.err as f32).to_bits()) << 32) | u64::from(c.h.raw());
-            let a = mesh.he[c.h].origin.index();
-            let b = mesh.he[c.h.twin()].origin.index();
+            let a = mesh.origin(c.h).index();
+            let b = mesh.origin(c.h.twin()).index();
             cands[a] = cands[a].min(key);
             cands[b] = cands[b].min(key);
         }
@@ -214,10 +214,10 @@ impl Engine {
         h: Hid,
         state: &mut Pass,
     ) -> Result<Option<Collapse>> {
-        if !mesh.e_slots.is_live(h.edge().index()) {
+        if !mesh.edge_live(h.edge().index()) {
             return Ok(None);
         }
-        let (a, b) = (mesh.he[h].origin, mesh.he[h.twin()].origin);
+        let (a, b) = (mesh.origin(h), mesh.origin(h.twin()));
         if (self.flags[a.index()] | self.flags[b.index()]) & TOUCHED != 0 {
             return Ok(None);
         }
@@ -243,7 +243,7 @@ impl Engine {
             }
             return Ok(None);
         }
-        let (a, b) = (mesh.he[c.h].origin, mesh.he[c.h.twin()].origin);
+        let (a, b) = (mesh.origin(c.h), mesh.origin(c.h.twin()));
         let hk = mesh.hkey(c.h);
         match crate::journal::journaled!(mesh.collapse_unvalidated(c.h, c.t, Some(c.p))) {
             Ok(_) => {}

@@ -114,18 +114,20 @@ fn unit_box(mesh: &Mesh, pos: &[V3]) -> (V3, f64) {
 fn classify(mesh: &Mesh, pos: &[V3], options: &DecimateOptions) -> Result<Classified> {
     let material = match &options.material {
         None => None,
-        Some(name) => Some(
-            mesh.attrs
-                .face
-                .find(name)
-                .ok_or_else(|| Error::AttributeMissing {
-                    kind: ElementKind::Face,
-                    name: name.clone(),
-                })?,
-        ),
+        Some(name) => {
+            Some(
+                mesh.attrs()
+                    .face
+                    .find(name)
+                    .ok_or_else(|| Error::AttributeMissing {
+                        kind: ElementKind::Face,
+                        name: name.clone(),
+                    })?,
+            )
+        }
     };
     let mut sources = LineSources::all_corner_columns(mesh, Keep::Lock, true);
-    sources.material = material.map(|i| &*mesh.attrs.face.cols[i].1);
+    sources.material = material.map(|i| &*mesh.attrs().face.cols[i].1);
     Ok(Classifier::new(mesh, pos, &options.constraints(), sources)?.classify())
 }
 

@@ -87,7 +87,7 @@ impl ColumnPlans for Plans<'_> {
             ColumnPlan::with_capacity(nv as usize + m.face_count() + b, 8 * nv as usize + 3 * b);
         for vi in 0..nv {
             let v = Vid::new(vi);
-            if !m.v_slots.is_live(vi as usize) {
+            if !m.vertex_live(vi as usize) {
                 plan.copy(vi);
                 continue;
             }

@@ -6,8 +6,9 @@ use crate::layout::{with_headroom, Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVe
 use crate::mesh::Mesh;
 
 use super::ALGORITHM;
-use crate::algo::subdivision::refine::{fresh_slots, Ranks, Topology};
+use crate::algo::subdivision::refine::{fresh_slots, Ranks};
 use crate::algo::subdivision::{unsuitable, Pass};
+use crate::mesh::Topology;
 
 /// The new layout, with `C` the corners (half-edges in faces, numbered in
 /// slot order), `B` the boundary edges trisected at this level (none at an
@@ -99,7 +100,7 @@ impl Layout {
         mesh: &'m Mesh,
     ) -> impl Iterator<Item = (u32, Hid)> + 'm {
         let slots = if self.boundary > 0 {
-            mesh.e_slots.slot_count()
+            mesh.edge_slots()
         } else {
             0
         };
@@ -143,7 +144,7 @@ impl Layout {
     }
 
     pub(super) fn of(mesh: &Mesh, trisect: bool) -> Layout {
-        let mut corner = vec![0u32; mesh.he.len()];
+        let mut corner = vec![0u32; mesh.halfedge_slots()];
         let mut next = 0u32;
         for e in mesh.eids() {
             for h in e.halfedges() {
@@ -153,7 +154,7 @@ impl Layout {
                 }
             }
         }
-        let mut face_rank = vec![0u32; mesh.f_slots.slot_count()];
+        let mut face_rank = vec![0u32; mesh.face_slots()];
         let (mut faces, mut holes) = (0u32, 0u32);
         for f in mesh.fids() {
             let count = if mesh.is_hole(f) {
@@ -167,7 +168,7 @@ impl Layout {
         let mut trisected = Vec::new();
         let mut boundary = 0u32;
         if trisect {
-            trisected = vec![0u32; mesh.e_slots.slot_count()];
+            trisected = vec![0u32; mesh.edge_slots()];
             for e in mesh.eids() {
                 if boundary_inner(mesh, e).is_some() {
                     boundary += 1;
@@ -176,11 +177,11 @@ impl Layout {
             }
         }
         Layout {
-            nv: mesh.v_slots.slot_count() as u32,
+            nv: mesh.vertex_slots() as u32,
             corners: next,
             faces,
             edges: mesh.edge_count() as u32,
-            edge_rank: Ranks::of(&mesh.e_slots),
+            edge_rank: Ranks::of(mesh.edge_arena()),
             corner,
             face_rank,
             kept: kept_edges(mesh),
@@ -210,8 +211,8 @@ pub(super) fn boundary_inner(mesh: &Mesh, e: Eid) -> Option<Hid> {
 /// run through the middle of the new triangles, where no corner can hold
 /// both charts' values.
 fn kept_edges(mesh: &Mesh) -> Vec<bool> {
-    let columns = &mesh.attrs.halfedge.cols;
-    let mut kept = vec![false; mesh.e_slots.slot_count()];
+    let columns = &mesh.attrs().halfedge.cols;
+    let mut kept = vec![false; mesh.edge_slots()];
     for e in mesh.eids() {
         let [h, t] = e.halfedges();
         kept[e.index()] = mesh.in_hole(h)
@@ -239,58 +240,58 @@ pub(super) fn build(mesh: &Mesh, l: &Layout, pass: &mut Pass<'_, '_>) -> Result<
         ));
     }
     let mut out = Records {
-        he: IdVec::from_vec(with_headroom(Eid::halfedge_slots(new_edges))),
-        f_halfedge: IdVec::from_vec(with_headroom(c + 2 * b + mesh.hole_count())),
+        records: IdVec::from_vec(with_headroom(Eid::halfedge_slots(new_edges))),
+        face_links: IdVec::from_vec(with_headroom(c + 2 * b + mesh.hole_count())),
     };
     out.spokes(mesh, l, pass)?;
     out.old_edges(mesh, l);
     out.trisected_edges(mesh, l);
-    debug_assert_eq!(out.he.len(), Eid::halfedge_slots(new_edges));
+    debug_assert_eq!(out.records.len(), Eid::halfedge_slots(new_edges));
     for f in mesh.fids() {
         if mesh.is_hole(f) {
             let h = mesh.face_halfedge(f);
-            out.f_halfedge.push(FaceLink::new(l.hole_start(h), true));
+            out.face_links.push(FaceLink::new(l.hole_start(h), true));
         }
     }
     Ok(Topology {
-        v_slots: mesh.v_slots.extended(faces + 2 * b),
-        e_slots: fresh_slots(&mesh.e_slots, new_edges, ALGORITHM)?,
-        f_slots: fresh_slots(&mesh.f_slots, out.f_halfedge.len(), ALGORITHM)?,
-        v_halfedge: vertex_links(mesh, l),
-        he: out.he,
-        f_halfedge: out.f_halfedge,
-        holes: mesh.hole_count(),
+        vertex_arena: mesh.vertex_arena().extended(faces + 2 * b),
+        edge_arena: fresh_slots(mesh.edge_arena(), new_edges, ALGORITHM)?,
+        face_arena: fresh_slots(mesh.face_arena(), out.face_links.len(), ALGORITHM)?,
+        vertex_links: vertex_links(mesh, l),
+        records: out.records,
+        face_links: out.face_links,
+        hole_count: mesh.hole_count(),
     })
 }
 
 /// The half-edge records and face links of a level, written in slot order.
 struct Records {
-    he: IdVec<Hid, HalfedgeRecord>,
-    f_halfedge: IdVec<Fid, FaceLink>,
+    records: IdVec<Hid, HalfedgeRecord>,
+    face_links: IdVec<Fid, FaceLink>,
 }
 
 impl Records {
     /// The spokes, in corner order, and the triangle at each corner.
     fn spokes(&mut self, mesh: &Mesh, l: &Layout, pass: &mut Pass<'_, '_>) -> Result<()> {
-        let ne_slots = mesh.e_slots.slot_count();
+        let ne_slots = mesh.edge_slots();
         let mut stage = pass.stage("spokes", ne_slots)?;
         for ei in 0..ne_slots {
             stage.tick(ei)?;
-            if !mesh.e_slots.is_live(ei) {
+            if !mesh.edge_live(ei) {
                 continue;
             }
             for h in Eid::new(ei as u32).halfedges() {
                 if l.corner_of(h).is_none() {
                     continue;
                 }
-                let rec = mesh.he[h];
+                let rec = mesh.halfedge_record(h);
                 let cf = l.face_point(rec.face);
                 // prev(h) in a triangle.
-                let p = mesh.he[rec.next].next;
+                let p = mesh.next(rec.next);
                 // Side 0: origin(h) -> c, in the triangle beside p's edge at
                 // dest(p): across the flipped edge, in p's own kept piece,
                 // or on the last third of p's trisected edge.
-                self.he.push(if l.kept(p.edge()) {
+                self.records.push(if l.kept(p.edge()) {
                     match l.trisected(p.edge()) {
                         Some(r) => HalfedgeRecord {
                             origin: rec.origin,
@@ -315,14 +316,14 @@ impl Records {
                 let next = if l.kept(h.edge()) {
                     l.edge(h.edge()).halfedge(h.side())
                 } else {
-                    l.spoke(mesh.he[t].next).halfedge(0)
+                    l.spoke(mesh.next(t)).halfedge(0)
                 };
-                self.he.push(HalfedgeRecord {
+                self.records.push(HalfedgeRecord {
                     origin: cf,
                     next,
                     face: l.triangle(h),
                 });
-                self.f_halfedge
+                self.face_links
                     .push(FaceLink::new(l.spoke(h).halfedge(1), false));
             }
         }
@@ -333,8 +334,8 @@ impl Records {
     /// to the other, in the triangle at the origin of side 1 − s), or kept
     /// (trisected: its first third).
     fn old_edges(&mut self, mesh: &Mesh, l: &Layout) {
-        for ei in 0..mesh.e_slots.slot_count() {
-            if !mesh.e_slots.is_live(ei) {
+        for ei in 0..mesh.edge_slots() {
+            if !mesh.edge_live(ei) {
                 continue;
             }
             let e = Eid::new(ei as u32);
@@ -343,8 +344,8 @@ impl Records {
             let third = if kept { l.trisected(e) } else { None };
             for s in 0..2 {
                 let (own, other) = (hs[s], hs[1 - s]);
-                let rec = mesh.he[own];
-                self.he.push(if !kept {
+                let rec = mesh.halfedge_record(own);
+                self.records.push(if !kept {
                     HalfedgeRecord {
                         origin: l.face_point(rec.face),
                         next: l.spoke(other).halfedge(1),
@@ -378,25 +379,25 @@ impl Records {
     fn trisected_edges(&mut self, mesh: &Mesh, l: &Layout) {
         for (r, h) in l.trisected_edges(mesh) {
             let t = h.twin();
-            let rec = mesh.he[h];
+            let rec = mesh.halfedge_record(h);
             let m = l.face_point(rec.face);
-            let hole = l.hole(mesh.he[t].face);
+            let hole = l.hole(mesh.face_of(t));
             let (a1, b1) = (l.boundary_point(r, 0), l.boundary_point(r, 1));
             let [mid, last, spoke_a, spoke_b] = [0, 1, 2, 3].map(|k| l.extra_edge(r, k));
             let (tri_mid, tri_last) = (l.extra_face(r, 0), l.extra_face(r, 1));
             let record = |origin, next, face| HalfedgeRecord { origin, next, face };
-            self.he.extend_from(&[
+            self.records.extend_from(&[
                 record(a1, spoke_b.halfedge(0), tri_mid),
                 record(b1, l.edge(h.edge()).halfedge(t.side()), hole),
                 record(b1, l.spoke(rec.next).halfedge(0), tri_last),
-                record(mesh.he[t].origin, mid.halfedge(1), hole),
+                record(mesh.origin(t), mid.halfedge(1), hole),
                 record(a1, l.spoke(h).halfedge(1), l.triangle(h)),
                 record(m, mid.halfedge(0), tri_mid),
                 record(b1, spoke_a.halfedge(1), tri_mid),
                 record(m, last.halfedge(0), tri_last),
             ]);
-            self.f_halfedge.push(FaceLink::new(mid.halfedge(0), false));
-            self.f_halfedge.push(FaceLink::new(last.halfedge(0), false));
+            self.face_links.push(FaceLink::new(mid.halfedge(0), false));
+            self.face_links.push(FaceLink::new(last.halfedge(0), false));
         }
     }
 }
@@ -407,13 +408,13 @@ impl Records {
 fn vertex_links(mesh: &Mesh, l: &Layout) -> IdVec<Vid, Hid> {
     let nv = l.nv as usize;
     let slots = nv + mesh.face_count() + 2 * l.boundary as usize;
-    let mut v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(with_headroom(slots));
+    let mut vertex_links: IdVec<Vid, Hid> = IdVec::from_vec(with_headroom(slots));
     for vi in 0..nv {
         let v = Vid::new(vi as u32);
-        v_halfedge.push(if !mesh.v_slots.is_live(vi) {
+        vertex_links.push(if !mesh.vertex_live(vi) {
             Hid::NONE
         } else {
-            let h = mesh.v_halfedge[v];
+            let h = mesh.vertex_halfedge(v);
             if mesh.in_hole(h) {
                 l.hole_start(h)
             } else {
@@ -423,12 +424,12 @@ fn vertex_links(mesh: &Mesh, l: &Layout) -> IdVec<Vid, Hid> {
     }
     for f in mesh.fids() {
         if !mesh.is_hole(f) {
-            v_halfedge.push(l.spoke(mesh.face_halfedge(f)).halfedge(1));
+            vertex_links.push(l.spoke(mesh.face_halfedge(f)).halfedge(1));
         }
     }
     for (r, h) in l.trisected_edges(mesh) {
-        v_halfedge.push(l.edge(h.edge()).halfedge(h.twin().side()));
-        v_halfedge.push(l.extra_edge(r, 0).halfedge(1));
+        vertex_links.push(l.edge(h.edge()).halfedge(h.twin().side()));
+        vertex_links.push(l.extra_edge(r, 0).halfedge(1));
     }
-    v_halfedge
+    vertex_links
 }

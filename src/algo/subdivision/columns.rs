@@ -82,7 +82,7 @@ pub(crate) fn finish_columns(
     data: &VertexData,
     crease: Option<(&str, Vec<(u32, f64)>)>,
 ) -> AttrStore {
-    let a = &parent.attrs;
+    let a = &parent.attrs();
     let (linear, smooth) = (|| plans.vertex_linear(), || plans.vertex_smooth());
     let (mut linear, mut smooth) = (Lazy::new(&linear), Lazy::new(&smooth));
     let mut positions = positions;
@@ -149,10 +149,10 @@ pub(crate) fn crease_children(
     name: &str,
     mut children: impl FnMut(Eid, &mut dyn FnMut(u32)),
 ) -> Vec<(u32, f64)> {
-    let Some(i) = parent.attrs.edge.find(name) else {
+    let Some(i) = parent.attrs().edge.find(name) else {
         return Vec::new();
     };
-    let col = &parent.attrs.edge.cols[i].1;
+    let col = &parent.attrs().edge.cols[i].1;
     let mut out = Vec::new();
     for e in parent.eids() {
         if let Some(s) = col.value_at(e.index()).and_then(|v| v.as_f64()) {
@@ -362,7 +362,7 @@ impl<M: Mask> ColumnPlans for RefinePlans<'_, M> {
         let mut ring = Vec::new();
         for vi in 0..r.nv {
             let v = Vid::new(vi);
-            if !mesh.v_slots.is_live(vi as usize) {
+            if !mesh.vertex_live(vi as usize) {
                 plan.copy(vi);
                 continue;
             }

@@ -183,8 +183,8 @@ impl Features {
             None => None,
             Some(name) => {
                 let i = crease_column_index(mesh, name)?;
-                let col = &mesh.attrs.edge.cols[i].1;
-                let mut s = vec![0.0f64; mesh.e_slots.slot_count()];
+                let col = &mesh.attrs().edge.cols[i].1;
+                let mut s = vec![0.0f64; mesh.edge_slots()];
                 for e in mesh.eids() {
                     let Some(x) = col.value_at(e.index()).and_then(|v| v.as_f64()) else {
                         continue;
@@ -209,10 +209,10 @@ impl Features {
             None => None,
             Some(name) => {
                 let i = corner_column_index(mesh, name)?;
-                let col = &mesh.attrs.vertex.cols[i].1;
-                let flags: Vec<bool> = (0..mesh.v_slots.slot_count())
+                let col = &mesh.attrs().vertex.cols[i].1;
+                let flags: Vec<bool> = (0..mesh.vertex_slots())
                     .map(|v| {
-                        mesh.v_slots.is_live(v)
+                        mesh.vertex_live(v)
                             && col.value_at(v) == Some(crate::attr::Value::Bool(true))
                     })
                     .collect();
@@ -222,7 +222,7 @@ impl Features {
         let special = if sharp_edges > 0 || pinned.is_some() {
             let mut special = pinned
                 .clone()
-                .unwrap_or_else(|| vec![false; mesh.v_slots.slot_count()]);
+                .unwrap_or_else(|| vec![false; mesh.vertex_slots()]);
             if let Some(s) = &sharpness {
                 for e in mesh.eids() {
                     if s[e.index()] > 0.0 {

@@ -353,12 +353,12 @@ pub(crate) fn scatter_edge_ends(
     sums: &mut [[f64; 3]],
     valence: &mut [u32],
 ) {
-    for ei in 0..mesh.e_slots.slot_count() {
-        if !mesh.e_slots.is_live(ei) {
+    for ei in 0..mesh.edge_slots() {
+        if !mesh.edge_live(ei) {
             continue;
         }
         let [h, t] = Eid::new(ei as u32).halfedges();
-        let (rh, rt) = (mesh.he[h], mesh.he[t]);
+        let (rh, rt) = (mesh.halfedge_record(h), mesh.halfedge_record(t));
         let (a, b) = (rh.origin.index(), rt.origin.index());
         if mesh.is_hole(rh.face) || mesh.is_hole(rt.face) {
             valence[a] = ON_HOLE;
@@ -483,7 +483,7 @@ pub(crate) fn check_columns(
                 "positions always follow the scheme's stencil; VertexData cannot name them",
             ));
         }
-        if mesh.attrs.vertex.find(name).is_none() {
+        if mesh.attrs().vertex.find(name).is_none() {
             return Err(Error::AttributeMissing {
                 kind: ElementKind::Vertex,
                 name: name.clone(),
@@ -518,7 +518,7 @@ fn column_of_type(
     types: &[ValueType],
     expected: &'static str,
 ) -> Result<usize> {
-    let cols = mesh.attrs.columns(kind);
+    let cols = mesh.attrs().columns(kind);
     let i = cols.find(name).ok_or_else(|| Error::AttributeMissing {
         kind,
         name: name.to_owned(),

@@ -33,7 +33,7 @@
 
 use crate::error::Result;
 use crate::layout::{with_headroom, Eid, FaceLink, Fid, HalfedgeRecord, Hid, IdVec, Vid};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Topology};
 use crate::slots::Slots;
 
 use super::{unsuitable, Pass};
@@ -169,43 +169,15 @@ impl Refinement {
     }
 }
 
-/// The connectivity of a new level, without attribute columns.
-pub(crate) struct Topology {
-    pub(crate) v_halfedge: IdVec<Vid, Hid>,
-    pub(crate) v_slots: Slots,
-    pub(crate) he: IdVec<Hid, HalfedgeRecord>,
-    pub(crate) e_slots: Slots,
-    pub(crate) f_halfedge: IdVec<Fid, FaceLink>,
-    pub(crate) f_slots: Slots,
-    pub(crate) holes: usize,
-}
-
-impl Topology {
-    /// A mesh of this connectivity, with the given attribute columns.
-    pub(crate) fn into_mesh(self, attrs: crate::store::AttrStore) -> Mesh {
-        Mesh {
-            v_halfedge: self.v_halfedge.into(),
-            v_slots: self.v_slots,
-            he: self.he.into(),
-            e_slots: self.e_slots,
-            f_halfedge: self.f_halfedge.into(),
-            f_slots: self.f_slots,
-            holes: self.holes,
-            attrs,
-            rec: None,
-        }
-    }
-}
-
 /// The half-edges of the face through `h`, in order (bounded by the
 /// number of half-edge slots).
 #[inline]
 pub(crate) fn face_ring(mesh: &Mesh, start: Hid, ring: &mut Vec<Hid>) {
     ring.clear();
     let mut h = start;
-    for _ in 0..mesh.he.len() {
+    for _ in 0..mesh.halfedge_slots() {
         ring.push(h);
-        h = mesh.he[h].next;
+        h = mesh.next(h);
         if h == start {
             break;
         }
@@ -215,17 +187,17 @@ pub(crate) fn face_ring(mesh: &Mesh, start: Hid, ring: &mut Vec<Hid>) {
 /// The three half-edges of the face through `h0`, if it is a triangle.
 #[inline(always)]
 fn triangle_at(mesh: &Mesh, h0: Hid) -> Option<[Hid; 3]> {
-    let h1 = mesh.he[h0].next;
-    let h2 = mesh.he[h1].next;
-    (mesh.he[h2].next == h0).then_some([h0, h1, h2])
+    let h1 = mesh.next(h0);
+    let h2 = mesh.next(h1);
+    (mesh.next(h2) == h0).then_some([h0, h1, h2])
 }
 
 /// What the face pass writes: the records of the new inside edges and the
 /// links of the corner faces, in corner order, and the links to append
 /// after them (centre triangles, holes; face points after the vertices).
 struct FaceRecords {
-    he: IdVec<Hid, HalfedgeRecord>,
-    f_halfedge: IdVec<Fid, FaceLink>,
+    records: IdVec<Hid, HalfedgeRecord>,
+    face_links: IdVec<Fid, FaceLink>,
     centers: Vec<FaceLink>,
     hole_links: Vec<FaceLink>,
     face_point_links: Vec<Hid>,
@@ -245,19 +217,19 @@ impl FaceRecords {
         for i in 0..3 {
             let (hi, hp) = (hs[i], hs[(i + 2) % 3]);
             let (mi, mp) = (r.edge_point(hi.edge()), r.edge_point(hp.edge()));
-            self.he.push(HalfedgeRecord {
+            self.records.push(HalfedgeRecord {
                 origin: mi,
                 next: r.second_child(hp),
                 face: Fid::new(c0 + i as u32),
             });
-            self.he.push(HalfedgeRecord {
+            self.records.push(HalfedgeRecord {
                 origin: mp,
                 next: Eid::new(c0 + ((i + 1) % 3) as u32).halfedge(1),
                 face: center,
             });
         }
         for h in hs {
-            self.f_halfedge.push(FaceLink::new(r.first_child(h), false));
+            self.face_links.push(FaceLink::new(r.first_child(h), false));
         }
         self.centers
             .push(FaceLink::new(Eid::new(c0).halfedge(1), false));
@@ -285,13 +257,13 @@ impl FaceRecords {
                     let (hi, hp) = (ring[i], ring[prev(i)]);
                     let (mi, mp) = (r.edge_point(hi.edge()), r.edge_point(hp.edge()));
                     // m_i -> m_{i-1}, in the corner triangle at origin(h_i).
-                    self.he.push(HalfedgeRecord {
+                    self.records.push(HalfedgeRecord {
                         origin: mi,
                         next: r.second_child(hp),
                         face: Fid::new(cid(i)),
                     });
                     // m_{i-1} -> m_i, in the centre triangle.
-                    self.he.push(HalfedgeRecord {
+                    self.records.push(HalfedgeRecord {
                         origin: mp,
                         next: Eid::new(cid(next(i))).halfedge(1),
                         face: center,
@@ -307,13 +279,13 @@ impl FaceRecords {
                 for (i, &hi) in ring.iter().enumerate() {
                     let mi = r.edge_point(hi.edge());
                     // m_i -> c, in the quad at origin(h_i).
-                    self.he.push(HalfedgeRecord {
+                    self.records.push(HalfedgeRecord {
                         origin: mi,
                         next: Eid::new(cid(prev(i))).halfedge(1),
                         face: Fid::new(cid(i)),
                     });
                     // c -> m_i, in the quad at dest(h_i).
-                    self.he.push(HalfedgeRecord {
+                    self.records.push(HalfedgeRecord {
                         origin: c,
                         next: r.second_child(hi),
                         face: Fid::new(cid(next(i))),
@@ -323,7 +295,7 @@ impl FaceRecords {
             }
         }
         for &h in ring {
-            self.f_halfedge.push(FaceLink::new(r.first_child(h), false));
+            self.face_links.push(FaceLink::new(r.first_child(h), false));
         }
     }
 }
@@ -354,26 +326,26 @@ pub(crate) fn refine(
     let algorithm = pass.algorithm;
     let mut r = Refinement::new(mesh, rule, algorithm)?;
     let FaceRecords {
-        mut he,
-        mut f_halfedge,
+        records: mut he,
+        face_links: mut f_halfedge,
         centers,
         hole_links,
         face_point_links,
     } = face_pass(mesh, &mut r, pass)?;
     f_halfedge.extend_from(&centers);
     f_halfedge.extend_from(&hole_links);
-    let mut v_halfedge = old_vertex_links(mesh, &r);
-    edge_pass(mesh, &r, &mut he, &mut v_halfedge, pass)?;
-    v_halfedge.extend_from(&face_point_links);
+    let mut vertex_links = old_vertex_links(mesh, &r);
+    edge_pass(mesh, &r, &mut he, &mut vertex_links, pass)?;
+    vertex_links.extend_from(&face_point_links);
     let new_edges = (r.corners + 2 * r.edges) as usize;
     let topology = Topology {
-        v_slots: mesh.v_slots.extended((r.edges + r.quads) as usize),
-        e_slots: fresh_slots(&mesh.e_slots, new_edges, algorithm)?,
-        f_slots: fresh_slots(&mesh.f_slots, f_halfedge.len(), algorithm)?,
-        v_halfedge,
-        he,
-        f_halfedge,
-        holes: r.holes as usize,
+        vertex_arena: mesh.vertex_arena().extended((r.edges + r.quads) as usize),
+        edge_arena: fresh_slots(mesh.edge_arena(), new_edges, algorithm)?,
+        face_arena: fresh_slots(mesh.face_arena(), f_halfedge.len(), algorithm)?,
+        vertex_links,
+        records: he,
+        face_links: f_halfedge,
+        hole_count: r.holes as usize,
     };
     Ok((r, topology))
 }
@@ -386,7 +358,7 @@ impl Refinement {
     /// [`Error::Unsuitable`](crate::Error::Unsuitable) for a result past
     /// 2^31 half-edges.
     fn new(mesh: &Mesh, rule: CutRule, algorithm: &'static str) -> Result<Refinement> {
-        let nv = mesh.v_slots.slot_count();
+        let nv = mesh.vertex_slots();
         let edges = mesh.edge_count();
         let mut boundary = 0usize;
         for f in mesh.fids() {
@@ -413,9 +385,9 @@ impl Refinement {
             quads: 0,
             holes: 0,
             rule,
-            edge_rank: Ranks::of(&mesh.e_slots),
-            corner: vec![0u32; Eid::halfedge_slots(mesh.e_slots.slot_count())],
-            face_rank: vec![0u32; mesh.f_slots.slot_count()],
+            edge_rank: Ranks::of(mesh.edge_arena()),
+            corner: vec![0u32; Eid::halfedge_slots(mesh.edge_slots())],
+            face_rank: vec![0u32; mesh.face_slots()],
         })
     }
 }
@@ -424,12 +396,12 @@ impl Refinement {
 /// links of the child faces, in corner order; fills `r`'s corner ids and
 /// face ranks.
 fn face_pass(mesh: &Mesh, r: &mut Refinement, pass: &mut Pass<'_, '_>) -> Result<FaceRecords> {
-    let nf_slots = mesh.f_slots.slot_count();
+    let nf_slots = mesh.face_slots();
     let new_edges = (r.corners + 2 * r.edges) as usize;
     let max_faces = r.corners as usize + mesh.face_count() + mesh.hole_count();
     let mut out = FaceRecords {
-        he: IdVec::from_vec(with_headroom(Eid::halfedge_slots(new_edges))),
-        f_halfedge: IdVec::from_vec(with_headroom(max_faces)),
+        records: IdVec::from_vec(with_headroom(Eid::halfedge_slots(new_edges))),
+        face_links: IdVec::from_vec(with_headroom(max_faces)),
         centers: Vec::new(),
         hole_links: Vec::with_capacity(mesh.hole_count()),
         face_point_links: Vec::new(),
@@ -439,11 +411,11 @@ fn face_pass(mesh: &Mesh, r: &mut Refinement, pass: &mut Pass<'_, '_>) -> Result
     let mut stage = pass.stage("faces", nf_slots)?;
     for fi in 0..nf_slots {
         stage.tick(fi)?;
-        if !mesh.f_slots.is_live(fi) {
+        if !mesh.face_live(fi) {
             continue;
         }
         let f = Fid::new(fi as u32);
-        let link = mesh.f_halfedge[f];
+        let link = mesh.face_link(f);
         if link.is_hole() {
             r.face_rank[fi] = r.holes;
             r.holes += 1;
@@ -482,16 +454,16 @@ fn face_pass(mesh: &Mesh, r: &mut Refinement, pass: &mut Pass<'_, '_>) -> Result
 /// slots (vacant ones stay vacant), with room for the new vertices.
 fn old_vertex_links(mesh: &Mesh, r: &Refinement) -> IdVec<Vid, Hid> {
     let nv = r.nv as usize;
-    let mut v_halfedge: IdVec<Vid, Hid> = IdVec::from_vec(with_headroom(r.vertex_slots()));
+    let mut vertex_links: IdVec<Vid, Hid> = IdVec::from_vec(with_headroom(r.vertex_slots()));
     for vi in 0..nv {
         let v = Vid::new(vi as u32);
-        v_halfedge.push(if mesh.v_slots.is_live(vi) {
-            r.first_child(mesh.v_halfedge[v])
+        vertex_links.push(if mesh.vertex_live(vi) {
+            r.first_child(mesh.vertex_halfedge(v))
         } else {
             Hid::NONE
         });
     }
-    v_halfedge
+    vertex_links
 }
 
 /// The edges, in slot order: the records of the two children of each, and
@@ -500,14 +472,14 @@ fn edge_pass(
     mesh: &Mesh,
     r: &Refinement,
     he: &mut IdVec<Hid, HalfedgeRecord>,
-    v_halfedge: &mut IdVec<Vid, Hid>,
+    vertex_links: &mut IdVec<Vid, Hid>,
     pass: &mut Pass<'_, '_>,
 ) -> Result<()> {
-    let ne_slots = mesh.e_slots.slot_count();
+    let ne_slots = mesh.edge_slots();
     let mut stage = pass.stage("edges", ne_slots)?;
     for ei in 0..ne_slots {
         stage.tick(ei)?;
-        if !mesh.e_slots.is_live(ei) {
+        if !mesh.edge_live(ei) {
             continue;
         }
         let e = Eid::new(ei as u32);
@@ -527,7 +499,7 @@ fn edge_pass(
         } else {
             r.second_child(h)
         };
-        v_halfedge.push(out);
+        vertex_links.push(out);
     }
     stage.finish()
 }
@@ -536,7 +508,7 @@ fn edge_pass(
 /// point is `m`: the first leaves `origin(p)`, the second enters `dest(p)`.
 #[inline(always)]
 fn child_records(mesh: &Mesh, r: &Refinement, p: Hid, m: Vid) -> (HalfedgeRecord, HalfedgeRecord) {
-    let rec = mesh.he[p];
+    let rec = mesh.halfedge_record(p);
     let next_first = r.first_child(rec.next);
     match r.corner_of(p) {
         Some(c) => {
@@ -599,12 +571,12 @@ pub(crate) fn valence_two_error(
     rule: CutRule,
     algorithm: &'static str,
 ) -> Option<crate::Error> {
-    let h0 = mesh.v_halfedge[v];
+    let h0 = mesh.vertex_halfedge(v);
     if mesh.in_hole(h0) {
         return None;
     }
-    let h1 = mesh.he[h0.twin()].next;
-    if h1 == h0 || mesh.he[h1.twin()].next != h0 {
+    let h1 = mesh.next(h0.twin());
+    if h1 == h0 || mesh.next(h1.twin()) != h0 {
         return None;
     }
     let both_cut = [h0, h1]

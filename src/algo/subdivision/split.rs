@@ -159,7 +159,7 @@ fn split_level<S: FaceSplit>(
         None => Features::read(mesh, algorithm, options.boundary, None, None)?,
     };
     let dense = mesh
-        .attrs
+        .attrs()
         .positions()
         .filter(|c| rules.is_some() && c.present_bits().is_none())
         .map(|c| c.raw());
@@ -287,7 +287,7 @@ impl<R: SmoothRules> Positions<'_, R> {
         let mut stage = pass.stage("vertices", out.len())?;
         for (vi, out) in out.iter_mut().enumerate() {
             stage.tick(vi)?;
-            if !mesh.v_slots.is_live(vi) {
+            if !mesh.vertex_live(vi) {
                 continue;
             }
             let v = Vid::new(vi as u32);
@@ -338,11 +338,11 @@ impl<R: SmoothRules> Positions<'_, R> {
         mut put: impl FnMut([f64; 3]),
     ) -> Result<()> {
         let (mesh, r) = (self.mesh, self.r);
-        let ne = mesh.e_slots.slot_count();
+        let ne = mesh.edge_slots();
         let mut stage = pass.stage("edge points", ne)?;
         for ei in 0..ne {
             stage.tick(ei)?;
-            if !mesh.e_slots.is_live(ei) {
+            if !mesh.edge_live(ei) {
                 continue;
             }
             let e = Eid::new(ei as u32);
