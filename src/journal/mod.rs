@@ -4,7 +4,7 @@
 //! Three services share one recorder, which is off until one of them is
 //! asked for (then [`Mesh`] carries it). With it off, the journal costs
 //! one test per operator call: the operator then runs a body compiled
-//! without any recording hook (see `mesh/hooks.rs`), the same code as if the
+//! without any recording hook (see `mesh/writer.rs`), the same code as if the
 //! journal did not exist:
 //!
 //! - **Transactions.** [`Mesh::transaction`] runs a closure; if it returns
@@ -101,7 +101,7 @@
 //! pass, not once per element; for a few elements use
 //! [`Mesh::set_position`] or [`Mesh::set_attr`], which save one value.
 //! Inside the crate, every link write goes through the mutators in
-//! `mesh/hooks.rs` (the link arrays have no `IndexMut`), every column
+//! `mesh/writer.rs` (the link arrays have no `IndexMut`), every column
 //! write through the `Columns` rule methods, which save first; a slot born
 //! in the open step needs no saving (undo makes it vacant).
 //!

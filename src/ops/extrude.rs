@@ -5,7 +5,7 @@ use crate::error::{Refusal, Result};
 use crate::journal::{journaled, Journaling};
 use crate::keys::FaceKey;
 use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, Vid};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Writer};
 use crate::vec3::normalize;
 
 impl Mesh {
@@ -79,20 +79,18 @@ impl Mesh {
     pub fn extrude_face(&mut self, fk: FaceKey, distance: f64) -> Result<Vec<FaceKey>> {
         journaled!(self.extrude_face_with(fk, distance))
     }
+}
 
+impl<J: Journaling> Writer<'_, J> {
     /// [`extrude_face`](Mesh::extrude_face)'s body, in journaling mode `J`.
-    fn extrude_face_with<J: Journaling>(
-        &mut self,
-        fk: FaceKey,
-        distance: f64,
-    ) -> Result<Vec<FaceKey>> {
+    fn extrude_face_with(&mut self, fk: FaceKey, distance: f64) -> Result<Vec<FaceKey>> {
         let (f, normal) = self.plan_extrude(fk, distance)?;
         let ring: Vec<Hid> = self.face_loop(f).collect();
         let n = ring.len();
-        let w: Vec<Vid> = (0..n).map(|_| self.alloc_vertex::<J>()).collect();
-        let cap: Vec<Eid> = (0..n).map(|_| self.alloc_edge::<J>()).collect();
-        let up: Vec<Eid> = (0..n).map(|_| self.alloc_edge::<J>()).collect();
-        let sides: Vec<Fid> = (0..n).map(|_| self.alloc_face::<J>(false)).collect();
+        let w: Vec<Vid> = (0..n).map(|_| self.alloc_vertex()).collect();
+        let cap: Vec<Eid> = (0..n).map(|_| self.alloc_edge()).collect();
+        let up: Vec<Eid> = (0..n).map(|_| self.alloc_edge()).collect();
+        let sides: Vec<Fid> = (0..n).map(|_| self.alloc_face(false)).collect();
         for i in 0..n {
             let j = (i + 1) % n;
             let h = ring[i];
@@ -100,32 +98,32 @@ impl Mesh {
             let up_j = up[j].halfedge(0); // v_j -> w_j
             let down_i = up[i].halfedge(1); // w_i -> v_i
             let s = sides[i];
-            *self.he_mut::<J>(c) = HalfedgeRecord {
+            *self.he_mut(c) = HalfedgeRecord {
                 origin: w[i],
                 next: cap[j].halfedge(0),
                 face: f,
             };
-            *self.he_mut::<J>(ct) = HalfedgeRecord {
+            *self.he_mut(ct) = HalfedgeRecord {
                 origin: w[j],
                 next: down_i,
                 face: s,
             };
-            *self.he_mut::<J>(up_j) = HalfedgeRecord {
+            *self.he_mut(up_j) = HalfedgeRecord {
                 origin: self.origin(ring[j]),
                 next: ct,
                 face: s,
             };
-            *self.he_mut::<J>(down_i) = HalfedgeRecord {
+            *self.he_mut(down_i) = HalfedgeRecord {
                 origin: w[i],
                 next: h,
                 face: s,
             };
-            self.he_mut::<J>(h).next = up_j;
-            self.he_mut::<J>(h).face = s;
-            self.set_face_link::<J>(s, h);
-            *self.v_halfedge_mut::<J>(w[i]) = c;
+            self.he_mut(h).next = up_j;
+            self.he_mut(h).face = s;
+            self.set_face_link(s, h);
+            *self.v_halfedge_mut(w[i]) = c;
         }
-        self.set_face_link::<J>(f, cap[0].halfedge(0));
+        self.set_face_link(f, cap[0].halfedge(0));
         for i in 0..n {
             let v = self.origin(ring[i]).index();
             self.attrs.vertex.interpolate(w[i].index(), &[(v, 1.0)]);
@@ -148,7 +146,7 @@ impl Mesh {
                 }
             }
         }
-        self.end_op::<J>();
+        self.end_op();
         Ok(sides.into_iter().map(|s| self.fkey(s)).collect())
     }
 }
