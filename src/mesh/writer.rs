@@ -70,6 +70,17 @@ impl<J: Journaling> DerefMut for Writer<'_, J> {
 }
 
 impl<J: Journaling> Writer<'_, J> {
+    /// The same writer for a shorter borrow, to hand by value to a helper
+    /// that is not inlined (by value, it reads the mesh through one
+    /// pointer, not two).
+    #[inline(always)]
+    pub(crate) fn reborrow(&mut self) -> Writer<'_, J> {
+        Writer {
+            mesh: self.mesh,
+            mode: PhantomData,
+        }
+    }
+
     /// The recorder, if `J` records and one exists (with `Unrecorded`, a
     /// constant `None`: the caller's recording code is dead).
     #[inline(always)]
@@ -208,25 +219,9 @@ impl<J: Journaling> Writer<'_, J> {
     /// hole, else turn around `v` (clockwise, `h -> twin(h).next`, as
     /// [`Mesh::outgoing`] does) for one that does. O(1) when it already
     /// points into a hole, else O(degree of `v`).
+    #[inline(always)]
     pub(crate) fn point_at_hole(&mut self, v: Vid) {
-        let m = &*self.mesh;
-        if m.on_boundary(v) {
-            return;
-        }
-        let start = m.v_halfedge[v];
-        let mut h = start;
-        // Bounded: a ring has fewer than 2E half-edges.
-        for _ in 0..m.he.len() {
-            if h.is_none() {
-                return;
-            }
-            if m.in_hole(h) {
-                self.set_vertex_halfedge(v, h);
-                return;
-            }
-            let n = m.he[h.twin()].next;
-            h = if n == start { Hid::NONE } else { n };
-        }
+        self.mesh.point_at_hole::<J>(v)
     }
     // ----- allocation (internal; columns follow every slot) -------------------
 
@@ -254,31 +249,9 @@ impl<J: Journaling> Writer<'_, J> {
     }
 
     /// A new edge slot (two half-edges) with no links yet.
+    #[inline(always)]
     pub(crate) fn alloc_edge(&mut self) -> Eid {
-        let (i, g, is_new) = self.mesh.e_slots.alloc();
-        let e = Eid::new(i);
-        if is_new {
-            self.mesh.he.push(HalfedgeRecord::VACANT);
-            self.mesh.he.push(HalfedgeRecord::VACANT);
-        } else {
-            for h in e.halfedges() {
-                self.set_he(h, HalfedgeRecord::VACANT);
-            }
-            if let Some(r) = self.recorder() {
-                r.reused(Arena::Edge, i, g);
-                self.mesh.attrs.edge.reset(e.index());
-                for h in e.halfedges() {
-                    self.mesh.attrs.halfedge.reset(h.index());
-                }
-            }
-        }
-        let slots = self.mesh.e_slots.slot_count();
-        self.mesh.attrs.edge.ensure_len(slots);
-        self.mesh
-            .attrs
-            .halfedge
-            .ensure_len(Eid::halfedge_slots(slots));
-        e
+        self.mesh.alloc_edge::<J>()
     }
 
     /// A new face slot (a hole if `hole`) with no links yet.
@@ -310,58 +283,146 @@ impl<J: Journaling> Writer<'_, J> {
     /// Remove a vertex slot and its attribute values. While a journal
     /// records, the slot keeps its links and values (undoing the removal
     /// then only revives the slot; a reuse clears them, recorded).
+    #[inline(always)]
     pub(crate) fn free_vertex(&mut self, v: Vid) {
-        let generation = self.mesh.v_slots.generation_of(v.raw());
-        if let Some(r) = self.recorder() {
-            r.died(Arena::Vertex, v.raw(), generation);
-        } else {
-            self.mesh.attrs.vertex.clear(v.index());
-            *self.mesh.v_halfedge.unlogged_mut(v) = Hid::NONE;
-        }
-        self.mesh.v_slots.free(v.raw());
+        self.mesh.free_vertex::<J>(v)
     }
 
     /// Remove an edge slot, both half-edges and their attribute values
     /// (kept while a journal records, as in [`free_vertex`](Writer::free_vertex)).
+    #[inline(always)]
     pub(crate) fn free_edge(&mut self, e: Eid) {
-        let generation = self.mesh.e_slots.generation_of(e.raw());
-        if let Some(r) = self.recorder() {
-            r.died(Arena::Edge, e.raw(), generation);
-        } else {
-            self.mesh.attrs.edge.clear(e.index());
-            for h in e.halfedges() {
-                self.mesh.attrs.halfedge.clear(h.index());
-                *self.mesh.he.unlogged_mut(h) = HalfedgeRecord::VACANT;
-            }
-        }
-        self.mesh.e_slots.free(e.raw());
+        self.mesh.free_edge::<J>(e)
     }
 
     /// Remove a face slot and its attribute values (kept while a journal
     /// records, as in [`free_vertex`](Writer::free_vertex)).
+    #[inline(always)]
     pub(crate) fn free_face(&mut self, f: Fid) {
-        if self.mesh.is_hole(f) {
-            self.mesh.holes -= 1;
-        }
-        let generation = self.mesh.f_slots.generation_of(f.raw());
-        if let Some(r) = self.recorder() {
-            r.died(Arena::Face, f.raw(), generation);
-        } else {
-            self.mesh.attrs.face.clear(f.index());
-            *self.mesh.f_halfedge.unlogged_mut(f) = FaceLink::unset(false);
-        }
-        self.mesh.f_slots.free(f.raw());
+        self.mesh.free_face::<J>(f)
     }
 
     /// Set or clear a face's hole flag.
+    #[inline(always)]
     pub(crate) fn set_hole(&mut self, f: Fid, hole: bool) {
-        let link = self.mesh.f_halfedge[f];
+        self.mesh.set_hole::<J>(f, hole)
+    }
+}
+
+/// The recorder in `rec`, if `J` records and one exists (a constant `None`
+/// with `Unrecorded`).
+#[inline(always)]
+fn recorder<J: Journaling>(rec: &mut Option<Box<Recorder>>) -> Option<&mut Recorder> {
+    if J::ON {
+        rec.as_deref_mut()
+    } else {
+        None
+    }
+}
+
+// The bodies of the writer's calls that are not inlined, on the mesh
+// itself: passed the mesh, not the writer, they read its arrays through
+// one pointer.
+impl Mesh {
+    /// [`Writer::point_at_hole`]'s body.
+    fn point_at_hole<J: Journaling>(&mut self, v: Vid) {
+        let m = &*self;
+        if m.on_boundary(v) {
+            return;
+        }
+        let start = m.v_halfedge[v];
+        let mut h = start;
+        // Bounded: a ring has fewer than 2E half-edges.
+        for _ in 0..m.he.len() {
+            if h.is_none() {
+                return;
+            }
+            if m.in_hole(h) {
+                self.writer::<J>().set_vertex_halfedge(v, h);
+                return;
+            }
+            let n = m.he[h.twin()].next;
+            h = if n == start { Hid::NONE } else { n };
+        }
+    }
+
+    /// [`Writer::alloc_edge`]'s body.
+    fn alloc_edge<J: Journaling>(&mut self) -> Eid {
+        let (i, g, is_new) = self.e_slots.alloc();
+        let e = Eid::new(i);
+        if is_new {
+            self.he.push(HalfedgeRecord::VACANT);
+            self.he.push(HalfedgeRecord::VACANT);
+        } else {
+            for h in e.halfedges() {
+                self.writer::<J>().set_he(h, HalfedgeRecord::VACANT);
+            }
+            if let Some(r) = recorder::<J>(&mut self.rec) {
+                r.reused(Arena::Edge, i, g);
+                self.attrs.edge.reset(e.index());
+                for h in e.halfedges() {
+                    self.attrs.halfedge.reset(h.index());
+                }
+            }
+        }
+        let slots = self.e_slots.slot_count();
+        self.attrs.edge.ensure_len(slots);
+        self.attrs.halfedge.ensure_len(Eid::halfedge_slots(slots));
+        e
+    }
+
+    /// [`Writer::free_vertex`]'s body.
+    fn free_vertex<J: Journaling>(&mut self, v: Vid) {
+        let generation = self.v_slots.generation_of(v.raw());
+        if let Some(r) = recorder::<J>(&mut self.rec) {
+            r.died(Arena::Vertex, v.raw(), generation);
+        } else {
+            self.attrs.vertex.clear(v.index());
+            *self.v_halfedge.unlogged_mut(v) = Hid::NONE;
+        }
+        self.v_slots.free(v.raw());
+    }
+
+    /// [`Writer::free_edge`]'s body.
+    fn free_edge<J: Journaling>(&mut self, e: Eid) {
+        let generation = self.e_slots.generation_of(e.raw());
+        if let Some(r) = recorder::<J>(&mut self.rec) {
+            r.died(Arena::Edge, e.raw(), generation);
+        } else {
+            self.attrs.edge.clear(e.index());
+            for h in e.halfedges() {
+                self.attrs.halfedge.clear(h.index());
+                *self.he.unlogged_mut(h) = HalfedgeRecord::VACANT;
+            }
+        }
+        self.e_slots.free(e.raw());
+    }
+
+    /// [`Writer::free_face`]'s body.
+    fn free_face<J: Journaling>(&mut self, f: Fid) {
+        if self.is_hole(f) {
+            self.holes -= 1;
+        }
+        let generation = self.f_slots.generation_of(f.raw());
+        if let Some(r) = recorder::<J>(&mut self.rec) {
+            r.died(Arena::Face, f.raw(), generation);
+        } else {
+            self.attrs.face.clear(f.index());
+            *self.f_halfedge.unlogged_mut(f) = FaceLink::unset(false);
+        }
+        self.f_slots.free(f.raw());
+    }
+
+    /// [`Writer::set_hole`]'s body.
+    fn set_hole<J: Journaling>(&mut self, f: Fid, hole: bool) {
+        let link = self.f_halfedge[f];
         if link.is_hole() != hole {
-            self.set_face_link_raw(f, link.with_hole(hole));
+            self.writer::<J>()
+                .set_face_link_raw(f, link.with_hole(hole));
             if hole {
-                self.mesh.holes += 1;
+                self.holes += 1;
             } else {
-                self.mesh.holes -= 1;
+                self.holes -= 1;
             }
         }
     }

@@ -572,32 +572,45 @@ impl Mesh {
     }
 }
 
-impl<J: Journaling> Writer<'_, J> {
+impl Mesh {
     /// [`collapse_edge_at`](Mesh::collapse_edge_at)'s body, in journaling mode `J`.
-    fn collapse_edge_at_with(&mut self, hk: HalfedgeKey, t: f64) -> Result<VertexKey> {
+    fn collapse_edge_at_with<J: Journaling>(
+        &mut self,
+        hk: HalfedgeKey,
+        t: f64,
+    ) -> Result<VertexKey> {
+        let mut w = self.writer::<J>();
         if !(0.0..=1.0).contains(&t) {
             return Err(refuse(OP, hk, Refusal::Parameter("t must lie in 0..=1")));
         }
-        let plan = self.plan_collapse(hk)?;
-        let b = self.commit_collapse(plan, t, None);
-        self.end_op();
-        Ok(self.vkey(b))
+        let plan = w.plan_collapse(hk)?;
+        let b = w.commit_collapse(plan, t, None);
+        w.end_op();
+        Ok(w.vkey(b))
     }
 
     /// [`collapse_edge_to`](Mesh::collapse_edge_to)'s body, in journaling mode `J`.
-    fn collapse_edge_to_with(&mut self, hk: HalfedgeKey, position: [f64; 3]) -> Result<VertexKey> {
-        let plan = self.plan_collapse(hk)?;
-        let t = self.collapse_weight(plan.h, position, hk)?;
-        let b = self.commit_collapse(plan, t, Some(position));
-        self.end_op();
-        Ok(self.vkey(b))
+    fn collapse_edge_to_with<J: Journaling>(
+        &mut self,
+        hk: HalfedgeKey,
+        position: [f64; 3],
+    ) -> Result<VertexKey> {
+        let mut w = self.writer::<J>();
+        let plan = w.plan_collapse(hk)?;
+        let t = w.collapse_weight(plan.h, position, hk)?;
+        let b = w.commit_collapse(plan, t, Some(position));
+        w.end_op();
+        Ok(w.vkey(b))
     }
+}
 
+impl<J: Journaling> Writer<'_, J> {
     /// The decimator's and the remesher's door: collapse `h` with weight `t` and, if given,
     /// the exact position, without the per-call debug validation (the
     /// caller validates once at the end; validating after each of
     /// thousands of collapses would make debug builds quadratic). The
     /// caller checked that `position` is finite and `t` in `0..=1`.
+    #[inline(always)]
     pub(crate) fn collapse_unvalidated(
         &mut self,
         h: Hid,
@@ -665,11 +678,11 @@ impl<J: Journaling> Writer<'_, J> {
         self.free_vertex(a);
         if left_goes {
             // Two-sided loop (ph: c -> b, nh: b -> c): keep nh.
-            self.dissolve_two_gon(ph, nh, before_tph);
+            self.reborrow().dissolve_two_gon(ph, nh, before_tph);
         }
         if right_goes {
             // Two-sided loop (pt: d -> b, nt: b -> d): keep pt.
-            self.dissolve_two_gon(nt, pt, None);
+            self.reborrow().dissolve_two_gon(nt, pt, None);
         }
         // Rule 11: b has a's holes now; a closed triangular hole may have
         // held its apex's half-edge.
@@ -689,7 +702,7 @@ impl<J: Journaling> Writer<'_, J> {
     /// `twin(p)` in its face and `p`'s edge goes. The mesh must be consistent
     /// apart from this two-sided loop. `before_tp`, when known, is the
     /// half-edge before `twin(p)` (else it is found by turning).
-    fn dissolve_two_gon(&mut self, p: Hid, n: Hid, before_tp: Option<Hid>) {
+    fn dissolve_two_gon(mut self, p: Hid, n: Hid, before_tp: Option<Hid>) {
         let f = self.face_of(p);
         let tp = p.twin();
         let g = self.face_of(tp);

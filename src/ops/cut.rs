@@ -295,29 +295,32 @@ impl Cut {
     }
 }
 
-impl<J: Journaling> Writer<'_, J> {
+impl Mesh {
     /// [`cut_path`](Mesh::cut_path)'s body, in journaling mode `J`.
-    fn cut_path_with(&mut self, path: &[VertexKey]) -> Result<Vec<FaceKey>> {
-        let plan = self.plan_cut(path)?;
-        let mut cut = self.read_cut(plan);
+    fn cut_path_with<J: Journaling>(&mut self, path: &[VertexKey]) -> Result<Vec<FaceKey>> {
+        let mut w = self.writer::<J>();
+        let plan = w.plan_cut(path)?;
+        let mut cut = w.read_cut(plan);
         // Vertices: v_i and their right-side copies.
         for (i, _) in &cut.plan.wedges {
-            cut.copy[*i] = self.alloc_vertex();
+            cut.copy[*i] = w.alloc_vertex();
         }
         if cut.plan.closed {
             let k = cut.plan.hs.len();
             cut.copy[k] = cut.copy[0];
         }
-        cut.new_edges = (0..cut.plan.hs.len()).map(|_| self.alloc_edge()).collect();
-        self.link_cut_right(&cut);
-        self.link_cut_boundary(&cut);
-        self.move_cut_wedges(&cut);
-        let (made, spare) = self.label_cut_holes(&cut);
-        self.cut_attributes(&cut, &made, &spare);
-        self.end_op();
-        Ok(made.into_iter().map(|h| self.fkey(h)).collect())
+        cut.new_edges = (0..cut.plan.hs.len()).map(|_| w.alloc_edge()).collect();
+        w.link_cut_right(&cut);
+        w.link_cut_boundary(&cut);
+        w.move_cut_wedges(&cut);
+        let (made, spare) = w.label_cut_holes(&cut);
+        w.cut_attributes(&cut, &made, &spare);
+        w.end_op();
+        Ok(made.into_iter().map(|h| w.fkey(h)).collect())
     }
+}
 
+impl<J: Journaling> Writer<'_, J> {
     /// `g_i = v'_i+1 -> v'_i` takes `t_i`'s place in its right face.
     fn link_cut_right(&mut self, cut: &Cut) {
         let k = cut.ts.len();

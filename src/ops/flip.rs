@@ -140,15 +140,18 @@ impl Mesh {
     }
 }
 
-impl<J: Journaling> Writer<'_, J> {
+impl Mesh {
     /// [`flip_edge`](Mesh::flip_edge)'s body, in journaling mode `J`.
-    fn flip_edge_with(&mut self, ek: EdgeKey) -> Result<EdgeKey> {
-        let plan = self.plan_flip(ek)?;
-        self.commit_flip(plan);
-        self.end_op();
+    fn flip_edge_with<J: Journaling>(&mut self, ek: EdgeKey) -> Result<EdgeKey> {
+        let mut w = self.writer::<J>();
+        let plan = w.plan_flip(ek)?;
+        w.commit_flip(plan);
+        w.end_op();
         Ok(ek)
     }
+}
 
+impl<J: Journaling> Writer<'_, J> {
     /// The commit and rules of a planned flip; cannot fail.
     #[inline(always)]
     fn commit_flip(&mut self, plan: FlipPlan) {

@@ -125,45 +125,49 @@ impl Mesh {
     }
 }
 
-impl<J: Journaling> Writer<'_, J> {
+impl Mesh {
     /// [`remove_face`](Mesh::remove_face)'s body, in journaling mode `J`.
-    fn remove_face_with(&mut self, fk: FaceKey) -> Result<Vec<FaceKey>> {
-        let f = self.plan_remove_face(fk)?;
-        let sides: Vec<Hid> = self.face_loop(f).collect();
-        self.set_hole(f, true);
-        self.attrs.face.interpolate(f.index(), &[]);
+    fn remove_face_with<J: Journaling>(&mut self, fk: FaceKey) -> Result<Vec<FaceKey>> {
+        let mut w = self.writer::<J>();
+        let f = w.plan_remove_face(fk)?;
+        let sides: Vec<Hid> = w.face_loop(f).collect();
+        w.set_hole(f, true);
+        w.attrs.face.interpolate(f.index(), &[]);
         // Rule 11: every corner is now on the boundary.
         for &x in &sides {
-            let v = self.origin(x);
-            *self.v_halfedge_mut(v) = x;
+            let v = w.origin(x);
+            *w.v_halfedge_mut(v) = x;
         }
         let mut kept = Vec::new();
         let mut dangling = Vec::new();
         for &x in &sides {
-            if self.in_hole(x.twin()) {
+            if w.in_hole(x.twin()) {
                 dangling.push(x);
             } else {
                 kept.push(x);
             }
         }
         for x in dangling {
-            let survivor = self.face_of(x.twin());
-            self.remove_edge_raw(x.edge(), survivor);
+            let survivor = w.face_of(x.twin());
+            w.remove_edge_raw(x.edge(), survivor);
         }
-        let mut holes: Vec<Fid> = kept.iter().map(|&x| self.face_of(x)).collect();
+        let mut holes: Vec<Fid> = kept.iter().map(|&x| w.face_of(x)).collect();
         holes.sort_unstable();
         holes.dedup();
-        self.end_op();
-        Ok(holes.into_iter().map(|h| self.fkey(h)).collect())
+        w.end_op();
+        Ok(holes.into_iter().map(|h| w.fkey(h)).collect())
     }
 
     /// [`fill_hole`](Mesh::fill_hole)'s body, in journaling mode `J`.
-    fn fill_hole_with(&mut self, hole: FaceKey) -> Result<FaceKey> {
-        self.fill_hole_open(hole)?;
-        self.end_op();
+    fn fill_hole_with<J: Journaling>(&mut self, hole: FaceKey) -> Result<FaceKey> {
+        let mut w = self.writer::<J>();
+        w.fill_hole_open(hole)?;
+        w.end_op();
         Ok(hole)
     }
+}
 
+impl<J: Journaling> Writer<'_, J> {
     /// [`fill_hole`](Mesh::fill_hole) without ending the edit: for
     /// composite operators, which end theirs once (one journal step).
     pub(crate) fn fill_hole_open(&mut self, hole: FaceKey) -> Result<()> {

@@ -180,7 +180,7 @@ impl Mesh {
                 .filter(|&f| self.face_degree(f.id()) > 3)
                 .collect();
             return self
-                .transaction(|m| Ok(m.writer::<Recorded>().triangulate_all_with()))
+                .transaction(|m| Ok(m.triangulate_all_with::<Recorded>()))
                 .unwrap_or(all);
         }
         journaled!(unguarded self.triangulate_all_with())
@@ -383,18 +383,56 @@ fn projector(pts: &[[f64; 3]]) -> impl Fn([f64; 3]) -> [f64; 2] {
     }
 }
 
-impl<J: Journaling> Writer<'_, J> {
+impl Mesh {
     /// [`triangulate`](Mesh::triangulate)'s body, in journaling mode `J`.
-    fn triangulate_with(&mut self, f: FaceKey) -> Result<Vec<FaceKey>> {
+    fn triangulate_with<J: Journaling>(&mut self, f: FaceKey) -> Result<Vec<FaceKey>> {
+        let mut w = self.writer::<J>();
         let mut sides = Vec::new();
         let mut ears = Vec::new();
-        self.plan_triangulate(f, &mut sides, &mut ears)?;
+        w.plan_triangulate(f, &mut sides, &mut ears)?;
         let mut pieces = Vec::new();
-        self.cut_ears(&mut sides, &ears, &mut pieces);
-        self.end_op();
-        Ok(pieces.into_iter().map(|g| self.fkey(g)).collect())
+        w.cut_ears(&mut sides, &ears, &mut pieces);
+        w.end_op();
+        Ok(pieces.into_iter().map(|g| w.fkey(g)).collect())
     }
 
+    /// [`triangulate_all`](Mesh::triangulate_all)'s body, in journaling mode `J`.
+    fn triangulate_all_with<J: Journaling>(&mut self) -> Vec<FaceKey> {
+        let mut w = self.writer::<J>();
+        let faces: Vec<FaceKey> = w.faces().filter(|&f| w.face_degree(f.id()) > 3).collect();
+        let mut left = Vec::new();
+        let (mut sides, mut ears, mut pieces) = (Vec::new(), Vec::new(), Vec::new());
+        for f in faces {
+            if w.plan_triangulate(f, &mut sides, &mut ears).is_err() {
+                left.push(f);
+                continue;
+            }
+            w.cut_ears(&mut sides, &ears, &mut pieces);
+        }
+        w.end_op();
+        left
+    }
+
+    /// [`fill_hole_triangulated`](Mesh::fill_hole_triangulated)'s body, in journaling mode `J`.
+    fn fill_hole_triangulated_with<J: Journaling>(
+        &mut self,
+        hole: FaceKey,
+    ) -> Result<Vec<FaceKey>> {
+        let mut w = self.writer::<J>();
+        w.check_fill_hole(hole)?;
+        let mut sides = Vec::new();
+        let mut ears = Vec::new();
+        w.plan_triangulate_loop(hole, &mut sides, &mut ears, true, true)?;
+        // One edit: the fill does not end its own (one journal step).
+        w.fill_hole_open(hole)?;
+        let mut pieces = Vec::new();
+        w.cut_ears(&mut sides, &ears, &mut pieces);
+        w.end_op();
+        Ok(pieces.into_iter().map(|g| w.fkey(g)).collect())
+    }
+}
+
+impl<J: Journaling> Writer<'_, J> {
     /// Apply planned ears; `sides[i]` is the half-edge leaving corner `i` in
     /// what remains of the face. `pieces` receives the triangles.
     fn cut_ears(&mut self, sides: &mut [Hid], ears: &[Ear], pieces: &mut Vec<Fid>) {
@@ -412,38 +450,5 @@ impl<J: Journaling> Writer<'_, J> {
             return;
         }
         self.split_face_values(f, pieces);
-    }
-
-    /// [`triangulate_all`](Mesh::triangulate_all)'s body, in journaling mode `J`.
-    fn triangulate_all_with(&mut self) -> Vec<FaceKey> {
-        let faces: Vec<FaceKey> = self
-            .faces()
-            .filter(|&f| self.face_degree(f.id()) > 3)
-            .collect();
-        let mut left = Vec::new();
-        let (mut sides, mut ears, mut pieces) = (Vec::new(), Vec::new(), Vec::new());
-        for f in faces {
-            if self.plan_triangulate(f, &mut sides, &mut ears).is_err() {
-                left.push(f);
-                continue;
-            }
-            self.cut_ears(&mut sides, &ears, &mut pieces);
-        }
-        self.end_op();
-        left
-    }
-
-    /// [`fill_hole_triangulated`](Mesh::fill_hole_triangulated)'s body, in journaling mode `J`.
-    fn fill_hole_triangulated_with(&mut self, hole: FaceKey) -> Result<Vec<FaceKey>> {
-        self.check_fill_hole(hole)?;
-        let mut sides = Vec::new();
-        let mut ears = Vec::new();
-        self.plan_triangulate_loop(hole, &mut sides, &mut ears, true, true)?;
-        // One edit: the fill does not end its own (one journal step).
-        self.fill_hole_open(hole)?;
-        let mut pieces = Vec::new();
-        self.cut_ears(&mut sides, &ears, &mut pieces);
-        self.end_op();
-        Ok(pieces.into_iter().map(|g| self.fkey(g)).collect())
     }
 }

@@ -177,27 +177,34 @@ impl NewElements {
     }
 }
 
-impl<J: Journaling> Writer<'_, J> {
+impl Mesh {
     /// [`split_vertex`](Mesh::split_vertex)'s body, in journaling mode `J`.
-    fn split_vertex_with(&mut self, hck: HalfedgeKey, hdk: HalfedgeKey) -> Result<HalfedgeKey> {
-        let plan = self.plan_split_vertex(hck, hdk)?;
-        let s = self.read_split(plan);
-        let a = self.alloc_vertex();
-        let (e_ab, e_ac, e_ad) = (self.alloc_edge(), self.alloc_edge(), self.alloc_edge());
+    fn split_vertex_with<J: Journaling>(
+        &mut self,
+        hck: HalfedgeKey,
+        hdk: HalfedgeKey,
+    ) -> Result<HalfedgeKey> {
+        let mut w = self.writer::<J>();
+        let plan = w.plan_split_vertex(hck, hdk)?;
+        let s = w.read_split(plan);
+        let a = w.alloc_vertex();
+        let (e_ab, e_ac, e_ad) = (w.alloc_edge(), w.alloc_edge(), w.alloc_edge());
         let new = NewElements {
             a,
             edges: [e_ab, e_ac, e_ad],
-            left: self.alloc_face(false),
-            right: self.alloc_face(false),
+            left: w.alloc_face(false),
+            right: w.alloc_face(false),
         };
-        self.move_split_wedge(&s, &new);
-        self.link_split_triangles(&s, &new);
-        self.point_split_vertices(&s, &new);
-        self.split_vertex_attributes(&s, &new);
-        self.end_op();
-        Ok(self.hkey(new.h()))
+        w.move_split_wedge(&s, &new);
+        w.link_split_triangles(&s, &new);
+        w.point_split_vertices(&s, &new);
+        w.split_vertex_attributes(&s, &new);
+        w.end_op();
+        Ok(w.hkey(new.h()))
     }
+}
 
+impl<J: Journaling> Writer<'_, J> {
     /// The moved half-edges leave `a`; in the faces beside the wedge `ac`
     /// takes `hc`'s place and `da` takes `d -> b`'s.
     fn move_split_wedge(&mut self, s: &VertexSplit, new: &NewElements) {

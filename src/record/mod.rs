@@ -129,28 +129,28 @@ impl Journaling for Unrecorded {
     const ON: bool = false;
 }
 
-/// Run an operator body, a method of the mesh's
-/// [`Writer`](crate::mesh::Writer), in the mode the mesh is in: the one
-/// place an operator's [`Journaling`] mode is chosen.
-/// `journaled!(self.body(args..))` calls `self.writer::<Recorded>().body(..)`
-/// while a recorder exists, `self.writer::<Unrecorded>().body(..)`
-/// otherwise; on a mesh with a column whose rule can fail, as a
-/// transaction, so that a rule's failure refuses the operator (its body
-/// returns a `Result`) and leaves the mesh unchanged.
+/// Run an operator body generic over [`Journaling`] in the mode the mesh
+/// is in, the one place an operator's mode is chosen:
+/// `journaled!(self.body(args..))` calls `self.body::<Recorded>` while a
+/// recorder exists, `self.body::<Unrecorded>` otherwise. The body takes
+/// the mesh's [`Writer`](crate::mesh::Writer) in that mode once and makes
+/// every write through it. On a mesh with a column whose rule can fail,
+/// the body runs as a transaction, so that a rule's failure refuses the
+/// operator (its body returns a `Result`) and leaves the mesh unchanged.
 /// `journaled!(unguarded self.body(args..))` leaves that to the caller.
 macro_rules! journaled {
     ($m:ident . $body:ident ( $($arg:expr),* $(,)? )) => {
         if $m.attrs.may_fail() {
-            $m.guarded(|m| m.writer::<$crate::record::Recorded>().$body($($arg),*))
+            $m.guarded(|m| m.$body::<$crate::record::Recorded>($($arg),*))
         } else {
             $crate::record::journaled!(unguarded $m.$body($($arg),*))
         }
     };
     (unguarded $m:ident . $body:ident ( $($arg:expr),* $(,)? )) => {
         if $m.rec.is_some() {
-            $m.writer::<$crate::record::Recorded>().$body($($arg),*)
+            $m.$body::<$crate::record::Recorded>($($arg),*)
         } else {
-            $m.writer::<$crate::record::Unrecorded>().$body($($arg),*)
+            $m.$body::<$crate::record::Unrecorded>($($arg),*)
         }
     };
 }
