@@ -31,7 +31,8 @@
 //! are on the mesh; the bookkeeping (turning the history and change
 //! tracking on, limits, unit counts and names for a menu, manual step
 //! brackets, taking the changes) sits behind [`Mesh::history`] and
-//! [`Mesh::history_mut`] (see [`History`] for why).
+//! [`Mesh::history_mut`]: an editor calls the four verbs once per user
+//! action and reads or sets the rest around them, once or for its UI.
 //!
 //! The recorder and its step log belong to the storage (`record`, a layer
 //! under the mesh: the mesh holds the recorder, and its link mutators and
