@@ -542,15 +542,15 @@ fn journal(input: &Input) -> (Elapsed, String) {
         off.push(poke_collapse(&mut m).all.cpu);
         drop(m);
         let mut m = input.mesh.clone();
-        m.enable_history(Default::default());
+        m.history_mut().enable(Default::default());
         // Timed with the step's end: sealing (encoding the delta) is part
         // of what the journal costs.
         let t0 = stamp();
-        m.begin_step("run");
+        m.history_mut().begin_step("run");
         let run = poke_collapse(&mut m);
-        m.end_step();
+        m.history_mut().end_step();
         on.push(since(t0).cpu);
-        bytes = m.history_bytes();
+        bytes = m.history().bytes();
         ops = run.poked + run.collapsed;
         let t0 = stamp();
         assert!(m.undo());

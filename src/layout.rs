@@ -440,7 +440,7 @@ impl<I: Id, T> IdVec<I, T> {
 /// The mesh's link arrays: an [`IdVec`] that can be read like one (it
 /// derefs to it) but not written through indexing. Writes go through the
 /// mesh's journaled mutators (`set_he`, `he_mut`, `set_vertex_halfedge`,
-/// `set_face_link_raw` in `mesh/hooks.rs`), which call
+/// `set_face_link_raw` in `mesh/writer.rs`), which call
 /// [`unlogged_mut`](LinkVec::unlogged_mut) after recording the old value; a
 /// stray `mesh.he[h] = ..` does not compile.
 #[derive(Clone, PartialEq, Eq)]

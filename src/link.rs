@@ -189,8 +189,9 @@ impl RawEdit<'_> {
     pub fn set_origin(&mut self, h: HalfedgeKey, v: VertexKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let v = self.mesh.check_vertex(v)?;
-        self.mesh.he_mut::<Recorded>(h).origin = v;
-        *self.mesh.v_halfedge_mut::<Recorded>(v) = h;
+        let mut w = self.mesh.writer::<Recorded>();
+        w.he_mut(h).origin = v;
+        *w.v_halfedge_mut(v) = h;
         Ok(())
     }
 
@@ -213,8 +214,9 @@ impl RawEdit<'_> {
     pub fn set_face(&mut self, h: HalfedgeKey, f: FaceKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let f = self.mesh.check_face(f)?;
-        self.mesh.he_mut::<Recorded>(h).face = f;
-        self.mesh.set_face_link::<Recorded>(f, h);
+        let mut w = self.mesh.writer::<Recorded>();
+        w.he_mut(h).face = f;
+        w.set_face_link(f, h);
         Ok(())
     }
 
@@ -236,7 +238,7 @@ impl RawEdit<'_> {
     pub fn link(&mut self, a: HalfedgeKey, b: HalfedgeKey) -> Result<()> {
         let a = self.mesh.check_halfedge(a)?;
         let b = self.mesh.check_halfedge(b)?;
-        self.mesh.set_next::<Recorded>(a, b);
+        self.mesh.writer::<Recorded>().set_next(a, b);
         Ok(())
     }
 
@@ -259,7 +261,7 @@ impl RawEdit<'_> {
     pub fn set_vertex_halfedge(&mut self, v: VertexKey, h: HalfedgeKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let v = self.mesh.check_vertex(v)?;
-        *self.mesh.v_halfedge_mut::<Recorded>(v) = h;
+        *self.mesh.writer::<Recorded>().v_halfedge_mut(v) = h;
         Ok(())
     }
 
@@ -282,7 +284,7 @@ impl RawEdit<'_> {
     pub fn set_face_halfedge(&mut self, f: FaceKey, h: HalfedgeKey) -> Result<()> {
         let h = self.mesh.check_halfedge(h)?;
         let f = self.mesh.check_face(f)?;
-        self.mesh.set_face_link::<Recorded>(f, h);
+        self.mesh.writer::<Recorded>().set_face_link(f, h);
         Ok(())
     }
 
@@ -303,7 +305,7 @@ impl RawEdit<'_> {
     /// ```
     pub fn set_hole(&mut self, f: FaceKey, hole: bool) -> Result<()> {
         let f = self.mesh.check_face(f)?;
-        self.mesh.set_hole::<Recorded>(f, hole);
+        self.mesh.writer::<Recorded>().set_hole(f, hole);
         Ok(())
     }
 
@@ -320,7 +322,7 @@ impl RawEdit<'_> {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn new_vertex(&mut self) -> VertexKey {
-        let v = self.mesh.alloc_vertex::<Recorded>();
+        let v = self.mesh.writer::<Recorded>().alloc_vertex();
         self.mesh.vkey(v)
     }
 
@@ -338,7 +340,7 @@ impl RawEdit<'_> {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn new_edge(&mut self) -> EdgeKey {
-        let e = self.mesh.alloc_edge::<Recorded>();
+        let e = self.mesh.writer::<Recorded>().alloc_edge();
         self.mesh.ekey(e)
     }
 
@@ -355,7 +357,7 @@ impl RawEdit<'_> {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn new_face(&mut self, hole: bool) -> FaceKey {
-        let f = self.mesh.alloc_face::<Recorded>(hole);
+        let f = self.mesh.writer::<Recorded>().alloc_face(hole);
         self.mesh.fkey(f)
     }
 
@@ -375,7 +377,7 @@ impl RawEdit<'_> {
     /// ```
     pub fn remove_vertex(&mut self, v: VertexKey) -> Result<()> {
         let v = self.mesh.check_vertex(v)?;
-        self.mesh.free_vertex::<Recorded>(v);
+        self.mesh.writer::<Recorded>().free_vertex(v);
         Ok(())
     }
 
@@ -395,7 +397,7 @@ impl RawEdit<'_> {
     /// ```
     pub fn remove_edge(&mut self, e: EdgeKey) -> Result<()> {
         let e = self.mesh.check_edge(e)?;
-        self.mesh.free_edge::<Recorded>(e);
+        self.mesh.writer::<Recorded>().free_edge(e);
         Ok(())
     }
 
@@ -415,7 +417,7 @@ impl RawEdit<'_> {
     /// ```
     pub fn remove_face(&mut self, f: FaceKey) -> Result<()> {
         let f = self.mesh.check_face(f)?;
-        self.mesh.free_face::<Recorded>(f);
+        self.mesh.writer::<Recorded>().free_face(f);
         Ok(())
     }
 

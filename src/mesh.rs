@@ -20,16 +20,18 @@ use crate::error::{Error, Result};
 use crate::keys::{AnyKey, EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 pub(crate) use crate::layout::HalfedgeRecord;
 use crate::layout::{Eid, FaceLink, Fid, Hid, LinkVec, Vid};
-use crate::record::{Arena, Journaling, PerArena, Recorded, Recorder};
+use crate::record::{PerArena, Recorded, Recorder};
 use crate::slots::Slots;
 use crate::store::rules::Interpolate;
 use crate::store::{AttrStore, Column, POSITION};
 
-mod hooks;
 mod read;
 mod topology;
 pub(crate) use topology::Topology;
 mod recording;
+mod writer;
+
+pub(crate) use writer::Writer;
 
 /// A polygon mesh stored as a half-edge graph.
 ///
@@ -522,19 +524,6 @@ impl Mesh {
         self.in_hole(self.v_halfedge[v])
     }
 
-    /// Re-establish rule 11 at `v` after an edit that may have changed which
-    /// of its half-edges lie in holes: keep its half-edge if that lies in a
-    /// hole, else turn around `v` for one that does. O(1) when it already
-    /// points into a hole, else O(degree of `v`).
-    pub(crate) fn point_at_hole<J: Journaling>(&mut self, v: Vid) {
-        if self.on_boundary(v) {
-            return;
-        }
-        if let Some(h) = self.outgoing(v).find(|&h| self.in_hole(h)) {
-            self.set_vertex_halfedge::<J>(v, h);
-        }
-    }
-
     /// Re-establish rule 11 for every vertex: O(half-edges). Robust to any
     /// links (a mesh being deserialized or raw-edited, not yet validated):
     /// it reads only in-range slots, and moves a vertex's half-edge only
@@ -558,136 +547,7 @@ impl Mesh {
                     && !self.f_halfedge.get(c.face).is_some_and(|l| l.is_hole())
             });
             if cur_ok {
-                self.set_vertex_halfedge::<Recorded>(r.origin, h);
-            }
-        }
-    }
-
-    // ----- allocation (internal; columns follow every slot) -------------------
-
-    /// A new vertex slot with no links yet. Columns grow; values are set by
-    /// the caller's rule.
-    // Inlined: measured (instruction counts of poke_face) to matter.
-    #[inline(always)]
-    pub(crate) fn alloc_vertex<J: Journaling>(&mut self) -> Vid {
-        let (i, g, is_new) = self.v_slots.alloc();
-        let v = Vid::new(i);
-        if is_new {
-            self.v_halfedge.push(Hid::NONE);
-        } else {
-            self.set_vertex_halfedge::<J>(v, Hid::NONE);
-            if let Some(r) = self.recorder::<J>() {
-                r.reused(Arena::Vertex, i, g);
-                self.attrs.vertex.reset(v.index());
-            }
-        }
-        self.attrs.vertex.ensure_len(self.v_slots.slot_count());
-        v
-    }
-
-    /// A new edge slot (two half-edges) with no links yet.
-    pub(crate) fn alloc_edge<J: Journaling>(&mut self) -> Eid {
-        let (i, g, is_new) = self.e_slots.alloc();
-        let e = Eid::new(i);
-        if is_new {
-            self.he.push(HalfedgeRecord::VACANT);
-            self.he.push(HalfedgeRecord::VACANT);
-        } else {
-            for h in e.halfedges() {
-                self.set_he::<J>(h, HalfedgeRecord::VACANT);
-            }
-            if let Some(r) = self.recorder::<J>() {
-                r.reused(Arena::Edge, i, g);
-                self.attrs.edge.reset(e.index());
-                for h in e.halfedges() {
-                    self.attrs.halfedge.reset(h.index());
-                }
-            }
-        }
-        let slots = self.e_slots.slot_count();
-        self.attrs.edge.ensure_len(slots);
-        self.attrs.halfedge.ensure_len(Eid::halfedge_slots(slots));
-        e
-    }
-
-    /// A new face slot (a hole if `hole`) with no links yet.
-    // Inlined: measured (instruction counts of poke_face) to matter.
-    #[inline(always)]
-    pub(crate) fn alloc_face<J: Journaling>(&mut self, hole: bool) -> Fid {
-        let (i, g, is_new) = self.f_slots.alloc();
-        let f = Fid::new(i);
-        let link = FaceLink::unset(hole);
-        if is_new {
-            self.f_halfedge.push(link);
-        } else {
-            self.set_face_link_raw::<J>(f, link);
-            if let Some(r) = self.recorder::<J>() {
-                r.reused(Arena::Face, i, g);
-                self.attrs.face.reset(f.index());
-            }
-        }
-        if hole {
-            self.holes += 1;
-        }
-        self.attrs.face.ensure_len(self.f_slots.slot_count());
-        f
-    }
-
-    /// Remove a vertex slot and its attribute values. While a journal
-    /// records, the slot keeps its links and values (undoing the removal
-    /// then only revives the slot; a reuse clears them, recorded).
-    pub(crate) fn free_vertex<J: Journaling>(&mut self, v: Vid) {
-        let generation = self.v_slots.generation_of(v.raw());
-        if let Some(r) = self.recorder::<J>() {
-            r.died(Arena::Vertex, v.raw(), generation);
-        } else {
-            self.attrs.vertex.clear(v.index());
-            *self.v_halfedge.unlogged_mut(v) = Hid::NONE;
-        }
-        self.v_slots.free(v.raw());
-    }
-
-    /// Remove an edge slot, both half-edges and their attribute values
-    /// (kept while a journal records, as in [`free_vertex`](Mesh::free_vertex)).
-    pub(crate) fn free_edge<J: Journaling>(&mut self, e: Eid) {
-        let generation = self.e_slots.generation_of(e.raw());
-        if let Some(r) = self.recorder::<J>() {
-            r.died(Arena::Edge, e.raw(), generation);
-        } else {
-            self.attrs.edge.clear(e.index());
-            for h in e.halfedges() {
-                self.attrs.halfedge.clear(h.index());
-                *self.he.unlogged_mut(h) = HalfedgeRecord::VACANT;
-            }
-        }
-        self.e_slots.free(e.raw());
-    }
-
-    /// Remove a face slot and its attribute values (kept while a journal
-    /// records, as in [`free_vertex`](Mesh::free_vertex)).
-    pub(crate) fn free_face<J: Journaling>(&mut self, f: Fid) {
-        if self.is_hole(f) {
-            self.holes -= 1;
-        }
-        let generation = self.f_slots.generation_of(f.raw());
-        if let Some(r) = self.recorder::<J>() {
-            r.died(Arena::Face, f.raw(), generation);
-        } else {
-            self.attrs.face.clear(f.index());
-            *self.f_halfedge.unlogged_mut(f) = FaceLink::unset(false);
-        }
-        self.f_slots.free(f.raw());
-    }
-
-    /// Set or clear a face's hole flag.
-    pub(crate) fn set_hole<J: Journaling>(&mut self, f: Fid, hole: bool) {
-        let link = self.f_halfedge[f];
-        if link.is_hole() != hole {
-            self.set_face_link_raw::<J>(f, link.with_hole(hole));
-            if hole {
-                self.holes += 1;
-            } else {
-                self.holes -= 1;
+                self.writer::<Recorded>().set_vertex_halfedge(r.origin, h);
             }
         }
     }

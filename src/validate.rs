@@ -48,6 +48,20 @@ fn broken(rule: u8, key: Option<AnyKey>, detail: impl Into<String>) -> Validatio
 }
 
 impl Mesh {
+    /// The whole-mesh check after every operator, for the crate's own
+    /// tests and fuzzing (the `validate-edits` feature in a debug build;
+    /// the README's test command turns it on): O(mesh) per edit, so a dependent's debug build,
+    /// which runs its own code unoptimised, does not pay it (a generator
+    /// of 1,000 edits would be quadratic). Operators keep their O(1)
+    /// `debug_assert!`s on what they touch.
+    #[inline]
+    pub(crate) fn debug_validate(&self) {
+        #[cfg(any(test, all(debug_assertions, feature = "validate-edits")))]
+        if let Err(e) = self.validate() {
+            panic!("operator broke the mesh: {e}");
+        }
+    }
+
     /// Check every structural rule (listed in [`validate`](crate::validate)).
     ///
     /// # Errors

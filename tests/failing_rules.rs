@@ -227,9 +227,9 @@ fn triangulate_all_cuts_no_face_when_a_rule_fails() {
 fn a_failure_inside_a_transaction_fails_it_even_when_ignored() {
     let bad = 6;
     let (mut m, _, vs) = grid_with_picky_vertices(bad);
-    m.enable_history(HistoryLimits::default());
+    m.history_mut().enable(HistoryLimits::default());
     let before = snapshot(&m);
-    let undo_len = m.undo_len();
+    let undo_len = m.history().undo_len();
     let f = m
         .faces()
         .find(|&f| m.face(f).unwrap().vertices().all(|v| v != vs[bad]))
@@ -248,11 +248,11 @@ fn a_failure_inside_a_transaction_fails_it_even_when_ignored() {
     assert!(refused_by_the_rule > 0);
     rule_error(r.unwrap_err(), ElementKind::Vertex, -7);
     assert_eq!(snapshot(&m), before);
-    assert_eq!(m.undo_len(), undo_len);
-    assert!(!m.in_transaction());
+    assert_eq!(m.history().undo_len(), undo_len);
+    assert!(!m.history().in_transaction());
     // The history goes on: an edit that succeeds is one undo unit.
     m.poke_face(f).unwrap();
-    assert_eq!(m.undo_len(), undo_len + 1);
+    assert_eq!(m.history().undo_len(), undo_len + 1);
     assert!(m.undo());
     assert_eq!(snapshot(&m), before);
 }

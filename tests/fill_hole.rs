@@ -507,7 +507,8 @@ fn a_flat_strip_is_cut_into_a_zigzag_without_new_vertices() {
 #[test]
 fn fill_holes_at_fills_in_one_undo_step_or_changes_nothing() {
     let mut mesh = read("cgal_holes.off");
-    mesh.enable_history(meshloom::journal::HistoryLimits::default());
+    mesh.history_mut()
+        .enable(meshloom::journal::HistoryLimits::default());
     let holes: Vec<FaceKey> = mesh.holes().collect();
     assert!(holes.len() > 2);
     let borders: Vec<_> = holes
@@ -515,12 +516,12 @@ fn fill_holes_at_fills_in_one_undo_step_or_changes_nothing() {
         .map(|&h| mesh.face(h).unwrap().halfedge().key())
         .collect();
     let before = fingerprint(&mesh);
-    let undo_before = mesh.undo_len();
+    let undo_before = mesh.history().undo_len();
     let r = fill_holes_at(&mut mesh, &borders, &FillHoleOptions::default()).unwrap();
     assert_eq!(r.holes_filled, holes.len());
     assert!(mesh.is_closed());
     mesh.validate().unwrap();
-    assert_eq!(mesh.undo_len(), undo_before + 1);
+    assert_eq!(mesh.history().undo_len(), undo_before + 1);
     assert!(mesh.undo());
     assert_eq!(fingerprint(&mesh), before);
     // The same border twice: the second is no longer in a hole; refused,

@@ -457,11 +457,11 @@ impl Arbitrary for Case {
 /// One edit under the journal: either it recorded exactly one unit and the
 /// redo branch is gone, or it changed nothing.
 fn edit(m: &mut Mesh, op: &Op, before: &Canon) -> Option<Canon> {
-    let n = m.undo_len();
+    let n = m.history().undo_len();
     apply(m, op);
-    m.commit_writes();
+    m.history_mut().commit_writes();
     let after = canon(m);
-    match m.undo_len() {
+    match m.history().undo_len() {
         k if k == n => {
             assert_eq!(
                 &after, before,
@@ -471,7 +471,7 @@ fn edit(m: &mut Mesh, op: &Op, before: &Canon) -> Option<Canon> {
         }
         k => {
             assert_eq!(k, n + 1, "{op:?} recorded {} units", k - n);
-            assert_eq!(m.redo_len(), 0, "{op:?} kept the redo branch");
+            assert_eq!(m.history().redo_len(), 0, "{op:?} kept the redo branch");
             Some(after)
         }
     }
@@ -514,7 +514,7 @@ fn undo_all_and_redo_all_restore_the_snapshots() {
 
 fn shape_with_history(shape_i: u8) -> Mesh {
     let mut m = shape(shape_i);
-    m.enable_history(HistoryLimits::default());
+    m.history_mut().enable(HistoryLimits::default());
     m
 }
 
@@ -575,7 +575,10 @@ fn interleaved_undo_redo_and_edits_agree_with_the_snapshot_model() {
             }
             let c = canon(&m);
             assert_eq!(&c, undo.last().unwrap(), "after {act:?}");
-            assert_eq!((m.undo_len(), m.redo_len()), (undo.len() - 1, redo.len()));
+            assert_eq!(
+                (m.history().undo_len(), m.history().redo_len()),
+                (undo.len() - 1, redo.len())
+            );
             for k in keys_of(&c) {
                 assert!(
                     !forbidden.contains(&k),
@@ -595,15 +598,15 @@ fn failing_or_panicking_transactions_leave_the_snapshot() {
     fn prop(shape_i: u8, ops: Vec<Op>, fail_at: usize, panic: bool, history: bool) -> TestResult {
         let mut m = shape(shape_i);
         if history {
-            m.enable_history(HistoryLimits::default());
+            m.history_mut().enable(HistoryLimits::default());
             apply(&mut m, &Op::Topo(TopoOp::Poke(0)));
             // A redo branch, which a failed transaction must keep.
             apply(&mut m, &Op::Topo(TopoOp::Poke(1)));
             m.undo();
         }
         let before = canon(&m);
-        let undo_len = m.undo_len();
-        let redo_len = m.redo_len();
+        let undo_len = m.history().undo_len();
+        let redo_len = m.history().redo_len();
         let stop = fail_at % (ops.len() + 1);
         let run = |m: &mut Mesh| {
             m.transaction(|m| {
@@ -632,11 +635,11 @@ fn failing_or_panicking_transactions_leave_the_snapshot() {
         } else {
             assert!(run(&mut m).is_err());
         }
-        assert!(!m.in_transaction());
+        assert!(!m.history().in_transaction());
         assert_eq!(canon(&m), before);
-        assert_eq!(m.undo_len(), undo_len);
+        assert_eq!(m.history().undo_len(), undo_len);
         assert_eq!(
-            m.redo_len(),
+            m.history().redo_len(),
             redo_len,
             "a failed transaction changed the redo branch"
         );
@@ -646,7 +649,7 @@ fn failing_or_panicking_transactions_leave_the_snapshot() {
             assert!(m.undo());
             assert_eq!(canon(&m), before);
         }
-        assert_eq!(m.history_enabled(), history);
+        assert_eq!(m.history().enabled(), history);
         // The mesh goes on working: a committed transaction is one unit.
         let r = m.transaction(|m| {
             apply(m, &Op::Topo(TopoOp::Poke(1)));
@@ -655,7 +658,7 @@ fn failing_or_panicking_transactions_leave_the_snapshot() {
         });
         assert_eq!(r.unwrap(), 7);
         if history && canon(&m) != before {
-            assert_eq!(m.undo_len(), undo_len + 1);
+            assert_eq!(m.history().undo_len(), undo_len + 1);
             assert!(m.undo());
             assert_eq!(canon(&m), before);
         }
@@ -710,7 +713,7 @@ fn change_sets_agree_with_snapshot_diffs() {
     }
     fn prop(case: Case) -> TestResult {
         let mut m = shape_with_history(case.shape);
-        m.track_changes(true);
+        m.history_mut().track_changes(true);
         for act in &case.acts {
             let (c0, l0, p0) = (canon(&m), loops(&m), positions(&m));
             match act {
@@ -722,7 +725,7 @@ fn change_sets_agree_with_snapshot_diffs() {
                     m.redo();
                 }
             }
-            let ch = m.take_changes();
+            let ch = m.history_mut().take_changes();
             let (c1, l1, p1) = (canon(&m), loops(&m), positions(&m));
             if ch.rebuilt {
                 continue;
@@ -799,20 +802,23 @@ fn change_sets_agree_with_snapshot_diffs() {
 fn named_steps_limits_and_clearing() {
     let mut m = shape_with_history(3);
     let f = m.faces().next().unwrap();
-    m.begin_step("Bevel");
+    m.history_mut().begin_step("Bevel");
     m.poke_face(f).unwrap();
     let e = m.edges().next().unwrap();
     m.split_edge(e, 0.5).unwrap();
-    m.end_step();
-    assert_eq!((m.undo_len(), m.undo_name()), (1, Some("Bevel")));
+    m.history_mut().end_step();
+    assert_eq!(
+        (m.history().undo_len(), m.history().undo_name()),
+        (1, Some("Bevel"))
+    );
     let v = m.vertex_count();
     assert!(m.undo());
     assert_eq!(m.vertex_count(), v - 2);
-    assert_eq!(m.redo_name(), Some("Bevel"));
+    assert_eq!(m.history().redo_name(), Some("Bevel"));
     assert!(m.redo());
     assert_eq!(m.vertex_count(), v);
     // Depth limit: only the last three units stay.
-    m.enable_history(HistoryLimits {
+    m.history_mut().enable(HistoryLimits {
         max_steps: Some(3),
         max_bytes: None,
     });
@@ -820,11 +826,11 @@ fn named_steps_limits_and_clearing() {
         let e = m.edges().nth(i).unwrap();
         m.split_edge(e, 0.5).unwrap();
     }
-    assert_eq!(m.undo_len(), 3);
+    assert_eq!(m.history().undo_len(), 3);
     while m.undo() {}
     assert_eq!(m.vertex_count(), v + 3);
     // Memory limit.
-    m.enable_history(HistoryLimits {
+    m.history_mut().enable(HistoryLimits {
         max_steps: None,
         max_bytes: Some(200),
     });
@@ -832,13 +838,13 @@ fn named_steps_limits_and_clearing() {
         let e = m.edges().nth(i).unwrap();
         m.split_edge(e, 0.5).unwrap();
     }
-    assert!(m.history_bytes() < 200 + 4096, "{}", m.history_bytes());
-    assert!(m.undo_len() < 20 && m.undo_len() >= 1);
-    m.clear_history();
-    assert_eq!((m.undo_len(), m.redo_len()), (0, 0));
+    assert!(m.history().bytes() < 200 + 4096, "{}", m.history().bytes());
+    assert!(m.history().undo_len() < 20 && m.history().undo_len() >= 1);
+    m.history_mut().clear();
+    assert_eq!((m.history().undo_len(), m.history().redo_len()), (0, 0));
     assert!(!m.undo());
-    m.disable_history();
-    assert!(!m.history_enabled());
+    m.history_mut().disable();
+    assert!(!m.history().enabled());
     let e = m.edges().next().unwrap();
     m.split_edge(e, 0.5).unwrap();
     assert!(!m.undo());
@@ -851,7 +857,7 @@ fn serde_and_clone_of_a_journaled_mesh_carry_no_history() {
     m.poke_face(f).unwrap();
     assert!(m.undo());
     let mut c = m.clone();
-    assert!(!c.history_enabled() && !c.redo());
+    assert!(!c.history().enabled() && !c.redo());
     assert_eq!(canon(&c), canon(&m));
     // The slot the undo held for a redo is free in the copy: a new edit
     // reuses it, at a generation that keeps the undone key stale.
@@ -862,7 +868,7 @@ fn serde_and_clone_of_a_journaled_mesh_carry_no_history() {
     {
         let json = serde_json::to_string(&m).unwrap();
         let back: Mesh = serde_json::from_str(&json).unwrap();
-        assert!(!back.history_enabled());
+        assert!(!back.history().enabled());
         assert_eq!(canon(&back), canon(&m));
     }
     assert!(m.redo());
@@ -875,7 +881,7 @@ fn serde_and_clone_of_a_journaled_mesh_carry_no_history() {
 #[test]
 fn serde_keeps_the_fresh_floor_so_undone_keys_stay_stale() {
     let mut m = shapes::icosahedron();
-    m.enable_history(HistoryLimits::default());
+    m.history_mut().enable(HistoryLimits::default());
     let v = m.vertices().next().unwrap();
     m.remove_vertex(v).unwrap();
     let f = m.faces().next().unwrap();
@@ -905,7 +911,7 @@ fn serde_keeps_the_fresh_floor_so_undone_keys_stay_stale() {
 fn an_algorithm_run_is_one_named_unit() {
     use meshloom::shapes::{grid, GridFaces};
     let mut m = grid(12, 12, GridFaces::Triangles);
-    m.enable_history(HistoryLimits::default());
+    m.history_mut().enable(HistoryLimits::default());
     let start = canon(&m);
     let n0 = m.vertex_count();
     let options = decimate::DecimateOptions::to(decimate::Target::Vertices(n0 / 3));
@@ -915,10 +921,16 @@ fn an_algorithm_run_is_one_named_unit() {
         "{} of {n0} left",
         m.vertex_count()
     );
-    assert_eq!((m.undo_len(), m.undo_name()), (1, Some("Decimate")));
+    assert_eq!(
+        (m.history().undo_len(), m.history().undo_name()),
+        (1, Some("Decimate"))
+    );
     let decimated = canon(&m);
     smooth::smooth(&mut m, &smooth::SmoothOptions::default(), Progress::none()).unwrap();
-    assert_eq!((m.undo_len(), m.undo_name()), (2, Some("Smooth")));
+    assert_eq!(
+        (m.history().undo_len(), m.history().undo_name()),
+        (2, Some("Smooth"))
+    );
     assert!(m.undo());
     assert_eq!(canon(&m), decimated);
     assert!(m.undo());
@@ -929,13 +941,16 @@ fn an_algorithm_run_is_one_named_unit() {
         smooth::smooth(m, &smooth::SmoothOptions::default(), Progress::none())
     })
     .unwrap();
-    assert_eq!((m.undo_len(), m.undo_name()), (3, Some("Tidy")));
+    assert_eq!(
+        (m.history().undo_len(), m.history().undo_name()),
+        (3, Some("Tidy"))
+    );
 
     let mut q = quad_grid(4);
-    q.enable_history(HistoryLimits::default());
+    q.history_mut().enable(HistoryLimits::default());
     let before = canon(&q);
     assert!(q.triangulate_all().is_empty());
-    assert_eq!(q.undo_len(), 1);
+    assert_eq!(q.history().undo_len(), 1);
     assert!(q.undo());
     assert_eq!(canon(&q), before);
 }
@@ -946,13 +961,13 @@ fn an_algorithm_run_is_one_named_unit() {
 #[test]
 fn slots_born_and_removed_in_one_step_undo_and_redo_exactly() {
     let mut m = shapes::icosahedron();
-    m.enable_history(HistoryLimits::default());
-    m.track_changes(true);
+    m.history_mut().enable(HistoryLimits::default());
+    m.history_mut().track_changes(true);
     let before = canon(&m);
     let faces: Vec<FaceKey> = m.faces().take(6).collect();
     let mut gone = Vec::new();
     let mut kept = Vec::new();
-    m.begin_step("Churn");
+    m.history_mut().begin_step("Churn");
     for (i, &f) in faces.iter().enumerate() {
         let c = m.poke_face(f).unwrap();
         if i % 3 != 2 {
@@ -966,23 +981,23 @@ fn slots_born_and_removed_in_one_step_undo_and_redo_exactly() {
             kept.push(c);
         }
     }
-    m.end_step();
+    m.history_mut().end_step();
     let after = canon(&m);
-    let changes = m.take_changes();
+    let changes = m.history_mut().take_changes();
     assert_eq!(changes.vertices.created, kept);
     assert_eq!(m.vertex_count(), 12 + kept.len());
     for round in 0..2 {
         assert!(m.undo(), "round {round}");
         assert_eq!(canon(&m), before);
         assert!(gone.iter().chain(&kept).all(|&v| m.vertex(v).is_err()));
-        let undone = m.take_changes();
+        let undone = m.history_mut().take_changes();
         assert_eq!(undone.vertices.removed, kept);
         assert!(undone.vertices.created.is_empty());
         assert!(m.redo(), "round {round}");
         assert_eq!(canon(&m), after);
         assert!(kept.iter().all(|&v| m.vertex(v).is_ok()));
         assert!(gone.iter().all(|&v| m.vertex(v).is_err()));
-        assert_eq!(m.take_changes().vertices.created, kept);
+        assert_eq!(m.history_mut().take_changes().vertices.created, kept);
     }
     // A rolled-back transaction of the same kind changes nothing.
     let r: Result<(), meshloom::Error> = m.transaction(|m| {
@@ -999,11 +1014,11 @@ fn slots_born_and_removed_in_one_step_undo_and_redo_exactly() {
     // no key handed out before comes back.
     assert!(m.undo());
     let mut fresh = Vec::new();
-    m.begin_step("Again");
+    m.history_mut().begin_step("Again");
     for f in m.faces().take(4).collect::<Vec<_>>() {
         fresh.push(m.poke_face(f).unwrap());
     }
-    m.end_step();
+    m.history_mut().end_step();
     assert!(fresh.iter().all(|v| !gone.contains(v) && !kept.contains(v)));
     m.validate().unwrap();
     assert!(m.undo());
@@ -1032,7 +1047,7 @@ fn collapse_then_undo_or_rollback_restores_every_corner_value() {
     // Undo.
     let (mut m, uv, hs) = setup();
     let before = values(&m, &uv, &hs);
-    m.enable_history(HistoryLimits::default());
+    m.history_mut().enable(HistoryLimits::default());
     m.collapse_edge(hs[0]).unwrap();
     assert!(m.undo());
     assert_eq!(values(&m, &uv, &hs), before);
@@ -1040,7 +1055,7 @@ fn collapse_then_undo_or_rollback_restores_every_corner_value() {
     for history in [false, true] {
         let (mut m, uv, hs) = setup();
         if history {
-            m.enable_history(HistoryLimits::default());
+            m.history_mut().enable(HistoryLimits::default());
         }
         let r = m.transaction(|m| {
             m.collapse_edge(hs[0])?;

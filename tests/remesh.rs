@@ -565,7 +565,8 @@ fn bad_input_is_refused_and_changes_nothing() {
 #[test]
 fn an_undo_takes_the_whole_remeshing_back() {
     let mut mesh = shapes::icosphere(2);
-    mesh.enable_history(meshloom::journal::HistoryLimits::default());
+    mesh.history_mut()
+        .enable(meshloom::journal::HistoryLimits::default());
     let before = snapshot(&mesh);
     remesh(&mut mesh, &uniform(0.15), Progress::none()).unwrap();
     assert_ne!(snapshot(&mesh), before);

@@ -82,12 +82,12 @@ mod tests {
         let v = mesh.vertices().next().unwrap();
         mesh.set_attr(&name, v, "apex".into()).unwrap();
         mesh.set_attr(&w, v, 2.0).unwrap();
-        let slot = mesh.alloc_vertex::<crate::record::Recorded>();
+        let slot = mesh.writer::<crate::record::Recorded>().alloc_vertex();
         assert_eq!(slot.index(), 4);
         for (_, c) in &mesh.attrs.vertex.cols {
             assert_eq!(c.len(), 5);
         }
-        mesh.free_vertex::<crate::record::Recorded>(v.id());
+        mesh.writer::<crate::record::Recorded>().free_vertex(v.id());
         // The value is gone (and its heap memory with it), not just hidden.
         let col = mesh
             .attrs
@@ -97,7 +97,7 @@ mod tests {
         assert!(col.raw()[v.index()].is_empty());
         assert!(!col.has(v.index()));
         // The slot comes back under a new generation, without a value.
-        let again = mesh.alloc_vertex::<crate::record::Recorded>();
+        let again = mesh.writer::<crate::record::Recorded>().alloc_vertex();
         assert_eq!(again, v.id());
         let k = mesh.vkey(again);
         assert_eq!(mesh.attr(&name, k).unwrap(), None);

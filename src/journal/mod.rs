@@ -4,14 +4,14 @@
 //! Three services share one recorder, which is off until one of them is
 //! asked for (then [`Mesh`] carries it). With it off, the journal costs
 //! one test per operator call: the operator then runs a body compiled
-//! without any recording hook (see `mesh/hooks.rs`), the same code as if the
+//! without any recording hook (see `mesh/writer.rs`), the same code as if the
 //! journal did not exist:
 //!
 //! - **Transactions.** [`Mesh::transaction`] runs a closure; if it returns
 //!   an error or panics, the mesh is put back exactly as it was (links,
 //!   attribute columns and their values, which keys are valid), and the
 //!   error or panic goes on to the caller. Nested transactions are one.
-//! - **Undo and redo.** [`Mesh::enable_history`] keeps every committed edit
+//! - **Undo and redo.** [`HistoryMut::enable`] keeps every committed edit
 //!   as a compact delta (the links, births and deaths, hole count and
 //!   attribute values it changed, as varint bytes), not a copy.
 //!   [`Mesh::undo`] and [`Mesh::redo`] restore the exact state, keys
@@ -20,12 +20,19 @@
 //!   element later (an undone birth leaves its slot one generation above
 //!   the element; a new edit takes the slot at a later generation); redo
 //!   revives the same slots at the same generations, so an editor's
-//!   selection survives undo/redo. [`Mesh::begin_step`]/[`Mesh::end_step`]
+//!   selection survives undo/redo. [`HistoryMut::begin_step`]/[`HistoryMut::end_step`]
 //!   (or [`Mesh::step`]) group edits under one name; [`HistoryLimits`]
 //!   bounds depth and memory; a new edit after undos drops the redo branch.
-//! - **Change tracking.** [`Mesh::take_changes`] reports which vertices,
+//! - **Change tracking.** [`HistoryMut::take_changes`] reports which vertices,
 //!   edges, faces and attribute columns were created, removed or modified
 //!   since the last call, after edits, transactions, undos and redos.
+//!
+//! [`Mesh::undo`], [`Mesh::redo`], [`Mesh::step`] and [`Mesh::transaction`]
+//! are on the mesh; the bookkeeping (turning the history and change
+//! tracking on, limits, unit counts and names for a menu, manual step
+//! brackets, taking the changes) sits behind [`Mesh::history`] and
+//! [`Mesh::history_mut`]: an editor calls the four verbs once per user
+//! action and reads or sets the rest around them, once or for its UI.
 //!
 //! The recorder and its step log belong to the storage (`record`, a layer
 //! under the mesh: the mesh holds the recorder, and its link mutators and
@@ -36,19 +43,19 @@
 //!
 //! Every public operator, attribute setter and [`RawEdit`] session
 //! (closed by [`RawEdit::finish`]) is one step; each undo takes back one
-//! *unit*: one step, or every step of a [`Mesh::begin_step`] group or of a
+//! *unit*: one step, or every step of a [`HistoryMut::begin_step`] group or of a
 //! transaction. Composite operators ([`Mesh::triangulate_all`],
 //! [`Mesh::fill_hole_triangulated`], [`Mesh::cut_path`]) are one step. An
 //! algorithm run ([`algo::smooth`](crate::algo::smooth::smooth),
 //! [`algo::fair`](crate::algo::fair::fair),
 //! [`algo::decimate`](crate::algo::decimate()) in place, `replay`, the
 //! subdivisions, `add_*_normals`, `add_curvature`) is one unit named after
-//! it ([`Mesh::undo_name`] gives `"Decimate"`, `"Smooth"`, ..., unless a
+//! it ([`History::undo_name`] gives `"Decimate"`, `"Smooth"`, ..., unless a
 //! group of yours is open, whose name wins).
 //!
 //! Inside a group or a transaction the edits share one open step, sealed
 //! when the group ends (or when something needs it closed: a bulk view, a
-//! column added or removed, [`Mesh::take_changes`]): each slot's old value
+//! column added or removed, [`HistoryMut::take_changes`]): each slot's old value
 //! is saved once however often the group writes it, slots the group
 //! created are never saved (undo makes them vacant), and the delta is
 //! encoded once.
@@ -101,7 +108,7 @@
 //! pass, not once per element; for a few elements use
 //! [`Mesh::set_position`] or [`Mesh::set_attr`], which save one value.
 //! Inside the crate, every link write goes through the mutators in
-//! `mesh/hooks.rs` (the link arrays have no `IndexMut`), every column
+//! `mesh/writer.rs` (the link arrays have no `IndexMut`), every column
 //! write through the `Columns` rule methods, which save first; a slot born
 //! in the open step needs no saving (undo makes it vacant).
 //!
@@ -122,8 +129,8 @@
 //! ```
 //! use meshloom::{shapes, journal::HistoryLimits, buffers::TriangleBufferOptions};
 //! let mut mesh = shapes::cube();
-//! mesh.enable_history(HistoryLimits::default());
-//! mesh.track_changes(true);
+//! mesh.history_mut().enable(HistoryLimits::default());
+//! mesh.history_mut().track_changes(true);
 //! let upload = |m: &meshloom::Mesh| m.to_triangle_buffers(&TriangleBufferOptions::default());
 //! let _gpu = upload(&mesh).unwrap(); // first upload
 //!
@@ -135,11 +142,11 @@
 //!     let e2 = m.halfedge(h)?.edge().key();
 //!     m.split_edge(e2, 0.5)
 //! })?;
-//! assert_eq!(mesh.undo_name(), Some("Split twice"));
+//! assert_eq!(mesh.history().undo_name(), Some("Split twice"));
 //!
 //! // Re-upload only what changed (here: rebuild the buffers; an engine
 //! // would patch the listed vertices and faces).
-//! let changes = mesh.take_changes();
+//! let changes = mesh.history_mut().take_changes();
 //! assert_eq!(changes.vertices.created.len(), 2);
 //! assert!(changes.vertices.created.contains(&v));
 //! let _gpu = upload(&mesh).unwrap();
@@ -147,7 +154,7 @@
 //! // Undo: the new vertices go, and their keys are stale.
 //! assert!(mesh.undo());
 //! assert!(mesh.vertex(v).is_err());
-//! assert_eq!(mesh.take_changes().vertices.removed.len(), 2);
+//! assert_eq!(mesh.history_mut().take_changes().vertices.removed.len(), 2);
 //! // Redo: the same keys come back.
 //! assert!(mesh.redo());
 //! assert!(mesh.vertex(v).is_ok());
@@ -168,6 +175,9 @@
 //! [`RawEdit::finish`]: crate::link::RawEdit::finish
 
 mod apply;
+mod history;
+
+pub use history::{History, HistoryMut};
 
 // The operators name their journaling mode by these paths.
 pub(crate) use crate::record::{journaled, Journaling, Unrecorded};
@@ -195,7 +205,7 @@ pub struct HistoryLimits {
 }
 
 /// Keys of one kind of element that changed since the last
-/// [`Mesh::take_changes`].
+/// [`HistoryMut::take_changes`].
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ElementChanges<K> {
     /// Live now, not live at the last call (sorted by slot).
@@ -247,7 +257,7 @@ pub struct ColumnChange {
     pub change: ColumnChangeKind,
 }
 
-/// What changed since the last [`Mesh::take_changes`].
+/// What changed since the last [`HistoryMut::take_changes`].
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Changes {
     /// Vertices.
@@ -281,22 +291,8 @@ impl Changes {
 }
 
 impl Mesh {
-    /// Turn the undo history on (or change its limits). Edits from now on
-    /// can be undone.
-    ///
-    /// ```
-    /// let mut mesh = meshloom::shapes::cube();
-    /// mesh.enable_history(Default::default());
-    /// let f = mesh.faces().next().unwrap();
-    /// mesh.poke_face(f)?;
-    /// assert_eq!(mesh.vertex_count(), 9);
-    /// assert!(mesh.undo());
-    /// assert_eq!(mesh.vertex_count(), 8);
-    /// assert!(mesh.redo());
-    /// assert_eq!(mesh.vertex_count(), 9);
-    /// # Ok::<(), meshloom::Error>(())
-    /// ```
-    pub fn enable_history(&mut self, limits: HistoryLimits) {
+    /// [`HistoryMut::enable`]'s body.
+    fn enable_history(&mut self, limits: HistoryLimits) {
         let r = self.ensure_recorder();
         r.history = true;
         r.max_units = limits.max_steps;
@@ -304,8 +300,8 @@ impl Mesh {
         self.r().trim();
     }
 
-    /// Turn the undo history off and drop it (undo and redo logs).
-    pub fn disable_history(&mut self) {
+    /// [`HistoryMut::disable`]'s body.
+    fn disable_history(&mut self) {
         self.clear_history();
         if let Some(r) = self.rec.as_deref_mut() {
             r.history = false;
@@ -313,14 +309,13 @@ impl Mesh {
         self.maybe_stop();
     }
 
-    /// Whether the undo history is on.
-    pub fn history_enabled(&self) -> bool {
+    /// [`History::enabled`]'s body.
+    fn history_enabled(&self) -> bool {
         self.rec.as_ref().is_some_and(|r| r.history)
     }
 
-    /// Drop every undo and redo step, keeping the history on. Refused
-    /// (nothing happens) while a transaction is open.
-    pub fn clear_history(&mut self) {
+    /// [`HistoryMut::clear`]'s body.
+    fn clear_history(&mut self) {
         if self.rec.as_ref().is_none_or(|r| r.tx_depth > 0) {
             return;
         }
@@ -363,62 +358,40 @@ impl Mesh {
             .is_some_and(|r| r.history && r.tx_depth == 0 && r.group_depth == 0)
     }
 
-    /// How many units [`undo`](Mesh::undo) can take back. Raw writes
-    /// through [`position_slots_mut`](Mesh::position_slots_mut) or
-    /// [`attr_view_mut`](Mesh::attr_view_mut) count once committed (by
-    /// [`commit_writes`](Mesh::commit_writes), the next edit or any
-    /// journal call).
-    pub fn undo_len(&self) -> usize {
+    /// [`History::undo_len`]'s body.
+    fn undo_len(&self) -> usize {
         self.rec.as_ref().map_or(0, |r| r.undo.units)
     }
 
-    /// Close the open journal step now: raw writes through
-    /// [`position_slots_mut`](Mesh::position_slots_mut) or
-    /// [`attr_view_mut`](Mesh::attr_view_mut) since the view was taken
-    /// become one undo unit (if they changed anything; the redo branch
-    /// then goes) and show in [`take_changes`](Mesh::take_changes).
-    /// Otherwise that happens at the next edit or journal call.
-    ///
-    /// ```
-    /// let mut mesh = meshloom::shapes::cube();
-    /// mesh.enable_history(Default::default());
-    /// mesh.position_slots_mut().unwrap()[0][2] += 1.0;
-    /// mesh.commit_writes();
-    /// assert_eq!(mesh.undo_len(), 1);
-    /// assert!(mesh.undo());
-    /// assert_eq!(mesh.position_slots().unwrap()[0], [0.0, 0.0, 0.0]);
-    /// ```
-    pub fn commit_writes(&mut self) {
+    /// [`HistoryMut::commit_writes`]'s body.
+    fn commit_writes(&mut self) {
         self.seal_if_on();
     }
 
-    /// How many units [`redo`](Mesh::redo) can bring back.
-    pub fn redo_len(&self) -> usize {
+    /// [`History::redo_len`]'s body.
+    fn redo_len(&self) -> usize {
         self.rec.as_ref().map_or(0, |r| r.redo.units)
     }
 
-    /// The name of the unit [`undo`](Mesh::undo) would take back, if it
-    /// was a named step.
-    pub fn undo_name(&self) -> Option<&str> {
+    /// [`History::undo_name`]'s body.
+    fn undo_name(&self) -> Option<&str> {
         self.rec.as_deref()?.undo_name()
     }
 
-    /// The name of the unit [`redo`](Mesh::redo) would bring back, if named.
-    pub fn redo_name(&self) -> Option<&str> {
+    /// [`History::redo_name`]'s body.
+    fn redo_name(&self) -> Option<&str> {
         self.rec.as_deref()?.redo_name()
     }
 
-    /// Heap bytes the undo and redo logs hold (steps, side records, names).
-    pub fn history_bytes(&self) -> usize {
+    /// [`History::bytes`]'s body.
+    fn history_bytes(&self) -> usize {
         self.rec
             .as_ref()
             .map_or(0, |r| r.undo.memory() + r.redo.memory())
     }
 
-    /// Begin a named step: every edit until the matching
-    /// [`end_step`](Mesh::end_step) is one undo unit, named `name` (the
-    /// outermost name wins). Steps nest.
-    pub fn begin_step(&mut self, name: &str) {
+    /// [`HistoryMut::begin_step`]'s body.
+    fn begin_step(&mut self, name: &str) {
         self.seal_if_on();
         let r = self.ensure_recorder();
         if r.group_depth == 0 {
@@ -428,9 +401,8 @@ impl Mesh {
         r.group_depth += 1;
     }
 
-    /// End the step [`begin_step`](Mesh::begin_step) began (a no-op with
-    /// none open).
-    pub fn end_step(&mut self) {
+    /// [`HistoryMut::end_step`]'s body.
+    fn end_step(&mut self) {
         let Some(r) = self.rec.as_deref() else { return };
         if r.group_depth == 0 {
             return;
@@ -571,14 +543,13 @@ impl Mesh {
         }
     }
 
-    /// Whether a transaction is open.
-    pub fn in_transaction(&self) -> bool {
+    /// [`History::in_transaction`]'s body.
+    fn in_transaction(&self) -> bool {
         self.rec.as_ref().is_some_and(|r| r.tx_depth > 0)
     }
 
-    /// Turn change tracking on or off. On: [`take_changes`](Mesh::take_changes)
-    /// reports from now on.
-    pub fn track_changes(&mut self, on: bool) {
+    /// [`HistoryMut::track_changes`]'s body.
+    fn track_changes(&mut self, on: bool) {
         if on {
             self.ensure_recorder().tracking = true;
         } else if let Some(r) = self.rec.as_deref_mut() {
@@ -590,14 +561,8 @@ impl Mesh {
         }
     }
 
-    /// What changed since the last call (or since
-    /// [`track_changes`](Mesh::track_changes) turned tracking on): edits,
-    /// transactions (a rolled-back one changes nothing), undos and redos.
-    /// Empty with tracking off.
-    ///
-    /// # Complexity
-    /// O(elements touched).
-    pub fn take_changes(&mut self) -> Changes {
+    /// [`HistoryMut::take_changes`]'s body.
+    fn take_changes(&mut self) -> Changes {
         if !self.rec.as_ref().is_some_and(|r| r.tracking) {
             return Changes::default();
         }

@@ -222,4 +222,21 @@ impl Mesh {
             self.attrs.columns_mut(kind).save_one(col, i);
         }
     }
+
+    /// Close the journal's open step, if a journal records (no validation:
+    /// attribute setters; operators end through the writer's `end_op`).
+    /// Inside a step group or a transaction the step stays open: the group
+    /// is one undo unit anyway, and one step for the whole group saves
+    /// each slot once (its oldest value) and seals once, where a step per
+    /// edit would save and encode every edit's writes. Whatever needs the
+    /// step closed (undo, a bulk view, a column change, `take_changes`,
+    /// the group's end) seals it first.
+    #[inline]
+    pub(crate) fn end_edit(&mut self) {
+        if let Some(r) = self.rec.as_deref() {
+            if r.group_depth == 0 {
+                self.seal();
+            }
+        }
+    }
 }

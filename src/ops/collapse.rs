@@ -5,7 +5,7 @@ use crate::error::{Refusal, Result};
 use crate::journal::{journaled, Journaling};
 use crate::keys::{HalfedgeKey, VertexKey};
 use crate::layout::{Fid, Hid, Vid};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Writer};
 use crate::store::ErasedColumn;
 use crate::vec3::{norm2, sub};
 
@@ -424,21 +424,6 @@ impl Mesh {
         journaled!(self.collapse_edge_at_with(hk, t))
     }
 
-    /// [`collapse_edge_at`](Mesh::collapse_edge_at)'s body, in journaling mode `J`.
-    fn collapse_edge_at_with<J: Journaling>(
-        &mut self,
-        hk: HalfedgeKey,
-        t: f64,
-    ) -> Result<VertexKey> {
-        if !(0.0..=1.0).contains(&t) {
-            return Err(refuse(OP, hk, Refusal::Parameter("t must lie in 0..=1")));
-        }
-        let plan = self.plan_collapse(hk)?;
-        let b = self.commit_collapse::<J>(plan, t, None);
-        self.end_op::<J>();
-        Ok(self.vkey(b))
-    }
-
     /// Whether [`collapse_edge_to`](Mesh::collapse_edge_to) would succeed;
     /// changes nothing.
     ///
@@ -500,19 +485,6 @@ impl Mesh {
         journaled!(self.collapse_edge_to_with(hk, position))
     }
 
-    /// [`collapse_edge_to`](Mesh::collapse_edge_to)'s body, in journaling mode `J`.
-    fn collapse_edge_to_with<J: Journaling>(
-        &mut self,
-        hk: HalfedgeKey,
-        position: [f64; 3],
-    ) -> Result<VertexKey> {
-        let plan = self.plan_collapse(hk)?;
-        let t = self.collapse_weight(plan.h, position, hk)?;
-        let b = self.commit_collapse::<J>(plan, t, Some(position));
-        self.end_op::<J>();
-        Ok(self.vkey(b))
-    }
-
     /// The projection parameter of `position` on `h`'s edge, checked.
     fn collapse_weight(&self, h: Hid, position: [f64; 3], hk: HalfedgeKey) -> Result<f64> {
         if !position.iter().all(|c| c.is_finite()) {
@@ -531,102 +503,6 @@ impl Mesh {
         let s =
             (position[0] - a[0]) * d[0] + (position[1] - a[1]) * d[1] + (position[2] - a[2]) * d[2];
         Ok((s / len2).clamp(0.0, 1.0))
-    }
-
-    /// The decimator's door: collapse `h` with weight `t` and, if given,
-    /// the exact position, without the per-call debug validation (the
-    /// caller validates once at the end; validating after each of
-    /// thousands of collapses would make debug builds quadratic). The
-    /// caller checked that `position` is finite and `t` in `0..=1`.
-    pub(crate) fn collapse_unvalidated<J: Journaling>(
-        &mut self,
-        h: Hid,
-        t: f64,
-        position: Option<[f64; 3]>,
-    ) -> Result<Vid> {
-        let plan = self.plan_collapse(self.hkey(h))?;
-        Ok(self.commit_collapse::<J>(plan, t, position))
-    }
-
-    /// The commit and rules of a planned collapse; cannot fail.
-    #[inline(always)]
-    fn commit_collapse<J: Journaling>(
-        &mut self,
-        plan: CollapsePlan,
-        t: f64,
-        position: Option<[f64; 3]>,
-    ) -> Vid {
-        let CollapsePlan {
-            h,
-            a,
-            b,
-            f_left,
-            f_right,
-            nh,
-            nt,
-            ph,
-            pt,
-            before_tph,
-            left_goes,
-            right_goes,
-            rule11,
-        } = plan;
-        // Corners first, while the rings are intact.
-        if !self.attrs.halfedge.cols.is_empty() {
-            self.merge_corner_wedges(h, t);
-        }
-        // Rule 11: which of b, c and d touched a hole before (a's holes
-        // become b's). Only they can need another half-edge afterwards.
-        // The surviving vertex first (the documented order KeepFirst reads).
-        self.attrs
-            .vertex
-            .merge(b.index(), &[(b.index(), t), (a.index(), 1.0 - t)]);
-        if let Some(p) = position {
-            // The merge saved b's position only if it changed it.
-            self.attrs.set_position_saved(b.index(), p);
-        }
-        // Every half-edge leaving a now leaves b (the ring of a is walked by
-        // next/twin, which the origins do not affect).
-        let mut o = h;
-        let mut budget = self.he.len();
-        loop {
-            self.he_mut::<J>(o).origin = b;
-            o = self.next(o.twin());
-            budget -= 1;
-            if o == h || budget == 0 {
-                break;
-            }
-        }
-        self.set_next::<J>(ph, nh);
-        self.set_next::<J>(pt, nt);
-        if self.face_halfedge(f_left) == h {
-            self.set_face_link::<J>(f_left, nh);
-        }
-        if self.face_halfedge(f_right) == h.twin() {
-            self.set_face_link::<J>(f_right, nt);
-        }
-        *self.v_halfedge_mut::<J>(b) = nh;
-        self.free_edge::<J>(h.edge());
-        self.free_vertex::<J>(a);
-        if left_goes {
-            // Two-sided loop (ph: c -> b, nh: b -> c): keep nh.
-            self.dissolve_two_gon::<J>(ph, nh, before_tph);
-        }
-        if right_goes {
-            // Two-sided loop (pt: d -> b, nt: b -> d): keep pt.
-            self.dissolve_two_gon::<J>(nt, pt, None);
-        }
-        // Rule 11: b has a's holes now; a closed triangular hole may have
-        // held its apex's half-edge.
-        if rule11.b {
-            self.point_at_hole::<J>(b);
-        }
-        for v in [rule11.c, rule11.d] {
-            if !v.is_none() {
-                self.point_at_hole::<J>(v);
-            }
-        }
-        b
     }
 
     /// The corner rule of a collapse of `h` (a → b) at weight `t` (b's),
@@ -680,32 +556,172 @@ impl Mesh {
             }
         }
     }
+}
+
+impl Mesh {
+    /// [`Writer::collapse_unvalidated`] in journaling mode `J`, for code
+    /// that holds no writer (the remesher, with no journal).
+    #[inline]
+    pub(crate) fn collapse_unvalidated<J: Journaling>(
+        &mut self,
+        h: Hid,
+        t: f64,
+        position: Option<[f64; 3]>,
+    ) -> Result<Vid> {
+        self.writer::<J>().collapse_unvalidated(h, t, position)
+    }
+}
+
+impl Mesh {
+    /// [`collapse_edge_at`](Mesh::collapse_edge_at)'s body, in journaling mode `J`.
+    fn collapse_edge_at_with<J: Journaling>(
+        &mut self,
+        hk: HalfedgeKey,
+        t: f64,
+    ) -> Result<VertexKey> {
+        let mut w = self.writer::<J>();
+        if !(0.0..=1.0).contains(&t) {
+            return Err(refuse(OP, hk, Refusal::Parameter("t must lie in 0..=1")));
+        }
+        let plan = w.plan_collapse(hk)?;
+        let b = w.commit_collapse(plan, t, None);
+        w.end_op();
+        Ok(w.vkey(b))
+    }
+
+    /// [`collapse_edge_to`](Mesh::collapse_edge_to)'s body, in journaling mode `J`.
+    fn collapse_edge_to_with<J: Journaling>(
+        &mut self,
+        hk: HalfedgeKey,
+        position: [f64; 3],
+    ) -> Result<VertexKey> {
+        let mut w = self.writer::<J>();
+        let plan = w.plan_collapse(hk)?;
+        let t = w.collapse_weight(plan.h, position, hk)?;
+        let b = w.commit_collapse(plan, t, Some(position));
+        w.end_op();
+        Ok(w.vkey(b))
+    }
+}
+
+impl<J: Journaling> Writer<'_, J> {
+    /// The decimator's and the remesher's door: collapse `h` with weight `t` and, if given,
+    /// the exact position, without the per-call debug validation (the
+    /// caller validates once at the end; validating after each of
+    /// thousands of collapses would make debug builds quadratic). The
+    /// caller checked that `position` is finite and `t` in `0..=1`.
+    #[inline(always)]
+    pub(crate) fn collapse_unvalidated(
+        &mut self,
+        h: Hid,
+        t: f64,
+        position: Option<[f64; 3]>,
+    ) -> Result<Vid> {
+        let plan = self.plan_collapse(self.hkey(h))?;
+        Ok(self.commit_collapse(plan, t, position))
+    }
+
+    /// The commit and rules of a planned collapse; cannot fail.
+    #[inline(always)]
+    fn commit_collapse(&mut self, plan: CollapsePlan, t: f64, position: Option<[f64; 3]>) -> Vid {
+        let CollapsePlan {
+            h,
+            a,
+            b,
+            f_left,
+            f_right,
+            nh,
+            nt,
+            ph,
+            pt,
+            before_tph,
+            left_goes,
+            right_goes,
+            rule11,
+        } = plan;
+        // Corners first, while the rings are intact.
+        if !self.attrs.halfedge.cols.is_empty() {
+            self.merge_corner_wedges(h, t);
+        }
+        // Rule 11: which of b, c and d touched a hole before (a's holes
+        // become b's). Only they can need another half-edge afterwards.
+        // The surviving vertex first (the documented order KeepFirst reads).
+        self.attrs
+            .vertex
+            .merge(b.index(), &[(b.index(), t), (a.index(), 1.0 - t)]);
+        if let Some(p) = position {
+            // The merge saved b's position only if it changed it.
+            self.attrs.set_position_saved(b.index(), p);
+        }
+        // Every half-edge leaving a now leaves b (the ring of a is walked by
+        // next/twin, which the origins do not affect).
+        let mut o = h;
+        let mut budget = self.he.len();
+        loop {
+            self.he_mut(o).origin = b;
+            o = self.next(o.twin());
+            budget -= 1;
+            if o == h || budget == 0 {
+                break;
+            }
+        }
+        self.set_next(ph, nh);
+        self.set_next(pt, nt);
+        if self.face_halfedge(f_left) == h {
+            self.set_face_link(f_left, nh);
+        }
+        if self.face_halfedge(f_right) == h.twin() {
+            self.set_face_link(f_right, nt);
+        }
+        *self.v_halfedge_mut(b) = nh;
+        self.free_edge(h.edge());
+        self.free_vertex(a);
+        if left_goes {
+            // Two-sided loop (ph: c -> b, nh: b -> c): keep nh.
+            self.reborrow().dissolve_two_gon(ph, nh, before_tph);
+        }
+        if right_goes {
+            // Two-sided loop (pt: d -> b, nt: b -> d): keep pt.
+            self.reborrow().dissolve_two_gon(nt, pt, None);
+        }
+        // Rule 11: b has a's holes now; a closed triangular hole may have
+        // held its apex's half-edge.
+        if rule11.b {
+            self.point_at_hole(b);
+        }
+        for v in [rule11.c, rule11.d] {
+            if !v.is_none() {
+                self.point_at_hole(v);
+            }
+        }
+        b
+    }
 
     /// A face (or hole) left with the two half-edges `p` and `n` (parallel
     /// edges between the same vertices) disappears: `n` takes the place of
     /// `twin(p)` in its face and `p`'s edge goes. The mesh must be consistent
     /// apart from this two-sided loop. `before_tp`, when known, is the
     /// half-edge before `twin(p)` (else it is found by turning).
-    fn dissolve_two_gon<J: Journaling>(&mut self, p: Hid, n: Hid, before_tp: Option<Hid>) {
+    fn dissolve_two_gon(mut self, p: Hid, n: Hid, before_tp: Option<Hid>) {
         let f = self.face_of(p);
         let tp = p.twin();
         let g = self.face_of(tp);
         let q = before_tp.unwrap_or_else(|| self.prev_fast(tp));
         debug_assert_eq!(q, self.prev(tp));
         let r = self.next(tp);
-        self.set_next::<J>(q, n);
-        self.set_next::<J>(n, r);
-        self.he_mut::<J>(n).face = g;
+        self.set_next(q, n);
+        self.set_next(n, r);
+        self.he_mut(n).face = g;
         if self.face_halfedge(g) == tp {
-            self.set_face_link::<J>(g, n);
+            self.set_face_link(g, n);
         }
         let u = self.origin(p);
         let w = self.origin(tp);
         if self.v_halfedge[u] == p {
-            *self.v_halfedge_mut::<J>(u) = n.twin();
+            *self.v_halfedge_mut(u) = n.twin();
         }
         if self.v_halfedge[w] == tp {
-            *self.v_halfedge_mut::<J>(w) = n;
+            *self.v_halfedge_mut(w) = n;
         }
         let (kept, gone) = (n.edge().index(), p.edge().index());
         self.attrs.edge.merge(kept, &[(kept, 0.5), (gone, 0.5)]);
@@ -721,7 +737,7 @@ impl Mesh {
                 .merge(k.index(), &[(k.index(), 1.0), (f.index(), 0.0)]);
         }
         self.attrs.halfedge.copy(tp.index(), n.index());
-        self.free_face::<J>(f);
-        self.free_edge::<J>(p.edge());
+        self.free_face(f);
+        self.free_edge(p.edge());
     }
 }

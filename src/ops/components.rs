@@ -67,20 +67,20 @@ impl Mesh {
             let edges: Vec<_> = m.eids().collect();
             for e in edges {
                 if label[m.origin(e.halfedge(0))] != c {
-                    m.free_edge::<Unrecorded>(e);
+                    m.writer::<Unrecorded>().free_edge(e);
                 }
             }
             let faces: Vec<_> = m.fids().collect();
             for f in faces {
                 let h = self.face_halfedge(f);
                 if label[self.origin(h)] != c {
-                    m.free_face::<Unrecorded>(f);
+                    m.writer::<Unrecorded>().free_face(f);
                 }
             }
             let vertices: Vec<_> = m.vids().collect();
             for v in vertices {
                 if label[v] != c {
-                    m.free_vertex::<Unrecorded>(v);
+                    m.writer::<Unrecorded>().free_vertex(v);
                 }
             }
             if compact {

@@ -7,7 +7,7 @@ use crate::error::{Refusal, Result};
 use crate::journal::{journaled, Journaling};
 use crate::keys::{FaceKey, VertexKey};
 use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, Vid};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Writer};
 
 struct CutPlan {
     /// Path half-edges `h_i = v_i -> v_i+1`.
@@ -193,30 +193,6 @@ impl Mesh {
         journaled!(self.cut_path_with(path))
     }
 
-    /// [`cut_path`](Mesh::cut_path)'s body, in journaling mode `J`.
-    fn cut_path_with<J: Journaling>(&mut self, path: &[VertexKey]) -> Result<Vec<FaceKey>> {
-        let plan = self.plan_cut(path)?;
-        let mut cut = self.read_cut(plan);
-        // Vertices: v_i and their right-side copies.
-        for (i, _) in &cut.plan.wedges {
-            cut.copy[*i] = self.alloc_vertex::<J>();
-        }
-        if cut.plan.closed {
-            let k = cut.plan.hs.len();
-            cut.copy[k] = cut.copy[0];
-        }
-        cut.new_edges = (0..cut.plan.hs.len())
-            .map(|_| self.alloc_edge::<J>())
-            .collect();
-        self.link_cut_right::<J>(&cut);
-        self.link_cut_boundary::<J>(&cut);
-        self.move_cut_wedges::<J>(&cut);
-        let (made, spare) = self.label_cut_holes::<J>(&cut);
-        self.cut_attributes(&cut, &made, &spare);
-        self.end_op::<J>();
-        Ok(made.into_iter().map(|h| self.fkey(h)).collect())
-    }
-
     /// What the cut reads before it changes anything: the twins of the path
     /// half-edges and their neighbours, the holes at its ends, its vertices.
     fn read_cut(&self, plan: CutPlan) -> Cut {
@@ -252,109 +228,6 @@ impl Mesh {
             new_edges: Vec::new(),
             plan,
         }
-    }
-
-    /// `g_i = v'_i+1 -> v'_i` takes `t_i`'s place in its right face.
-    fn link_cut_right<J: Journaling>(&mut self, cut: &Cut) {
-        let k = cut.ts.len();
-        for i in 0..k {
-            *self.he_mut::<J>(cut.g(i)) = HalfedgeRecord {
-                origin: cut.copy[i + 1],
-                next: cut.map(cut.nexts[i]),
-                face: cut.rights[i],
-            };
-        }
-        for i in 0..k {
-            let p = cut.map(cut.prevs[i]);
-            self.set_next::<J>(p, cut.g(i));
-            if self.face_halfedge(cut.rights[i]) == cut.ts[i] {
-                self.set_face_link::<J>(cut.rights[i], cut.g(i));
-            }
-        }
-    }
-
-    /// The new boundary: `t_i` run backwards along the left side, `gt_i`
-    /// (the twin of `g_i`) forwards along the right side; at a boundary end
-    /// they join the hole that was there.
-    fn link_cut_boundary<J: Journaling>(&mut self, cut: &Cut) {
-        let (ts, closed, hole_out) = (&cut.ts, cut.plan.closed, cut.plan.hole_out);
-        let k = ts.len();
-        for i in 0..k {
-            let next_t = if i > 0 {
-                ts[i - 1]
-            } else if closed {
-                ts[k - 1]
-            } else {
-                hole_out[0].unwrap_or(cut.gt(0))
-            };
-            self.he_mut::<J>(ts[i]).next = next_t;
-            let next_gt = if i + 1 < k {
-                cut.gt(i + 1)
-            } else if closed {
-                cut.gt(0)
-            } else {
-                hole_out[1].unwrap_or(ts[k - 1])
-            };
-            // The face is set when the new loops are labelled.
-            *self.he_mut::<J>(cut.gt(i)) = HalfedgeRecord {
-                origin: cut.copy[i],
-                next: next_gt,
-                face: Fid::NONE,
-            };
-        }
-        if let Some(hi) = cut.hole_in[0] {
-            self.set_next::<J>(hi, cut.gt(0));
-        }
-        if let Some(hi) = cut.hole_in[1] {
-            self.set_next::<J>(hi, ts[k - 1]);
-        }
-    }
-
-    /// The half-edges right of the path leave the copies; every path
-    /// vertex and copy names a half-edge it still has.
-    fn move_cut_wedges<J: Journaling>(&mut self, cut: &Cut) {
-        let k = cut.ts.len();
-        for (i, wedge) in &cut.plan.wedges {
-            for &o in wedge {
-                self.he_mut::<J>(o).origin = cut.copy[*i];
-            }
-            let out = if *i < k { cut.gt(*i) } else { wedge[0] };
-            *self.v_halfedge_mut::<J>(cut.copy[*i]) = out;
-        }
-        for i in 0..k {
-            *self.v_halfedge_mut::<J>(cut.vs[i]) = cut.plan.hs[i];
-        }
-        if !cut.plan.closed {
-            *self.v_halfedge_mut::<J>(cut.vs[k]) = cut.ts[k - 1];
-        }
-    }
-
-    /// Hole faces: the loop through `t_0`, then the one through `gt_0` if it
-    /// is another loop. Old holes are reused, one left over is freed.
-    /// Returns the holes made and the old ones.
-    fn label_cut_holes<J: Journaling>(&mut self, cut: &Cut) -> (Vec<Fid>, Vec<Fid>) {
-        let mut spare: Vec<Fid> = cut.old_holes.iter().flatten().copied().collect();
-        spare.dedup();
-        let mut made = Vec::new();
-        let first = spare
-            .first()
-            .copied()
-            .unwrap_or_else(|| self.alloc_face::<J>(true));
-        self.he_mut::<J>(cut.ts[0]).face = Fid::NONE;
-        self.relabel_loop::<J>(cut.ts[0], first);
-        made.push(first);
-        if self.face_of(cut.gt(0)) != first {
-            let second = if spare.len() > 1 {
-                spare[1]
-            } else {
-                self.alloc_face::<J>(true)
-            };
-            self.relabel_loop::<J>(cut.gt(0), second);
-            made.push(second);
-        } else if spare.len() > 1 {
-            self.free_face::<J>(spare[1]);
-        }
-        (made, spare)
     }
 
     /// Attributes: copies interpolate their vertex, each path edge splits
@@ -419,5 +292,135 @@ impl Cut {
     /// `x`, or `g_i` where `x` is `t_i` (which `g_i` replaces).
     fn map(&self, x: Hid) -> Hid {
         self.index_of_t.get(&x).map_or(x, |&j| self.g(j))
+    }
+}
+
+impl Mesh {
+    /// [`cut_path`](Mesh::cut_path)'s body, in journaling mode `J`.
+    fn cut_path_with<J: Journaling>(&mut self, path: &[VertexKey]) -> Result<Vec<FaceKey>> {
+        let mut w = self.writer::<J>();
+        let plan = w.plan_cut(path)?;
+        let mut cut = w.read_cut(plan);
+        // Vertices: v_i and their right-side copies.
+        for (i, _) in &cut.plan.wedges {
+            cut.copy[*i] = w.alloc_vertex();
+        }
+        if cut.plan.closed {
+            let k = cut.plan.hs.len();
+            cut.copy[k] = cut.copy[0];
+        }
+        cut.new_edges = (0..cut.plan.hs.len()).map(|_| w.alloc_edge()).collect();
+        w.link_cut_right(&cut);
+        w.link_cut_boundary(&cut);
+        w.move_cut_wedges(&cut);
+        let (made, spare) = w.label_cut_holes(&cut);
+        w.cut_attributes(&cut, &made, &spare);
+        w.end_op();
+        Ok(made.into_iter().map(|h| w.fkey(h)).collect())
+    }
+}
+
+impl<J: Journaling> Writer<'_, J> {
+    /// `g_i = v'_i+1 -> v'_i` takes `t_i`'s place in its right face.
+    fn link_cut_right(&mut self, cut: &Cut) {
+        let k = cut.ts.len();
+        for i in 0..k {
+            *self.he_mut(cut.g(i)) = HalfedgeRecord {
+                origin: cut.copy[i + 1],
+                next: cut.map(cut.nexts[i]),
+                face: cut.rights[i],
+            };
+        }
+        for i in 0..k {
+            let p = cut.map(cut.prevs[i]);
+            self.set_next(p, cut.g(i));
+            if self.face_halfedge(cut.rights[i]) == cut.ts[i] {
+                self.set_face_link(cut.rights[i], cut.g(i));
+            }
+        }
+    }
+
+    /// The new boundary: `t_i` run backwards along the left side, `gt_i`
+    /// (the twin of `g_i`) forwards along the right side; at a boundary end
+    /// they join the hole that was there.
+    fn link_cut_boundary(&mut self, cut: &Cut) {
+        let (ts, closed, hole_out) = (&cut.ts, cut.plan.closed, cut.plan.hole_out);
+        let k = ts.len();
+        for i in 0..k {
+            let next_t = if i > 0 {
+                ts[i - 1]
+            } else if closed {
+                ts[k - 1]
+            } else {
+                hole_out[0].unwrap_or(cut.gt(0))
+            };
+            self.he_mut(ts[i]).next = next_t;
+            let next_gt = if i + 1 < k {
+                cut.gt(i + 1)
+            } else if closed {
+                cut.gt(0)
+            } else {
+                hole_out[1].unwrap_or(ts[k - 1])
+            };
+            // The face is set when the new loops are labelled.
+            *self.he_mut(cut.gt(i)) = HalfedgeRecord {
+                origin: cut.copy[i],
+                next: next_gt,
+                face: Fid::NONE,
+            };
+        }
+        if let Some(hi) = cut.hole_in[0] {
+            self.set_next(hi, cut.gt(0));
+        }
+        if let Some(hi) = cut.hole_in[1] {
+            self.set_next(hi, ts[k - 1]);
+        }
+    }
+
+    /// The half-edges right of the path leave the copies; every path
+    /// vertex and copy names a half-edge it still has.
+    fn move_cut_wedges(&mut self, cut: &Cut) {
+        let k = cut.ts.len();
+        for (i, wedge) in &cut.plan.wedges {
+            for &o in wedge {
+                self.he_mut(o).origin = cut.copy[*i];
+            }
+            let out = if *i < k { cut.gt(*i) } else { wedge[0] };
+            *self.v_halfedge_mut(cut.copy[*i]) = out;
+        }
+        for i in 0..k {
+            *self.v_halfedge_mut(cut.vs[i]) = cut.plan.hs[i];
+        }
+        if !cut.plan.closed {
+            *self.v_halfedge_mut(cut.vs[k]) = cut.ts[k - 1];
+        }
+    }
+
+    /// Hole faces: the loop through `t_0`, then the one through `gt_0` if it
+    /// is another loop. Old holes are reused, one left over is freed.
+    /// Returns the holes made and the old ones.
+    fn label_cut_holes(&mut self, cut: &Cut) -> (Vec<Fid>, Vec<Fid>) {
+        let mut spare: Vec<Fid> = cut.old_holes.iter().flatten().copied().collect();
+        spare.dedup();
+        let mut made = Vec::new();
+        let first = spare
+            .first()
+            .copied()
+            .unwrap_or_else(|| self.alloc_face(true));
+        self.he_mut(cut.ts[0]).face = Fid::NONE;
+        self.relabel_loop(cut.ts[0], first);
+        made.push(first);
+        if self.face_of(cut.gt(0)) != first {
+            let second = if spare.len() > 1 {
+                spare[1]
+            } else {
+                self.alloc_face(true)
+            };
+            self.relabel_loop(cut.gt(0), second);
+            made.push(second);
+        } else if spare.len() > 1 {
+            self.free_face(spare[1]);
+        }
+        (made, spare)
     }
 }

@@ -79,20 +79,23 @@ impl Mesh {
     pub fn extrude_face(&mut self, fk: FaceKey, distance: f64) -> Result<Vec<FaceKey>> {
         journaled!(self.extrude_face_with(fk, distance))
     }
+}
 
+impl Mesh {
     /// [`extrude_face`](Mesh::extrude_face)'s body, in journaling mode `J`.
     fn extrude_face_with<J: Journaling>(
         &mut self,
         fk: FaceKey,
         distance: f64,
     ) -> Result<Vec<FaceKey>> {
-        let (f, normal) = self.plan_extrude(fk, distance)?;
-        let ring: Vec<Hid> = self.face_loop(f).collect();
+        let mut w = self.writer::<J>();
+        let (f, normal) = w.plan_extrude(fk, distance)?;
+        let ring: Vec<Hid> = w.face_loop(f).collect();
         let n = ring.len();
-        let w: Vec<Vid> = (0..n).map(|_| self.alloc_vertex::<J>()).collect();
-        let cap: Vec<Eid> = (0..n).map(|_| self.alloc_edge::<J>()).collect();
-        let up: Vec<Eid> = (0..n).map(|_| self.alloc_edge::<J>()).collect();
-        let sides: Vec<Fid> = (0..n).map(|_| self.alloc_face::<J>(false)).collect();
+        let tops: Vec<Vid> = (0..n).map(|_| w.alloc_vertex()).collect();
+        let cap: Vec<Eid> = (0..n).map(|_| w.alloc_edge()).collect();
+        let up: Vec<Eid> = (0..n).map(|_| w.alloc_edge()).collect();
+        let sides: Vec<Fid> = (0..n).map(|_| w.alloc_face(false)).collect();
         for i in 0..n {
             let j = (i + 1) % n;
             let h = ring[i];
@@ -100,55 +103,55 @@ impl Mesh {
             let up_j = up[j].halfedge(0); // v_j -> w_j
             let down_i = up[i].halfedge(1); // w_i -> v_i
             let s = sides[i];
-            *self.he_mut::<J>(c) = HalfedgeRecord {
-                origin: w[i],
+            *w.he_mut(c) = HalfedgeRecord {
+                origin: tops[i],
                 next: cap[j].halfedge(0),
                 face: f,
             };
-            *self.he_mut::<J>(ct) = HalfedgeRecord {
-                origin: w[j],
+            *w.he_mut(ct) = HalfedgeRecord {
+                origin: tops[j],
                 next: down_i,
                 face: s,
             };
-            *self.he_mut::<J>(up_j) = HalfedgeRecord {
-                origin: self.origin(ring[j]),
+            *w.he_mut(up_j) = HalfedgeRecord {
+                origin: w.origin(ring[j]),
                 next: ct,
                 face: s,
             };
-            *self.he_mut::<J>(down_i) = HalfedgeRecord {
-                origin: w[i],
+            *w.he_mut(down_i) = HalfedgeRecord {
+                origin: tops[i],
                 next: h,
                 face: s,
             };
-            self.he_mut::<J>(h).next = up_j;
-            self.he_mut::<J>(h).face = s;
-            self.set_face_link::<J>(s, h);
-            *self.v_halfedge_mut::<J>(w[i]) = c;
+            w.he_mut(h).next = up_j;
+            w.he_mut(h).face = s;
+            w.set_face_link(s, h);
+            *w.v_halfedge_mut(tops[i]) = c;
         }
-        self.set_face_link::<J>(f, cap[0].halfedge(0));
+        w.set_face_link(f, cap[0].halfedge(0));
         for i in 0..n {
-            let v = self.origin(ring[i]).index();
-            self.attrs.vertex.interpolate(w[i].index(), &[(v, 1.0)]);
-            self.attrs.edge.copy(ring[i].edge().index(), cap[i].index());
-            self.attrs.edge.interpolate(up[i].index(), &[]);
+            let v = w.origin(ring[i]).index();
+            w.attrs.vertex.interpolate(tops[i].index(), &[(v, 1.0)]);
+            w.attrs.edge.copy(ring[i].edge().index(), cap[i].index());
+            w.attrs.edge.interpolate(up[i].index(), &[]);
             let [c, ct] = cap[i].halfedges();
-            self.attrs.halfedge.copy(ring[i].index(), c.index());
+            w.attrs.halfedge.copy(ring[i].index(), c.index());
             for x in [ct, up[i].halfedge(0), up[i].halfedge(1)] {
-                self.attrs.halfedge.interpolate(x.index(), &[]);
+                w.attrs.halfedge.interpolate(x.index(), &[]);
             }
-            self.attrs.face.interpolate(sides[i].index(), &[]);
+            w.attrs.face.interpolate(sides[i].index(), &[]);
         }
         // The lifted vertices were born in this edit (a reused slot's old
         // value was saved when it was reused): raw writes need no journal.
-        if let (Some(nrm), Some(p)) = (normal, self.attrs.positions_mut().map(|c| c.raw_mut())) {
-            for &x in &w {
+        if let (Some(nrm), Some(p)) = (normal, w.attrs.positions_mut().map(|c| c.raw_mut())) {
+            for &x in &tops {
                 let q = &mut p[x.index()];
                 for k in 0..3 {
                     q[k] += distance * nrm[k];
                 }
             }
         }
-        self.end_op::<J>();
-        Ok(sides.into_iter().map(|s| self.fkey(s)).collect())
+        w.end_op();
+        Ok(sides.into_iter().map(|s| w.fkey(s)).collect())
     }
 }

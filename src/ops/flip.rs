@@ -5,7 +5,7 @@ use crate::error::{Refusal, Result};
 use crate::journal::{journaled, Journaling, Unrecorded};
 use crate::keys::EdgeKey;
 use crate::layout::{Eid, FaceLink, Hid, Vid};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Writer};
 
 /// The elements of a flip, named after the diagram on
 /// [`Mesh::flip_edge`]: `h = a → b`, `t = b → a`, `h1 = b → c`,
@@ -125,14 +125,6 @@ impl Mesh {
         journaled!(self.flip_edge_with(ek))
     }
 
-    /// [`flip_edge`](Mesh::flip_edge)'s body, in journaling mode `J`.
-    fn flip_edge_with<J: Journaling>(&mut self, ek: EdgeKey) -> Result<EdgeKey> {
-        let plan = self.plan_flip(ek)?;
-        self.commit_flip::<J>(plan);
-        self.end_op::<J>();
-        Ok(ek)
-    }
-
     /// The remesher's door: [`flip_edge`](Mesh::flip_edge) of a live edge
     /// slot, checked as it is, without the per-call debug validation (the
     /// caller validates once at the end). A recording mesh takes the full
@@ -143,13 +135,26 @@ impl Mesh {
             return self.flip_edge(ek).map(|_| ());
         }
         let plan = self.plan_flip(ek)?;
-        self.commit_flip::<Unrecorded>(plan);
+        self.writer::<Unrecorded>().commit_flip(plan);
         Ok(())
     }
+}
 
+impl Mesh {
+    /// [`flip_edge`](Mesh::flip_edge)'s body, in journaling mode `J`.
+    fn flip_edge_with<J: Journaling>(&mut self, ek: EdgeKey) -> Result<EdgeKey> {
+        let mut w = self.writer::<J>();
+        let plan = w.plan_flip(ek)?;
+        w.commit_flip(plan);
+        w.end_op();
+        Ok(ek)
+    }
+}
+
+impl<J: Journaling> Writer<'_, J> {
     /// The commit and rules of a planned flip; cannot fail.
     #[inline(always)]
-    fn commit_flip<J: Journaling>(&mut self, plan: FlipPlan) {
+    fn commit_flip(&mut self, plan: FlipPlan) {
         let FlipPlan {
             e,
             h1,
@@ -164,27 +169,27 @@ impl Mesh {
         let (f0, f1) = (self.face_of(h), self.face_of(t));
         // f0 = (h: c -> d, t2: d -> b, h1: b -> c);
         // f1 = (t: d -> c, h2: c -> a, t1: a -> d).
-        self.he_mut::<J>(h).origin = c;
-        self.he_mut::<J>(t).origin = d;
-        self.set_next::<J>(h, t2);
-        self.set_next::<J>(t2, h1);
-        self.set_next::<J>(h1, h);
-        self.set_next::<J>(t, h2);
-        self.set_next::<J>(h2, t1);
-        self.set_next::<J>(t1, t);
-        self.he_mut::<J>(t2).face = f0;
-        self.he_mut::<J>(h2).face = f1;
+        self.he_mut(h).origin = c;
+        self.he_mut(t).origin = d;
+        self.set_next(h, t2);
+        self.set_next(t2, h1);
+        self.set_next(h1, h);
+        self.set_next(t, h2);
+        self.set_next(h2, t1);
+        self.set_next(t1, t);
+        self.he_mut(t2).face = f0;
+        self.he_mut(h2).face = f1;
         // Neither face is a hole (refused above): no flag to keep.
-        *self.f_halfedge_mut::<J>(f0) = FaceLink::new(h, false);
-        *self.f_halfedge_mut::<J>(f1) = FaceLink::new(t, false);
+        *self.f_halfedge_mut(f0) = FaceLink::new(h, false);
+        *self.f_halfedge_mut(f1) = FaceLink::new(t, false);
         // a and b may have named h and t; t1 and h1 surely leave them. A
         // vertex that named another half-edge keeps it: a boundary vertex
         // names one in a hole (rule 11), which h and t are not.
         if self.v_halfedge[a] == h {
-            *self.v_halfedge_mut::<J>(a) = t1;
+            *self.v_halfedge_mut(a) = t1;
         }
         if self.v_halfedge[b] == t {
-            *self.v_halfedge_mut::<J>(b) = h1;
+            *self.v_halfedge_mut(b) = h1;
         }
         if !self.attrs.face.cols.is_empty() {
             let pair = [(f0.index(), 0.5), (f1.index(), 0.5)];

@@ -5,7 +5,7 @@ use crate::error::{Refusal, Result};
 use crate::journal::{journaled, Journaling};
 use crate::keys::FaceKey;
 use crate::layout::{Fid, Hid, Vid};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Writer};
 
 impl Mesh {
     fn plan_remove_face(&self, fk: FaceKey) -> Result<Fid> {
@@ -61,37 +61,6 @@ impl Mesh {
     /// ```
     pub fn remove_face(&mut self, fk: FaceKey) -> Result<Vec<FaceKey>> {
         journaled!(self.remove_face_with(fk))
-    }
-
-    /// [`remove_face`](Mesh::remove_face)'s body, in journaling mode `J`.
-    fn remove_face_with<J: Journaling>(&mut self, fk: FaceKey) -> Result<Vec<FaceKey>> {
-        let f = self.plan_remove_face(fk)?;
-        let sides: Vec<Hid> = self.face_loop(f).collect();
-        self.set_hole::<J>(f, true);
-        self.attrs.face.interpolate(f.index(), &[]);
-        // Rule 11: every corner is now on the boundary.
-        for &x in &sides {
-            let v = self.origin(x);
-            *self.v_halfedge_mut::<J>(v) = x;
-        }
-        let mut kept = Vec::new();
-        let mut dangling = Vec::new();
-        for &x in &sides {
-            if self.in_hole(x.twin()) {
-                dangling.push(x);
-            } else {
-                kept.push(x);
-            }
-        }
-        for x in dangling {
-            let survivor = self.face_of(x.twin());
-            self.remove_edge_raw::<J>(x.edge(), survivor);
-        }
-        let mut holes: Vec<Fid> = kept.iter().map(|&x| self.face_of(x)).collect();
-        holes.sort_unstable();
-        holes.dedup();
-        self.end_op::<J>();
-        Ok(holes.into_iter().map(|h| self.fkey(h)).collect())
     }
 
     fn plan_fill_hole(&self, hk: FaceKey) -> Result<Fid> {
@@ -154,25 +123,62 @@ impl Mesh {
     pub fn fill_hole(&mut self, hole: FaceKey) -> Result<FaceKey> {
         journaled!(self.fill_hole_with(hole))
     }
+}
+
+impl Mesh {
+    /// [`remove_face`](Mesh::remove_face)'s body, in journaling mode `J`.
+    fn remove_face_with<J: Journaling>(&mut self, fk: FaceKey) -> Result<Vec<FaceKey>> {
+        let mut w = self.writer::<J>();
+        let f = w.plan_remove_face(fk)?;
+        let sides: Vec<Hid> = w.face_loop(f).collect();
+        w.set_hole(f, true);
+        w.attrs.face.interpolate(f.index(), &[]);
+        // Rule 11: every corner is now on the boundary.
+        for &x in &sides {
+            let v = w.origin(x);
+            *w.v_halfedge_mut(v) = x;
+        }
+        let mut kept = Vec::new();
+        let mut dangling = Vec::new();
+        for &x in &sides {
+            if w.in_hole(x.twin()) {
+                dangling.push(x);
+            } else {
+                kept.push(x);
+            }
+        }
+        for x in dangling {
+            let survivor = w.face_of(x.twin());
+            w.remove_edge_raw(x.edge(), survivor);
+        }
+        let mut holes: Vec<Fid> = kept.iter().map(|&x| w.face_of(x)).collect();
+        holes.sort_unstable();
+        holes.dedup();
+        w.end_op();
+        Ok(holes.into_iter().map(|h| w.fkey(h)).collect())
+    }
 
     /// [`fill_hole`](Mesh::fill_hole)'s body, in journaling mode `J`.
     fn fill_hole_with<J: Journaling>(&mut self, hole: FaceKey) -> Result<FaceKey> {
-        self.fill_hole_open::<J>(hole)?;
-        self.end_op::<J>();
+        let mut w = self.writer::<J>();
+        w.fill_hole_open(hole)?;
+        w.end_op();
         Ok(hole)
     }
+}
 
+impl<J: Journaling> Writer<'_, J> {
     /// [`fill_hole`](Mesh::fill_hole) without ending the edit: for
     /// composite operators, which end theirs once (one journal step).
-    pub(crate) fn fill_hole_open<J: Journaling>(&mut self, hole: FaceKey) -> Result<()> {
+    pub(crate) fn fill_hole_open(&mut self, hole: FaceKey) -> Result<()> {
         let h = self.plan_fill_hole(hole)?;
-        self.set_hole::<J>(h, false);
+        self.set_hole(h, false);
         self.attrs.face.interpolate(h.index(), &[]);
         // Rule 11: a corner that named a half-edge of the hole names another
         // hole's, if one still touches it.
         let corners: Vec<Vid> = self.face_loop(h).map(|x| self.origin(x)).collect();
         for v in corners {
-            self.point_at_hole::<J>(v);
+            self.point_at_hole(v);
         }
         Ok(())
     }

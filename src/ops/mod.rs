@@ -33,7 +33,9 @@
 //! mesh. Inside, `x` runs a private planning phase (`&self`: gather every
 //! element into role-named locals named after the doc diagram, and refuse
 //! with [`Error::Refused`] or [`Error::StaleKey`]); then a commit phase
-//! (`&mut self`) that cannot fail; then the attribute rules; then, in debug
+//! that cannot fail, written through one `Writer` (the mesh's link
+//! mutators and slot births and deaths, recording or not as the
+//! `journaled!` macro chose once for the call); then the attribute rules; then, in debug
 //! builds, [`Mesh::validate`]. On any error the mesh is exactly as it was.
 //!
 //! # Attribute rules per operator
@@ -118,7 +120,7 @@ use crate::error::{Error, Refusal};
 use crate::journal::Journaling;
 use crate::keys::AnyKey;
 use crate::layout::{Eid, Fid, HalfedgeRecord, Hid};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Writer};
 use crate::vec3::{newell_edge, norm};
 
 /// A refusal error.
@@ -140,31 +142,23 @@ pub(crate) struct EdgeRemoval {
 }
 
 impl Mesh {
+    /// [`Writer::split_face_raw`] in journaling mode `J`, for code that
+    /// holds no writer (the remesher, with no journal).
+    #[inline]
+    pub(crate) fn split_face_raw<J: Journaling>(
+        &mut self,
+        pa: Hid,
+        ha: Hid,
+        pb: Hid,
+        hb: Hid,
+    ) -> (Hid, Fid) {
+        self.writer::<J>().split_face_raw(pa, ha, pb, hb)
+    }
+
     /// Number of half-edges in the loop of face `f`.
     #[inline]
     pub(crate) fn face_degree(&self, f: Fid) -> usize {
         self.face_loop(f).count()
-    }
-
-    /// Give every half-edge of the `next` cycle through `start` the face `f`
-    /// and point `f` at `start`. When `f` is a hole, every vertex on the
-    /// cycle is pointed at its half-edge there (rule 11: its corners are
-    /// now on the boundary).
-    pub(crate) fn relabel_loop<J: Journaling>(&mut self, start: Hid, f: Fid) {
-        let hole = self.is_hole(f);
-        let mut h = start;
-        for _ in 0..self.he.len() {
-            self.he_mut::<J>(h).face = f;
-            if hole {
-                let o = self.he[h].origin;
-                *self.v_halfedge_mut::<J>(o) = h;
-            }
-            h = self.he[h].next;
-            if h == start {
-                break;
-            }
-        }
-        self.set_face_link::<J>(f, start);
     }
 
     /// Twice the vector area (Newell) of the `next` cycle through `start`.
@@ -210,123 +204,6 @@ impl Mesh {
         self.attrs.face.split(src.index(), &shares);
     }
 
-    /// Cut face `f` with a new edge from `a = origin(ha)` to `b = origin(hb)`,
-    /// where `pa` and `pb` are the half-edges before `ha` and `hb` in `f`.
-    /// The new half-edge `a → b` (returned first) lies in a new face (returned
-    /// second) with `hb .. pa`; its twin stays in `f` with `ha .. pb`. Corner
-    /// and edge rules run; the face rule is the caller's.
-    pub(crate) fn split_face_raw<J: Journaling>(
-        &mut self,
-        pa: Hid,
-        ha: Hid,
-        pb: Hid,
-        hb: Hid,
-    ) -> (Hid, Fid) {
-        let f = self.face_of(ha);
-        let a = self.origin(ha);
-        let b = self.origin(hb);
-        let e = self.alloc_edge::<J>();
-        let g = self.alloc_face::<J>(false);
-        let [n0, n1] = e.halfedges();
-        *self.he_mut::<J>(n0) = HalfedgeRecord {
-            origin: a,
-            next: hb,
-            face: g,
-        };
-        *self.he_mut::<J>(n1) = HalfedgeRecord {
-            origin: b,
-            next: ha,
-            face: f,
-        };
-        self.set_next::<J>(pa, n0);
-        self.set_next::<J>(pb, n1);
-        self.relabel_loop::<J>(n0, g);
-        self.set_face_link::<J>(f, n1);
-        self.attrs.edge.interpolate(e.index(), &[]);
-        self.attrs.halfedge.copy(ha.index(), n0.index());
-        self.attrs.halfedge.copy(hb.index(), n1.index());
-        (n0, g)
-    }
-
-    /// Take edge `e` out of the `next` structure. Where its two sides lie in
-    /// different faces they merge and `survivor` (one of them) is kept;
-    /// where they lie in the same loop it splits in two (a new face with the
-    /// same hole flag takes the second), and vertices left without edges are
-    /// removed. Attribute values of the freed elements are dropped: run the
-    /// merge rules before. Must be called on a consistent mesh.
-    pub(crate) fn remove_edge_raw<J: Journaling>(&mut self, e: Eid, survivor: Fid) -> EdgeRemoval {
-        let [x, y] = e.halfedges();
-        let (fx, fy) = (self.face_of(x), self.face_of(y));
-        let (a, b) = (self.origin(x), self.origin(y));
-        let (nx, ny) = (self.next(x), self.next(y));
-        let mut out = EdgeRemoval {
-            freed_face: None,
-            new_face: None,
-        };
-        if nx == y && ny == x {
-            // An isolated edge: everything goes.
-            self.free_face::<J>(fx);
-            out.freed_face = Some(fx);
-            self.free_vertex::<J>(a);
-            self.free_vertex::<J>(b);
-            self.free_edge::<J>(e);
-            return out;
-        }
-        if nx == y {
-            // b has degree 1: ... px -> x -> y -> ny ...
-            let px = self.prev_fast(x);
-            self.set_next::<J>(px, ny);
-            self.free_vertex::<J>(b);
-            if self.v_halfedge[a] == x {
-                *self.v_halfedge_mut::<J>(a) = ny;
-            }
-            let fl = self.face_halfedge(fx);
-            if fl == x || fl == y {
-                self.set_face_link::<J>(fx, ny);
-            }
-            self.free_edge::<J>(e);
-            return out;
-        }
-        if ny == x {
-            let py = self.prev_fast(y);
-            self.set_next::<J>(py, nx);
-            self.free_vertex::<J>(a);
-            if self.v_halfedge[b] == y {
-                *self.v_halfedge_mut::<J>(b) = nx;
-            }
-            let fl = self.face_halfedge(fy);
-            if fl == x || fl == y {
-                self.set_face_link::<J>(fy, nx);
-            }
-            self.free_edge::<J>(e);
-            return out;
-        }
-        let px = self.prev_fast(x);
-        let py = self.prev_fast(y);
-        self.set_next::<J>(px, ny);
-        self.set_next::<J>(py, nx);
-        if self.v_halfedge[a] == x {
-            *self.v_halfedge_mut::<J>(a) = ny;
-        }
-        if self.v_halfedge[b] == y {
-            *self.v_halfedge_mut::<J>(b) = nx;
-        }
-        if fx != fy {
-            let gone = if survivor == fx { fy } else { fx };
-            self.relabel_loop::<J>(nx, survivor);
-            self.free_face::<J>(gone);
-            out.freed_face = Some(gone);
-        } else {
-            self.set_face_link::<J>(fx, nx);
-            let g = self.alloc_face::<J>(self.is_hole(fx));
-            self.relabel_loop::<J>(ny, g);
-            self.attrs.face.copy(fx.index(), g.index());
-            out.new_face = Some(g);
-        }
-        self.free_edge::<J>(e);
-        out
-    }
-
     /// The half-edge before `h` in its face: a few steps along the face
     /// when it is small (triangles, quads), else by turning around
     /// `origin(h)` ([`prev`](Mesh::prev)).
@@ -342,18 +219,150 @@ impl Mesh {
         }
         self.prev(h)
     }
+}
 
-    /// The whole-mesh check after every operator, for the crate's own
-    /// tests and fuzzing (the `validate-edits` feature in a debug build;
-    /// the README's test command turns it on): O(mesh) per edit, so a dependent's debug build,
-    /// which runs its own code unoptimised, does not pay it (a generator
-    /// of 1,000 edits would be quadratic). Operators keep their O(1)
-    /// `debug_assert!`s on what they touch.
-    #[inline]
-    pub(crate) fn debug_validate(&self) {
-        #[cfg(any(test, all(debug_assertions, feature = "validate-edits")))]
-        if let Err(e) = self.validate() {
-            panic!("operator broke the mesh: {e}");
+impl<J: Journaling> Writer<'_, J> {
+    /// The end of one operator: validate in debug builds (see
+    /// [`Mesh::debug_validate`]), then close the journal's open step, if a
+    /// journal records and no step group or transaction is open
+    /// ([`Mesh::end_edit`]).
+    #[inline(always)]
+    pub(crate) fn end_op(&mut self) {
+        self.debug_validate();
+        if J::ON {
+            self.end_edit();
         }
+    }
+
+    /// Give every half-edge of the `next` cycle through `start` the face `f`
+    /// and point `f` at `start`. When `f` is a hole, every vertex on the
+    /// cycle is pointed at its half-edge there (rule 11: its corners are
+    /// now on the boundary).
+    pub(crate) fn relabel_loop(&mut self, start: Hid, f: Fid) {
+        let hole = self.is_hole(f);
+        let mut h = start;
+        for _ in 0..self.he.len() {
+            self.he_mut(h).face = f;
+            if hole {
+                let o = self.he[h].origin;
+                *self.v_halfedge_mut(o) = h;
+            }
+            h = self.he[h].next;
+            if h == start {
+                break;
+            }
+        }
+        self.set_face_link(f, start);
+    }
+
+    /// Cut face `f` with a new edge from `a = origin(ha)` to `b = origin(hb)`,
+    /// where `pa` and `pb` are the half-edges before `ha` and `hb` in `f`.
+    /// The new half-edge `a → b` (returned first) lies in a new face (returned
+    /// second) with `hb .. pa`; its twin stays in `f` with `ha .. pb`. Corner
+    /// and edge rules run; the face rule is the caller's.
+    pub(crate) fn split_face_raw(&mut self, pa: Hid, ha: Hid, pb: Hid, hb: Hid) -> (Hid, Fid) {
+        let f = self.face_of(ha);
+        let a = self.origin(ha);
+        let b = self.origin(hb);
+        let e = self.alloc_edge();
+        let g = self.alloc_face(false);
+        let [n0, n1] = e.halfedges();
+        *self.he_mut(n0) = HalfedgeRecord {
+            origin: a,
+            next: hb,
+            face: g,
+        };
+        *self.he_mut(n1) = HalfedgeRecord {
+            origin: b,
+            next: ha,
+            face: f,
+        };
+        self.set_next(pa, n0);
+        self.set_next(pb, n1);
+        self.relabel_loop(n0, g);
+        self.set_face_link(f, n1);
+        self.attrs.edge.interpolate(e.index(), &[]);
+        self.attrs.halfedge.copy(ha.index(), n0.index());
+        self.attrs.halfedge.copy(hb.index(), n1.index());
+        (n0, g)
+    }
+
+    /// Take edge `e` out of the `next` structure. Where its two sides lie in
+    /// different faces they merge and `survivor` (one of them) is kept;
+    /// where they lie in the same loop it splits in two (a new face with the
+    /// same hole flag takes the second), and vertices left without edges are
+    /// removed. Attribute values of the freed elements are dropped: run the
+    /// merge rules before. Must be called on a consistent mesh.
+    pub(crate) fn remove_edge_raw(&mut self, e: Eid, survivor: Fid) -> EdgeRemoval {
+        let [x, y] = e.halfedges();
+        let (fx, fy) = (self.face_of(x), self.face_of(y));
+        let (a, b) = (self.origin(x), self.origin(y));
+        let (nx, ny) = (self.next(x), self.next(y));
+        let mut out = EdgeRemoval {
+            freed_face: None,
+            new_face: None,
+        };
+        if nx == y && ny == x {
+            // An isolated edge: everything goes.
+            self.free_face(fx);
+            out.freed_face = Some(fx);
+            self.free_vertex(a);
+            self.free_vertex(b);
+            self.free_edge(e);
+            return out;
+        }
+        if nx == y {
+            // b has degree 1: ... px -> x -> y -> ny ...
+            let px = self.prev_fast(x);
+            self.set_next(px, ny);
+            self.free_vertex(b);
+            if self.v_halfedge[a] == x {
+                *self.v_halfedge_mut(a) = ny;
+            }
+            let fl = self.face_halfedge(fx);
+            if fl == x || fl == y {
+                self.set_face_link(fx, ny);
+            }
+            self.free_edge(e);
+            return out;
+        }
+        if ny == x {
+            let py = self.prev_fast(y);
+            self.set_next(py, nx);
+            self.free_vertex(a);
+            if self.v_halfedge[b] == y {
+                *self.v_halfedge_mut(b) = nx;
+            }
+            let fl = self.face_halfedge(fy);
+            if fl == x || fl == y {
+                self.set_face_link(fy, nx);
+            }
+            self.free_edge(e);
+            return out;
+        }
+        let px = self.prev_fast(x);
+        let py = self.prev_fast(y);
+        self.set_next(px, ny);
+        self.set_next(py, nx);
+        if self.v_halfedge[a] == x {
+            *self.v_halfedge_mut(a) = ny;
+        }
+        if self.v_halfedge[b] == y {
+            *self.v_halfedge_mut(b) = nx;
+        }
+        if fx != fy {
+            let gone = if survivor == fx { fy } else { fx };
+            self.relabel_loop(nx, survivor);
+            self.free_face(gone);
+            out.freed_face = Some(gone);
+        } else {
+            self.set_face_link(fx, nx);
+            let g = self.alloc_face(self.is_hole(fx));
+            self.relabel_loop(ny, g);
+            self.attrs.face.copy(fx.index(), g.index());
+            out.new_face = Some(g);
+        }
+        self.free_edge(e);
+        out
     }
 }

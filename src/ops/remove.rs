@@ -92,25 +92,6 @@ impl Mesh {
         journaled!(self.remove_edge_with(ek))
     }
 
-    /// [`remove_edge`](Mesh::remove_edge)'s body, in journaling mode `J`.
-    fn remove_edge_with<J: Journaling>(&mut self, ek: EdgeKey) -> Result<FaceKey> {
-        let e = self.plan_remove_edge(ek)?;
-        let [h, t] = e.halfedges();
-        let (f_left, f_right) = (self.face_of(h), self.face_of(t));
-        let survivor = if self.is_hole(f_right) {
-            f_right
-        } else if self.is_hole(f_left) {
-            f_left
-        } else {
-            let pair = [(f_left.index(), 0.5), (f_right.index(), 0.5)];
-            self.attrs.face.merge(f_left.index(), &pair);
-            f_left
-        };
-        self.remove_edge_raw::<J>(e, survivor);
-        self.end_op::<J>();
-        Ok(self.fkey(survivor))
-    }
-
     /// Whether [`remove_edge_allowing_bridge`](Mesh::remove_edge_allowing_bridge)
     /// would succeed; changes nothing.
     ///
@@ -231,17 +212,6 @@ impl Mesh {
         journaled!(self.merge_faces_with(f, g))
     }
 
-    /// [`merge_faces`](Mesh::merge_faces)'s body, in journaling mode `J`.
-    fn merge_faces_with<J: Journaling>(&mut self, f: FaceKey, g: FaceKey) -> Result<FaceKey> {
-        let x = self.plan_merge_faces(f, g)?;
-        let (fi, gi) = (self.face_of(x), self.face_of(x.twin()));
-        let pair = [(fi.index(), 0.5), (gi.index(), 0.5)];
-        self.attrs.face.merge(fi.index(), &pair);
-        self.remove_edge_raw::<J>(x.edge(), fi);
-        self.end_op::<J>();
-        Ok(f)
-    }
-
     /// The ring of an interior vertex and the last half-edge of each face's
     /// segment, checked for `remove_vertex`.
     fn plan_remove_vertex(&self, vk: VertexKey) -> Result<(Vec<Hid>, Vec<Hid>)> {
@@ -323,34 +293,69 @@ impl Mesh {
     pub fn remove_vertex(&mut self, vk: VertexKey) -> Result<FaceKey> {
         journaled!(self.remove_vertex_with(vk))
     }
+}
+
+impl Mesh {
+    /// [`remove_edge`](Mesh::remove_edge)'s body, in journaling mode `J`.
+    fn remove_edge_with<J: Journaling>(&mut self, ek: EdgeKey) -> Result<FaceKey> {
+        let mut w = self.writer::<J>();
+        let e = w.plan_remove_edge(ek)?;
+        let [h, t] = e.halfedges();
+        let (f_left, f_right) = (w.face_of(h), w.face_of(t));
+        let survivor = if w.is_hole(f_right) {
+            f_right
+        } else if w.is_hole(f_left) {
+            f_left
+        } else {
+            let pair = [(f_left.index(), 0.5), (f_right.index(), 0.5)];
+            w.attrs.face.merge(f_left.index(), &pair);
+            f_left
+        };
+        w.remove_edge_raw(e, survivor);
+        w.end_op();
+        Ok(w.fkey(survivor))
+    }
+
+    /// [`merge_faces`](Mesh::merge_faces)'s body, in journaling mode `J`.
+    fn merge_faces_with<J: Journaling>(&mut self, f: FaceKey, g: FaceKey) -> Result<FaceKey> {
+        let mut w = self.writer::<J>();
+        let x = w.plan_merge_faces(f, g)?;
+        let (fi, gi) = (w.face_of(x), w.face_of(x.twin()));
+        let pair = [(fi.index(), 0.5), (gi.index(), 0.5)];
+        w.attrs.face.merge(fi.index(), &pair);
+        w.remove_edge_raw(x.edge(), fi);
+        w.end_op();
+        Ok(f)
+    }
 
     /// [`remove_vertex`](Mesh::remove_vertex)'s body, in journaling mode `J`.
     fn remove_vertex_with<J: Journaling>(&mut self, vk: VertexKey) -> Result<FaceKey> {
-        let (outs, lasts) = self.plan_remove_vertex(vk)?;
-        let v = self.origin(outs[0]);
+        let mut w = self.writer::<J>();
+        let (outs, lasts) = w.plan_remove_vertex(vk)?;
+        let v = w.origin(outs[0]);
         let k = outs.len();
-        let faces: Vec<_> = outs.iter().map(|&o| self.face_of(o)).collect();
-        let firsts: Vec<Hid> = outs.iter().map(|&o| self.next(o)).collect();
+        let faces: Vec<_> = outs.iter().map(|&o| w.face_of(o)).collect();
+        let firsts: Vec<Hid> = outs.iter().map(|&o| w.next(o)).collect();
         let keep = faces[0];
-        let w = 1.0 / k as f64;
-        let inputs: Vec<(usize, f64)> = faces.iter().map(|&f| (f.index(), w)).collect();
-        self.attrs.face.merge(keep.index(), &inputs);
+        let share = 1.0 / k as f64;
+        let inputs: Vec<(usize, f64)> = faces.iter().map(|&f| (f.index(), share)).collect();
+        w.attrs.face.merge(keep.index(), &inputs);
         for i in 0..k {
-            self.set_next::<J>(lasts[i], firsts[(i + k - 1) % k]);
-            let u = self.dest(outs[i]);
-            if self.v_halfedge[u] == outs[i].twin() {
-                *self.v_halfedge_mut::<J>(u) = firsts[i];
+            w.set_next(lasts[i], firsts[(i + k - 1) % k]);
+            let u = w.dest(outs[i]);
+            if w.v_halfedge[u] == outs[i].twin() {
+                *w.v_halfedge_mut(u) = firsts[i];
             }
         }
-        self.relabel_loop::<J>(firsts[0], keep);
+        w.relabel_loop(firsts[0], keep);
         for &f in &faces[1..] {
-            self.free_face::<J>(f);
+            w.free_face(f);
         }
         for &o in &outs {
-            self.free_edge::<J>(o.edge());
+            w.free_edge(o.edge());
         }
-        self.free_vertex::<J>(v);
-        self.end_op::<J>();
-        Ok(self.fkey(keep))
+        w.free_vertex(v);
+        w.end_op();
+        Ok(w.fkey(keep))
     }
 }

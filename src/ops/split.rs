@@ -6,7 +6,7 @@ use crate::error::{Refusal, Result};
 use crate::journal::{journaled, Journaling, Unrecorded};
 use crate::keys::{EdgeKey, FaceKey, HalfedgeKey, VertexKey};
 use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, Vid};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Writer};
 
 /// Faces up to this degree are handled without heap allocation.
 const SMALL: usize = 8;
@@ -107,14 +107,6 @@ impl Mesh {
         journaled!(self.split_edge_with(e, t))
     }
 
-    /// [`split_edge`](Mesh::split_edge)'s body, in journaling mode `J`.
-    fn split_edge_with<J: Journaling>(&mut self, e: EdgeKey, t: f64) -> Result<VertexKey> {
-        let plan = self.plan_split_edge(e, t)?;
-        let m = self.commit_split_edge::<J>(plan, t);
-        self.end_op::<J>();
-        Ok(self.vkey(m))
-    }
-
     /// The remesher's door: [`split_edge`](Mesh::split_edge) of a live
     /// edge slot at `t` in `0..=1`, without the per-call debug validation
     /// (the caller validates once at the end). A recording mesh takes the
@@ -132,57 +124,7 @@ impl Mesh {
             t: tw,
             ph: self.prev_fast(h),
         };
-        self.commit_split_edge::<Unrecorded>(plan, t)
-    }
-
-    /// The commit and rules of a planned edge split; cannot fail.
-    fn commit_split_edge<J: Journaling>(&mut self, plan: SplitEdgePlan, t: f64) -> Vid {
-        let SplitEdgePlan { h, t: tw, ph } = plan;
-        let a = self.origin(h);
-        let b = self.origin(tw);
-        let nh = self.next(h);
-        let nt = self.next(tw);
-        let f_tw = self.face_of(tw);
-        let m = self.alloc_vertex::<J>();
-        let ne = self.alloc_edge::<J>();
-        // n0: a -> m (in h's face), n1: m -> a (in tw's face).
-        let [n0, n1] = ne.halfedges();
-        *self.he_mut::<J>(n0) = HalfedgeRecord {
-            origin: a,
-            next: h,
-            face: self.face_of(h),
-        };
-        *self.he_mut::<J>(n1) = HalfedgeRecord {
-            origin: m,
-            next: nt,
-            face: f_tw,
-        };
-        self.he_mut::<J>(h).origin = m;
-        self.set_next::<J>(ph, n0);
-        self.set_next::<J>(tw, n1);
-        // Rule 11: on a boundary edge m leaves into the hole (h and n1
-        // lie in the faces of h and tw); n0 lies in h's face, like h.
-        *self.v_halfedge_mut::<J>(m) = if self.holes > 0 && self.is_hole(f_tw) {
-            n1
-        } else {
-            h
-        };
-        if self.v_halfedge[a] == h {
-            *self.v_halfedge_mut::<J>(a) = n0;
-        }
-        // Attributes.
-        self.attrs
-            .vertex
-            .interpolate(m.index(), &[(a.index(), 1.0 - t), (b.index(), t)]);
-        let old = h.edge().index();
-        self.attrs
-            .edge
-            .split(old, &[(ne.index(), t), (old, 1.0 - t)]);
-        let hc = &mut self.attrs.halfedge;
-        hc.copy(h.index(), n0.index());
-        hc.interpolate(h.index(), &[(n0.index(), 1.0 - t), (nh.index(), t)]);
-        hc.interpolate(n1.index(), &[(nt.index(), 1.0 - t), (tw.index(), t)]);
-        m
+        self.writer::<Unrecorded>().commit_split_edge(plan, t)
     }
 
     fn plan_split_face(&self, f: FaceKey, a: VertexKey, b: VertexKey) -> Result<SplitFacePlan> {
@@ -268,21 +210,6 @@ impl Mesh {
     /// ```
     pub fn split_face(&mut self, f: FaceKey, a: VertexKey, b: VertexKey) -> Result<HalfedgeKey> {
         journaled!(self.split_face_with(f, a, b))
-    }
-
-    /// [`split_face`](Mesh::split_face)'s body, in journaling mode `J`.
-    fn split_face_with<J: Journaling>(
-        &mut self,
-        f: FaceKey,
-        a: VertexKey,
-        b: VertexKey,
-    ) -> Result<HalfedgeKey> {
-        let SplitFacePlan { pa, ha, pb, hb } = self.plan_split_face(f, a, b)?;
-        let f = self.face_of(ha);
-        let (n0, g) = self.split_face_raw::<J>(pa, ha, pb, hb);
-        self.split_face_values(f, &[f, g]);
-        self.end_op::<J>();
-        Ok(self.hkey(n0))
     }
 
     fn common_face(&self, a: VertexKey, b: VertexKey) -> Result<FaceKey> {
@@ -375,13 +302,41 @@ impl Mesh {
     pub fn poke_face(&mut self, f: FaceKey) -> Result<VertexKey> {
         journaled!(self.poke_face_with(f))
     }
+}
+
+impl Mesh {
+    /// [`split_edge`](Mesh::split_edge)'s body, in journaling mode `J`.
+    fn split_edge_with<J: Journaling>(&mut self, e: EdgeKey, t: f64) -> Result<VertexKey> {
+        let mut w = self.writer::<J>();
+        let plan = w.plan_split_edge(e, t)?;
+        let m = w.commit_split_edge(plan, t);
+        w.end_op();
+        Ok(w.vkey(m))
+    }
+
+    /// [`split_face`](Mesh::split_face)'s body, in journaling mode `J`.
+    fn split_face_with<J: Journaling>(
+        &mut self,
+        f: FaceKey,
+        a: VertexKey,
+        b: VertexKey,
+    ) -> Result<HalfedgeKey> {
+        let mut w = self.writer::<J>();
+        let SplitFacePlan { pa, ha, pb, hb } = w.plan_split_face(f, a, b)?;
+        let f = w.face_of(ha);
+        let (n0, g) = w.split_face_raw(pa, ha, pb, hb);
+        w.split_face_values(f, &[f, g]);
+        w.end_op();
+        Ok(w.hkey(n0))
+    }
 
     /// [`poke_face`](Mesh::poke_face)'s body, in journaling mode `J`.
     fn poke_face_with<J: Journaling>(&mut self, f: FaceKey) -> Result<VertexKey> {
-        let f = self.plan_poke_face(f)?;
+        let mut w = self.writer::<J>();
+        let f = w.plan_poke_face(f)?;
         // Small faces stay on the stack. Per corner i: the old side
         // `ring[i]`, the new spoke edge and the triangle `faces[i]`.
-        let n = self.face_degree(f);
+        let n = w.face_degree(f);
         let mut stack = [Spoke::NONE; SMALL];
         let mut heap = Vec::new();
         let buf: &mut [Spoke] = if n <= SMALL {
@@ -390,50 +345,50 @@ impl Mesh {
             heap.resize(n, Spoke::NONE);
             &mut heap
         };
-        for (slot, h) in buf.iter_mut().zip(self.face_loop(f)) {
+        for (slot, h) in buf.iter_mut().zip(w.face_loop(f)) {
             slot.ring = h;
         }
-        let c = self.alloc_vertex::<J>();
+        let c = w.alloc_vertex();
         // Spoke i joins c and corner v_i = origin(ring[i]):
         // out_i = c -> v_i (side 0), in_i = v_i -> c (side 1).
         for s in buf.iter_mut() {
-            s.spoke = self.alloc_edge::<J>();
+            s.spoke = w.alloc_edge();
         }
         buf[0].face = f;
         for s in buf[1..].iter_mut() {
-            s.face = self.alloc_face::<J>(false);
+            s.face = w.alloc_face(false);
         }
         // Only the ring and `f` existed before this call: the spokes, `c`
         // and the other faces were allocated above (a reused slot was
         // recorded as it was taken), so their writes record nothing.
-        self.log_face::<J>(f);
+        w.log_face(f);
         for i in 0..n {
             let j = (i + 1) % n;
             let Spoke { ring: h, face, .. } = buf[i];
             let out_i = buf[i].spoke.halfedge(0);
             let in_j = buf[j].spoke.halfedge(1);
-            let ring = self.he_mut::<J>(h);
+            let ring = w.he_mut(h);
             ring.next = in_j;
             ring.face = face;
-            *self.fresh_he_mut(in_j) = HalfedgeRecord {
-                origin: self.origin(buf[j].ring),
+            *w.fresh_he_mut(in_j) = HalfedgeRecord {
+                origin: w.origin(buf[j].ring),
                 next: out_i,
                 face,
             };
-            *self.fresh_he_mut(out_i) = HalfedgeRecord {
+            *w.fresh_he_mut(out_i) = HalfedgeRecord {
                 origin: c,
                 next: h,
                 face,
             };
-            self.fresh_face_link(face, h);
+            w.fresh_face_link(face, h);
         }
         // c names its spoke to the last corner: collapsing that half-edge
         // dissolves the last two triangles and leaves `f` (on the first),
         // so `collapse_edge` of it gives back a poked triangle exactly.
-        *self.fresh_v_halfedge_mut(c) = buf[n - 1].spoke.halfedge(0);
+        *w.fresh_v_halfedge_mut(c) = buf[n - 1].spoke.halfedge(0);
         // Attributes.
-        let w = 1.0 / n as f64;
-        if !self.attrs.vertex.cols.is_empty() {
+        let share = 1.0 / n as f64;
+        if !w.attrs.vertex.cols.is_empty() {
             let mut corners = [(0usize, 0.0f64); SMALL];
             let mut corners_heap = Vec::new();
             let corners: &mut [(usize, f64)] = if n <= SMALL {
@@ -443,28 +398,81 @@ impl Mesh {
                 &mut corners_heap
             };
             for (slot, s) in corners.iter_mut().zip(buf.iter()) {
-                *slot = (self.origin(s.ring).index(), w);
+                *slot = (w.origin(s.ring).index(), share);
             }
-            self.attrs.vertex.interpolate(c.index(), corners);
+            w.attrs.vertex.interpolate(c.index(), corners);
         }
-        if !self.attrs.edge.cols.is_empty() {
+        if !w.attrs.edge.cols.is_empty() {
             for s in buf.iter() {
-                self.attrs.edge.interpolate(s.spoke.index(), &[]);
+                w.attrs.edge.interpolate(s.spoke.index(), &[]);
             }
         }
-        if !self.attrs.halfedge.cols.is_empty() {
-            let old_corners: Vec<(usize, f64)> = buf.iter().map(|s| (s.ring.index(), w)).collect();
+        if !w.attrs.halfedge.cols.is_empty() {
+            let old_corners: Vec<(usize, f64)> =
+                buf.iter().map(|s| (s.ring.index(), share)).collect();
             for s in buf.iter() {
                 let [out, into] = s.spoke.halfedges();
-                self.attrs.halfedge.interpolate(out.index(), &old_corners);
-                self.attrs.halfedge.copy(s.ring.index(), into.index());
+                w.attrs.halfedge.interpolate(out.index(), &old_corners);
+                w.attrs.halfedge.copy(s.ring.index(), into.index());
             }
         }
-        if !self.attrs.face.cols.is_empty() {
+        if !w.attrs.face.cols.is_empty() {
             let faces: Vec<Fid> = buf.iter().map(|s| s.face).collect();
-            self.split_face_values(f, &faces);
+            w.split_face_values(f, &faces);
         }
-        self.end_op::<J>();
-        Ok(self.vkey(c))
+        w.end_op();
+        Ok(w.vkey(c))
+    }
+}
+
+impl<J: Journaling> Writer<'_, J> {
+    /// The commit and rules of a planned edge split; cannot fail.
+    fn commit_split_edge(&mut self, plan: SplitEdgePlan, t: f64) -> Vid {
+        let SplitEdgePlan { h, t: tw, ph } = plan;
+        let a = self.origin(h);
+        let b = self.origin(tw);
+        let nh = self.next(h);
+        let nt = self.next(tw);
+        let f_tw = self.face_of(tw);
+        let m = self.alloc_vertex();
+        let ne = self.alloc_edge();
+        // n0: a -> m (in h's face), n1: m -> a (in tw's face).
+        let [n0, n1] = ne.halfedges();
+        *self.he_mut(n0) = HalfedgeRecord {
+            origin: a,
+            next: h,
+            face: self.face_of(h),
+        };
+        *self.he_mut(n1) = HalfedgeRecord {
+            origin: m,
+            next: nt,
+            face: f_tw,
+        };
+        self.he_mut(h).origin = m;
+        self.set_next(ph, n0);
+        self.set_next(tw, n1);
+        // Rule 11: on a boundary edge m leaves into the hole (h and n1
+        // lie in the faces of h and tw); n0 lies in h's face, like h.
+        *self.v_halfedge_mut(m) = if self.holes > 0 && self.is_hole(f_tw) {
+            n1
+        } else {
+            h
+        };
+        if self.v_halfedge[a] == h {
+            *self.v_halfedge_mut(a) = n0;
+        }
+        // Attributes.
+        self.attrs
+            .vertex
+            .interpolate(m.index(), &[(a.index(), 1.0 - t), (b.index(), t)]);
+        let old = h.edge().index();
+        self.attrs
+            .edge
+            .split(old, &[(ne.index(), t), (old, 1.0 - t)]);
+        let hc = &mut self.attrs.halfedge;
+        hc.copy(h.index(), n0.index());
+        hc.interpolate(h.index(), &[(n0.index(), 1.0 - t), (nh.index(), t)]);
+        hc.interpolate(n1.index(), &[(nt.index(), 1.0 - t), (tw.index(), t)]);
+        m
     }
 }

@@ -6,7 +6,7 @@ use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::keys::FaceKey;
 use crate::layout::{Fid, Hid};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Writer};
 use crate::record::{journaled, Journaling, Recorded};
 use crate::vec3::{dist2, newell};
 
@@ -156,36 +156,6 @@ impl Mesh {
         journaled!(self.triangulate_with(f))
     }
 
-    /// [`triangulate`](Mesh::triangulate)'s body, in journaling mode `J`.
-    fn triangulate_with<J: Journaling>(&mut self, f: FaceKey) -> Result<Vec<FaceKey>> {
-        let mut sides = Vec::new();
-        let mut ears = Vec::new();
-        self.plan_triangulate(f, &mut sides, &mut ears)?;
-        let mut pieces = Vec::new();
-        self.cut_ears::<J>(&mut sides, &ears, &mut pieces);
-        self.end_op::<J>();
-        Ok(pieces.into_iter().map(|g| self.fkey(g)).collect())
-    }
-
-    /// Apply planned ears; `sides[i]` is the half-edge leaving corner `i` in
-    /// what remains of the face. `pieces` receives the triangles.
-    fn cut_ears<J: Journaling>(&mut self, sides: &mut [Hid], ears: &[Ear], pieces: &mut Vec<Fid>) {
-        let f = self.face_of(sides[0]);
-        pieces.clear();
-        pieces.push(f);
-        for ear in ears {
-            let (pa, ha) = (sides[ear.m as usize], sides[ear.r as usize]);
-            let (pb, hb) = (sides[ear.pl as usize], sides[ear.l as usize]);
-            let (n0, g) = self.split_face_raw::<J>(pa, ha, pb, hb);
-            sides[ear.l as usize] = n0.twin();
-            pieces.push(g);
-        }
-        if ears.is_empty() {
-            return;
-        }
-        self.split_face_values(f, pieces);
-    }
-
     /// Triangulate every face of degree above three (see
     /// [`triangulate`](Mesh::triangulate)).
     ///
@@ -214,25 +184,6 @@ impl Mesh {
                 .unwrap_or(all);
         }
         journaled!(unguarded self.triangulate_all_with())
-    }
-
-    /// [`triangulate_all`](Mesh::triangulate_all)'s body, in journaling mode `J`.
-    fn triangulate_all_with<J: Journaling>(&mut self) -> Vec<FaceKey> {
-        let faces: Vec<FaceKey> = self
-            .faces()
-            .filter(|&f| self.face_degree(f.id()) > 3)
-            .collect();
-        let mut left = Vec::new();
-        let (mut sides, mut ears, mut pieces) = (Vec::new(), Vec::new(), Vec::new());
-        for f in faces {
-            if self.plan_triangulate(f, &mut sides, &mut ears).is_err() {
-                left.push(f);
-                continue;
-            }
-            self.cut_ears::<J>(&mut sides, &ears, &mut pieces);
-        }
-        self.end_op::<J>();
-        left
     }
 }
 
@@ -272,23 +223,6 @@ impl Mesh {
     /// ```
     pub fn fill_hole_triangulated(&mut self, hole: FaceKey) -> Result<Vec<FaceKey>> {
         journaled!(self.fill_hole_triangulated_with(hole))
-    }
-
-    /// [`fill_hole_triangulated`](Mesh::fill_hole_triangulated)'s body, in journaling mode `J`.
-    fn fill_hole_triangulated_with<J: Journaling>(
-        &mut self,
-        hole: FaceKey,
-    ) -> Result<Vec<FaceKey>> {
-        self.check_fill_hole(hole)?;
-        let mut sides = Vec::new();
-        let mut ears = Vec::new();
-        self.plan_triangulate_loop(hole, &mut sides, &mut ears, true, true)?;
-        // One edit: the fill does not end its own (one journal step).
-        self.fill_hole_open::<J>(hole)?;
-        let mut pieces = Vec::new();
-        self.cut_ears::<J>(&mut sides, &ears, &mut pieces);
-        self.end_op::<J>();
-        Ok(pieces.into_iter().map(|g| self.fkey(g)).collect())
     }
 }
 
@@ -446,5 +380,75 @@ fn projector(pts: &[[f64; 3]]) -> impl Fn([f64; 3]) -> [f64; 2] {
         } else {
             [p[u], p[v]]
         }
+    }
+}
+
+impl Mesh {
+    /// [`triangulate`](Mesh::triangulate)'s body, in journaling mode `J`.
+    fn triangulate_with<J: Journaling>(&mut self, f: FaceKey) -> Result<Vec<FaceKey>> {
+        let mut w = self.writer::<J>();
+        let mut sides = Vec::new();
+        let mut ears = Vec::new();
+        w.plan_triangulate(f, &mut sides, &mut ears)?;
+        let mut pieces = Vec::new();
+        w.cut_ears(&mut sides, &ears, &mut pieces);
+        w.end_op();
+        Ok(pieces.into_iter().map(|g| w.fkey(g)).collect())
+    }
+
+    /// [`triangulate_all`](Mesh::triangulate_all)'s body, in journaling mode `J`.
+    fn triangulate_all_with<J: Journaling>(&mut self) -> Vec<FaceKey> {
+        let mut w = self.writer::<J>();
+        let faces: Vec<FaceKey> = w.faces().filter(|&f| w.face_degree(f.id()) > 3).collect();
+        let mut left = Vec::new();
+        let (mut sides, mut ears, mut pieces) = (Vec::new(), Vec::new(), Vec::new());
+        for f in faces {
+            if w.plan_triangulate(f, &mut sides, &mut ears).is_err() {
+                left.push(f);
+                continue;
+            }
+            w.cut_ears(&mut sides, &ears, &mut pieces);
+        }
+        w.end_op();
+        left
+    }
+
+    /// [`fill_hole_triangulated`](Mesh::fill_hole_triangulated)'s body, in journaling mode `J`.
+    fn fill_hole_triangulated_with<J: Journaling>(
+        &mut self,
+        hole: FaceKey,
+    ) -> Result<Vec<FaceKey>> {
+        let mut w = self.writer::<J>();
+        w.check_fill_hole(hole)?;
+        let mut sides = Vec::new();
+        let mut ears = Vec::new();
+        w.plan_triangulate_loop(hole, &mut sides, &mut ears, true, true)?;
+        // One edit: the fill does not end its own (one journal step).
+        w.fill_hole_open(hole)?;
+        let mut pieces = Vec::new();
+        w.cut_ears(&mut sides, &ears, &mut pieces);
+        w.end_op();
+        Ok(pieces.into_iter().map(|g| w.fkey(g)).collect())
+    }
+}
+
+impl<J: Journaling> Writer<'_, J> {
+    /// Apply planned ears; `sides[i]` is the half-edge leaving corner `i` in
+    /// what remains of the face. `pieces` receives the triangles.
+    fn cut_ears(&mut self, sides: &mut [Hid], ears: &[Ear], pieces: &mut Vec<Fid>) {
+        let f = self.face_of(sides[0]);
+        pieces.clear();
+        pieces.push(f);
+        for ear in ears {
+            let (pa, ha) = (sides[ear.m as usize], sides[ear.r as usize]);
+            let (pb, hb) = (sides[ear.pl as usize], sides[ear.l as usize]);
+            let (n0, g) = self.split_face_raw(pa, ha, pb, hb);
+            sides[ear.l as usize] = n0.twin();
+            pieces.push(g);
+        }
+        if ears.is_empty() {
+            return;
+        }
+        self.split_face_values(f, pieces);
     }
 }

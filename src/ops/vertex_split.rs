@@ -5,7 +5,7 @@ use crate::error::{Refusal, Result};
 use crate::journal::{journaled, Journaling};
 use crate::keys::HalfedgeKey;
 use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, Vid};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Writer};
 
 struct VertexSplitPlan {
     hc: Hid,
@@ -106,34 +106,6 @@ impl Mesh {
         journaled!(self.split_vertex_with(hck, hdk))
     }
 
-    /// [`split_vertex`](Mesh::split_vertex)'s body, in journaling mode `J`.
-    fn split_vertex_with<J: Journaling>(
-        &mut self,
-        hck: HalfedgeKey,
-        hdk: HalfedgeKey,
-    ) -> Result<HalfedgeKey> {
-        let plan = self.plan_split_vertex(hck, hdk)?;
-        let s = self.read_split(plan);
-        let a = self.alloc_vertex::<J>();
-        let (e_ab, e_ac, e_ad) = (
-            self.alloc_edge::<J>(),
-            self.alloc_edge::<J>(),
-            self.alloc_edge::<J>(),
-        );
-        let new = NewElements {
-            a,
-            edges: [e_ab, e_ac, e_ad],
-            left: self.alloc_face::<J>(false),
-            right: self.alloc_face::<J>(false),
-        };
-        self.move_split_wedge::<J>(&s, &new);
-        self.link_split_triangles::<J>(&s, &new);
-        self.point_split_vertices::<J>(&s, &new);
-        self.split_vertex_attributes(&s, &new);
-        self.end_op::<J>();
-        Ok(self.hkey(new.h()))
-    }
-
     /// What the split reads before it changes anything.
     fn read_split(&self, plan: VertexSplitPlan) -> VertexSplit {
         let (hc, hd) = (plan.hc, plan.hd);
@@ -150,88 +122,6 @@ impl Mesh {
             // Rule 11: only a boundary b can leave holes at b or at a.
             b_on_boundary: self.holes > 0 && self.on_boundary(b),
             plan,
-        }
-    }
-
-    /// The moved half-edges leave `a`; in the faces beside the wedge `ac`
-    /// takes `hc`'s place and `da` takes `d -> b`'s.
-    fn move_split_wedge<J: Journaling>(&mut self, s: &VertexSplit, new: &NewElements) {
-        let [ac, _] = new.edges[1].halfedges();
-        let [_, da] = new.edges[2].halfedges();
-        let moved = &s.plan.moved;
-        let prev_c = moved.last().map_or(da, |&o| o.twin());
-        let next_d = moved.first().copied().unwrap_or(ac);
-        for &o in moved {
-            self.he_mut::<J>(o).origin = new.a;
-        }
-        *self.he_mut::<J>(ac) = HalfedgeRecord {
-            origin: new.a,
-            next: s.after_hc,
-            face: s.f_c,
-        };
-        *self.he_mut::<J>(da) = HalfedgeRecord {
-            origin: s.d,
-            next: next_d,
-            face: s.f_d,
-        };
-        self.set_next::<J>(prev_c, ac);
-        self.set_next::<J>(s.plan.pd, da);
-        if self.face_halfedge(s.f_c) == s.plan.hc {
-            self.set_face_link::<J>(s.f_c, ac);
-        }
-        if self.face_halfedge(s.f_d) == s.tdb {
-            self.set_face_link::<J>(s.f_d, da);
-        }
-    }
-
-    /// Triangles `(a, b, c)` and `(b, a, d)`.
-    fn link_split_triangles<J: Journaling>(&mut self, s: &VertexSplit, new: &NewElements) {
-        let (a, hc, tdb, left, right) = (new.a, s.plan.hc, s.tdb, new.left, new.right);
-        let [h, t] = new.edges[0].halfedges(); // a -> b, b -> a
-        let [_, ca] = new.edges[1].halfedges();
-        let [ad, _] = new.edges[2].halfedges();
-        *self.he_mut::<J>(h) = HalfedgeRecord {
-            origin: a,
-            next: hc,
-            face: left,
-        };
-        self.he_mut::<J>(hc).next = ca;
-        self.he_mut::<J>(hc).face = left;
-        *self.he_mut::<J>(ca) = HalfedgeRecord {
-            origin: s.c,
-            next: h,
-            face: left,
-        };
-        *self.he_mut::<J>(t) = HalfedgeRecord {
-            origin: s.b,
-            next: ad,
-            face: right,
-        };
-        *self.he_mut::<J>(ad) = HalfedgeRecord {
-            origin: a,
-            next: tdb,
-            face: right,
-        };
-        self.he_mut::<J>(tdb).next = t;
-        self.he_mut::<J>(tdb).face = right;
-        self.set_face_link::<J>(left, h);
-        self.set_face_link::<J>(right, t);
-    }
-
-    /// The half-edges `a`, `b` and `d` name afterwards (rule 11 at a
-    /// boundary `b`).
-    fn point_split_vertices<J: Journaling>(&mut self, s: &VertexSplit, new: &NewElements) {
-        let [_, da] = new.edges[2].halfedges();
-        *self.v_halfedge_mut::<J>(new.a) = new.h();
-        *self.v_halfedge_mut::<J>(s.b) = s.plan.hc;
-        // da took d -> b's place in f_d (a hole, maybe): d keeps a half-edge
-        // in that face.
-        if self.v_halfedge[s.d] == s.tdb {
-            *self.v_halfedge_mut::<J>(s.d) = da;
-        }
-        if s.b_on_boundary {
-            self.point_at_hole::<J>(new.a);
-            self.point_at_hole::<J>(s.b);
         }
     }
 
@@ -284,5 +174,116 @@ impl NewElements {
     /// `h = a → b`.
     fn h(&self) -> Hid {
         self.edges[0].halfedge(0)
+    }
+}
+
+impl Mesh {
+    /// [`split_vertex`](Mesh::split_vertex)'s body, in journaling mode `J`.
+    fn split_vertex_with<J: Journaling>(
+        &mut self,
+        hck: HalfedgeKey,
+        hdk: HalfedgeKey,
+    ) -> Result<HalfedgeKey> {
+        let mut w = self.writer::<J>();
+        let plan = w.plan_split_vertex(hck, hdk)?;
+        let s = w.read_split(plan);
+        let a = w.alloc_vertex();
+        let (e_ab, e_ac, e_ad) = (w.alloc_edge(), w.alloc_edge(), w.alloc_edge());
+        let new = NewElements {
+            a,
+            edges: [e_ab, e_ac, e_ad],
+            left: w.alloc_face(false),
+            right: w.alloc_face(false),
+        };
+        w.move_split_wedge(&s, &new);
+        w.link_split_triangles(&s, &new);
+        w.point_split_vertices(&s, &new);
+        w.split_vertex_attributes(&s, &new);
+        w.end_op();
+        Ok(w.hkey(new.h()))
+    }
+}
+
+impl<J: Journaling> Writer<'_, J> {
+    /// The moved half-edges leave `a`; in the faces beside the wedge `ac`
+    /// takes `hc`'s place and `da` takes `d -> b`'s.
+    fn move_split_wedge(&mut self, s: &VertexSplit, new: &NewElements) {
+        let [ac, _] = new.edges[1].halfedges();
+        let [_, da] = new.edges[2].halfedges();
+        let moved = &s.plan.moved;
+        let prev_c = moved.last().map_or(da, |&o| o.twin());
+        let next_d = moved.first().copied().unwrap_or(ac);
+        for &o in moved {
+            self.he_mut(o).origin = new.a;
+        }
+        *self.he_mut(ac) = HalfedgeRecord {
+            origin: new.a,
+            next: s.after_hc,
+            face: s.f_c,
+        };
+        *self.he_mut(da) = HalfedgeRecord {
+            origin: s.d,
+            next: next_d,
+            face: s.f_d,
+        };
+        self.set_next(prev_c, ac);
+        self.set_next(s.plan.pd, da);
+        if self.face_halfedge(s.f_c) == s.plan.hc {
+            self.set_face_link(s.f_c, ac);
+        }
+        if self.face_halfedge(s.f_d) == s.tdb {
+            self.set_face_link(s.f_d, da);
+        }
+    }
+
+    /// Triangles `(a, b, c)` and `(b, a, d)`.
+    fn link_split_triangles(&mut self, s: &VertexSplit, new: &NewElements) {
+        let (a, hc, tdb, left, right) = (new.a, s.plan.hc, s.tdb, new.left, new.right);
+        let [h, t] = new.edges[0].halfedges(); // a -> b, b -> a
+        let [_, ca] = new.edges[1].halfedges();
+        let [ad, _] = new.edges[2].halfedges();
+        *self.he_mut(h) = HalfedgeRecord {
+            origin: a,
+            next: hc,
+            face: left,
+        };
+        self.he_mut(hc).next = ca;
+        self.he_mut(hc).face = left;
+        *self.he_mut(ca) = HalfedgeRecord {
+            origin: s.c,
+            next: h,
+            face: left,
+        };
+        *self.he_mut(t) = HalfedgeRecord {
+            origin: s.b,
+            next: ad,
+            face: right,
+        };
+        *self.he_mut(ad) = HalfedgeRecord {
+            origin: a,
+            next: tdb,
+            face: right,
+        };
+        self.he_mut(tdb).next = t;
+        self.he_mut(tdb).face = right;
+        self.set_face_link(left, h);
+        self.set_face_link(right, t);
+    }
+
+    /// The half-edges `a`, `b` and `d` name afterwards (rule 11 at a
+    /// boundary `b`).
+    fn point_split_vertices(&mut self, s: &VertexSplit, new: &NewElements) {
+        let [_, da] = new.edges[2].halfedges();
+        *self.v_halfedge_mut(new.a) = new.h();
+        *self.v_halfedge_mut(s.b) = s.plan.hc;
+        // da took d -> b's place in f_d (a hole, maybe): d keeps a half-edge
+        // in that face.
+        if self.v_halfedge[s.d] == s.tdb {
+            *self.v_halfedge_mut(s.d) = da;
+        }
+        if s.b_on_boundary {
+            self.point_at_hole(new.a);
+            self.point_at_hole(s.b);
+        }
     }
 }

@@ -19,7 +19,7 @@
 //! | `codec.rs` | the byte form of a sealed step |
 //!
 //! Whether an operator writes the record at all is chosen once per call,
-//! by the [`Journaling`] mode it is compiled in (see `mesh/hooks.rs`): with
+//! by the [`Journaling`] mode it is compiled in (see `mesh/writer.rs`): with
 //! no recorder, the operator runs a body in which every hook compiles
 //! away.
 
@@ -108,7 +108,7 @@ impl<T> IndexMut<Arena> for PerArena<T> {
 }
 
 /// Whether an operator's writes are recorded: [`Recorded`] or
-/// [`Unrecorded`], picked once per call (see `mesh/hooks.rs`).
+/// [`Unrecorded`], picked once per call (see `mesh/writer.rs`).
 pub(crate) trait Journaling {
     /// Whether the hooks look for a recorder at all.
     const ON: bool;
@@ -130,12 +130,14 @@ impl Journaling for Unrecorded {
 }
 
 /// Run an operator body generic over [`Journaling`] in the mode the mesh
-/// is in: `journaled!(self.body(args..))` calls `self.body::<Recorded>`
-/// while a recorder exists, `self.body::<Unrecorded>` otherwise; on a mesh
-/// with a column whose rule can fail, as a transaction, so that a rule's
-/// failure refuses the operator (its body returns a `Result`) and leaves
-/// the mesh unchanged. `journaled!(unguarded self.body(args..))` leaves
-/// that to the caller.
+/// is in, the one place an operator's mode is chosen:
+/// `journaled!(self.body(args..))` calls `self.body::<Recorded>` while a
+/// recorder exists, `self.body::<Unrecorded>` otherwise. The body takes
+/// the mesh's [`Writer`](crate::mesh::Writer) in that mode once and makes
+/// every write through it. On a mesh with a column whose rule can fail,
+/// the body runs as a transaction, so that a rule's failure refuses the
+/// operator (its body returns a `Result`) and leaves the mesh unchanged.
+/// `journaled!(unguarded self.body(args..))` leaves that to the caller.
 macro_rules! journaled {
     ($m:ident . $body:ident ( $($arg:expr),* $(,)? )) => {
         if $m.attrs.may_fail() {

@@ -1,6 +1,6 @@
 //! The recorder: the open step, the undo and redo logs, change tracking.
 //!
-//! A forward edit writes through the mesh's hooks (`mesh/hooks.rs`,
+//! A forward edit writes through the mesh's hooks (`mesh/writer.rs`,
 //! `Columns::save`, `Mesh::alloc_*` and `free_*`), which call the save
 //! primitives here. A link write to a slot that existed when the open step
 //! began copies that slot's page of the link array on the first write to
