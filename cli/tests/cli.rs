@@ -813,7 +813,7 @@ fn subdivide_writes_every_scheme_and_reports_counts() {
         assert_eq!(code(&o), 0, "{scheme}: {}", stderr(&o));
         let j = json(&o);
         assert_eq!(j["scheme"], scheme);
-        let level = &j["report"]["levels"][0]["counts"];
+        let level = &j["report"]["levels"][0]["output"];
         assert_eq!(level["vertices"].as_u64(), Some(vertices), "{scheme}");
         assert_eq!(level["faces"].as_u64(), Some(faces), "{scheme}");
         // The written file says the same, and validates.

@@ -43,7 +43,7 @@ fn midpoint_faces_and_the_report_scheme() {
     let auto = json(&o);
     let faces = auto["report"]["input"]["faces"].as_u64().unwrap();
     assert_eq!(auto["report"]["scheme"], "midpoint");
-    assert_eq!(auto["report"]["levels"][0]["counts"]["faces"], 4 * faces);
+    assert_eq!(auto["report"]["levels"][0]["output"]["faces"], 4 * faces);
     let o = run(&[
         "subdivide",
         BUNDLED,
@@ -61,7 +61,7 @@ fn midpoint_faces_and_the_report_scheme() {
         String::from_utf8_lossy(&o.stderr)
     );
     assert_eq!(
-        json(&o)["report"]["levels"][0]["counts"]["faces"],
+        json(&o)["report"]["levels"][0]["output"]["faces"],
         3 * faces
     );
     let o = run(&[
