@@ -271,7 +271,8 @@ impl fmt::Display for RepairReport {
     /// One line per repair that changed something, or "no repairs needed".
     ///
     /// ```
-    /// let r = meshloom::repair::RepairReport { duplicate_faces: 2, ..Default::default() };
+    /// let mut r = meshloom::repair::RepairReport::default();
+    /// r.duplicate_faces = 2;
     /// assert_eq!(r.to_string(), "duplicate faces dropped: 2");
     /// ```
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
