@@ -65,6 +65,41 @@ use crate::mesh::Mesh;
 use crate::store::ErasedColumn;
 use crate::vec3::{cross, dot, sub, V3};
 
+/// `constraints()` and `with_constraints(c)` for an options struct with
+/// the five constraint fields (`boundary`, `seams`, `feature_angle`,
+/// `features`, `pinned`) and their setters: written once for decimate,
+/// remesh, smooth and fair (the caller imports `Constraints`).
+macro_rules! constrained {
+    ($ty:ident) => {
+        impl $ty {
+            /// The constraints these options name.
+            pub fn constraints(&self) -> Constraints {
+                Constraints {
+                    boundary: self.boundary,
+                    seams: self.seams,
+                    feature_angle: self.feature_angle,
+                    features: self.features.clone(),
+                    pinned: self.pinned.clone(),
+                }
+            }
+
+            /// These options with the five fields of `c` (the setters
+            /// `boundary`, `seams`, `feature_angle`, `features` and
+            /// `pinned` in one): the inverse of
+            /// [`constraints`](Self::constraints).
+            #[must_use]
+            pub fn with_constraints(self, c: Constraints) -> Self {
+                self.boundary(c.boundary)
+                    .seams(c.seams)
+                    .feature_angle(c.feature_angle)
+                    .features(c.features)
+                    .pinned(c.pinned)
+            }
+        }
+    };
+}
+pub(crate) use constrained;
+
 /// How a kind of line (the boundary, the seams) is kept (see the
 /// [module](self) for the three meanings).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Default)]

@@ -174,6 +174,8 @@ pub struct DecimateOptions {
     pub attributes: Vec<AttributeWeight>,
 }
 
+crate::algo::constraints::constrained!(DecimateOptions);
+
 crate::choice::setters!(DecimateOptions {
     target: Target,
     max_error: Option<f64>,
@@ -215,29 +217,6 @@ impl DecimateOptions {
             target,
             ..DecimateOptions::default()
         }
-    }
-
-    /// The constraints these options name.
-    pub fn constraints(&self) -> Constraints {
-        Constraints {
-            boundary: self.boundary,
-            seams: self.seams,
-            feature_angle: self.feature_angle,
-            features: self.features.clone(),
-            pinned: self.pinned.clone(),
-        }
-    }
-
-    /// These options with the five fields of `c` (the setters
-    /// `boundary`, `seams`, `feature_angle`, `features` and `pinned` in
-    /// one): the inverse of [`constraints`](Self::constraints).
-    #[must_use]
-    pub fn with_constraints(self, c: Constraints) -> Self {
-        self.boundary(c.boundary)
-            .seams(c.seams)
-            .feature_angle(c.feature_angle)
-            .features(c.features)
-            .pinned(c.pinned)
     }
 }
 

@@ -167,6 +167,8 @@ pub struct FairOptions {
     pub pinned: Option<VertexAttr<bool>>,
 }
 
+crate::algo::constraints::constrained!(FairOptions);
+
 crate::choice::setters!(FairOptions {
     region: FairRegion,
     order: u32,
@@ -177,31 +179,6 @@ crate::choice::setters!(FairOptions {
     features: Option<EdgeAttr<bool>>,
     pinned: Option<VertexAttr<bool>>,
 });
-
-impl FairOptions {
-    /// The constraints these options name.
-    pub fn constraints(&self) -> Constraints {
-        Constraints {
-            boundary: self.boundary,
-            seams: self.seams,
-            feature_angle: self.feature_angle,
-            features: self.features.clone(),
-            pinned: self.pinned.clone(),
-        }
-    }
-
-    /// These options with the five fields of `c` (the setters
-    /// `boundary`, `seams`, `feature_angle`, `features` and `pinned` in
-    /// one): the inverse of [`constraints`](Self::constraints).
-    #[must_use]
-    pub fn with_constraints(self, c: Constraints) -> Self {
-        self.boundary(c.boundary)
-            .seams(c.seams)
-            .feature_angle(c.feature_angle)
-            .features(c.features)
-            .pinned(c.pinned)
-    }
-}
 
 impl Default for FairOptions {
     fn default() -> Self {

@@ -224,6 +224,8 @@ pub struct RemeshOptions {
     pub max_faces: usize,
 }
 
+crate::algo::constraints::constrained!(RemeshOptions);
+
 crate::choice::setters!(RemeshOptions {
     sizing: Sizing,
     iterations: usize,
@@ -238,31 +240,6 @@ crate::choice::setters!(RemeshOptions {
     remove_caps: bool,
     max_faces: usize,
 });
-
-impl RemeshOptions {
-    /// The constraints these options name.
-    pub fn constraints(&self) -> Constraints {
-        Constraints {
-            boundary: self.boundary,
-            seams: self.seams,
-            feature_angle: self.feature_angle,
-            features: self.features.clone(),
-            pinned: self.pinned.clone(),
-        }
-    }
-
-    /// These options with the five fields of `c` (the setters
-    /// `boundary`, `seams`, `feature_angle`, `features` and `pinned` in
-    /// one): the inverse of [`constraints`](Self::constraints).
-    #[must_use]
-    pub fn with_constraints(self, c: Constraints) -> Self {
-        self.boundary(c.boundary)
-            .seams(c.seams)
-            .feature_angle(c.feature_angle)
-            .features(c.features)
-            .pinned(c.pinned)
-    }
-}
 
 impl Default for RemeshOptions {
     fn default() -> Self {

@@ -134,6 +134,8 @@ pub struct SmoothOptions {
     pub rescale: bool,
 }
 
+crate::algo::constraints::constrained!(SmoothOptions);
+
 crate::choice::setters!(SmoothOptions {
     method: SmoothMethod,
     iterations: u32,
@@ -178,29 +180,6 @@ impl SmoothOptions {
             },
             ..SmoothOptions::default()
         }
-    }
-
-    /// The constraints these options name.
-    pub fn constraints(&self) -> Constraints {
-        Constraints {
-            boundary: self.boundary,
-            seams: self.seams,
-            feature_angle: self.feature_angle,
-            features: self.features.clone(),
-            pinned: self.pinned.clone(),
-        }
-    }
-
-    /// These options with the five fields of `c` (the setters
-    /// `boundary`, `seams`, `feature_angle`, `features` and `pinned` in
-    /// one): the inverse of [`constraints`](Self::constraints).
-    #[must_use]
-    pub fn with_constraints(self, c: Constraints) -> Self {
-        self.boundary(c.boundary)
-            .seams(c.seams)
-            .feature_angle(c.feature_angle)
-            .features(c.features)
-            .pinned(c.pinned)
     }
 }
 
