@@ -489,6 +489,9 @@ impl<'m> Classifier<'m> {
 
     /// Every vertex's kind and every edge's bits.
     pub(crate) fn classify(&self) -> Classified {
+        if !self.edge_pass() {
+            return self.classify_vertices();
+        }
         let mesh = self.mesh;
         let [nv, _, ne, _] = mesh.slot_counts();
         let mut state = vec![0u8; nv];
@@ -536,6 +539,36 @@ impl<'m> Classifier<'m> {
             locked,
             fixed,
             feature_edges,
+        }
+    }
+
+    /// [`classify`](Self::classify) when no edge is kept (no features, no
+    /// seams, the boundary free to slide or move): one pass over the vertex
+    /// slots, every vertex fixed or free.
+    fn classify_vertices(&self) -> Classified {
+        let mesh = self.mesh;
+        let lock = self.boundary == Keep::Lock;
+        let mut fixed = 0;
+        let kinds = (0..mesh.vertex_slots())
+            .map(|i| {
+                let v = Vid::new(i as u32);
+                let keep = !mesh.vertex_live(i)
+                    || (lock && mesh.on_boundary(v))
+                    || (self.pinned.is_some() && self.pinned(v));
+                fixed += usize::from(keep && mesh.vertex_live(i));
+                if keep {
+                    FIXED
+                } else {
+                    FREE
+                }
+            })
+            .collect();
+        Classified {
+            kinds,
+            lines: EdgeBits::new(0),
+            locked: EdgeBits::new(0),
+            fixed,
+            feature_edges: 0,
         }
     }
 

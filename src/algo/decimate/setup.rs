@@ -133,7 +133,7 @@ fn classify(mesh: &Mesh, pos: &[V3], options: &DecimateOptions) -> Result<Classi
 
 /// Each face's plane, weighted by its area, at its corners; and planes
 /// across the sliding lines.
-fn quadrics(mesh: &Mesh, pos: &[V3], unit: &dyn Fn(V3) -> V3, lines: &EdgeBits) -> Vec<Quadric> {
+fn quadrics(mesh: &Mesh, pos: &[V3], unit: &impl Fn(V3) -> V3, lines: &EdgeBits) -> Vec<Quadric> {
     let mut quadrics = vec![Quadric::default(); mesh.slot_counts()[0]];
     for f in mesh.fids() {
         if mesh.is_hole(f) {
@@ -166,7 +166,7 @@ fn quadrics(mesh: &Mesh, pos: &[V3], unit: &dyn Fn(V3) -> V3, lines: &EdgeBits) 
 fn add_line_planes(
     mesh: &Mesh,
     pos: &[[f64; 3]],
-    unit: &dyn Fn(V3) -> V3,
+    unit: &impl Fn(V3) -> V3,
     e: Eid,
     quadrics: &mut [Quadric],
 ) {
