@@ -113,7 +113,7 @@
 //! | `mint`, `glam`, `nalgebra` | no | their points and vectors as positions and attribute values ([`geometry`] lists the versions) |
 //! | `parallel` | no | normals and engine buffers of large meshes on rayon's threads |
 //! | `gltf` | no | reading and writing glTF 2.0 (`.gltf`, `.glb`) |
-//! | `validate-edits` | no | debug builds validate the whole mesh after every edit: for meshloom's own tests and fuzzing, not for applications |
+//! | `validate-edits` | no | debug builds validate the whole mesh after every edit (inside a transaction, once when the outermost ends): for meshloom's own tests and fuzzing, not for applications |
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 

@@ -534,9 +534,10 @@ impl Mesh {
             self.r().trim();
         }
         self.maybe_stop();
-        if failed {
-            self.debug_validate();
-        }
+        // The whole-mesh check of the crate's own tests runs once per
+        // outermost transaction, committed or rolled back (see
+        // `debug_validate`).
+        self.debug_validate();
         match out {
             Ok(r) => r,
             Err(p) => resume_unwind(p),
