@@ -37,10 +37,36 @@ fn shape(m: &Mesh) -> meshloom::Polygons {
     m.to_polygons().0
 }
 
-fn temp(name: &str) -> std::path::PathBuf {
+fn temp(name: &str) -> TempFile {
     let dir = std::env::temp_dir().join(format!("meshloom-io-tests-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    TempFile(dir.join(name))
+}
+
+/// A scratch file that removes itself when the test ends, and its folder
+/// once that is empty (the last test out leaves nothing in the temp dir).
+struct TempFile(std::path::PathBuf);
+
+impl std::ops::Deref for TempFile {
+    type Target = std::path::PathBuf;
+    fn deref(&self) -> &std::path::PathBuf {
+        &self.0
+    }
+}
+
+impl AsRef<std::path::Path> for TempFile {
+    fn as_ref(&self) -> &std::path::Path {
+        &self.0
+    }
+}
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
+        if let Some(dir) = self.0.parent() {
+            let _ = std::fs::remove_dir(dir);
+        }
+    }
 }
 
 #[test]
