@@ -22,6 +22,7 @@ pub(crate) use crate::layout::HalfedgeRecord;
 use crate::layout::{Eid, FaceLink, Fid, Hid, LinkVec, Vid};
 use crate::record::{Arena, Journaling, PerArena, Recorded, Recorder};
 use crate::slots::Slots;
+pub(crate) use crate::slots::Stamp;
 use crate::store::rules::Interpolate;
 use crate::store::{AttrStore, Column, POSITION};
 
@@ -80,6 +81,8 @@ impl Clone for Mesh {
             attrs: self.attrs.clone(),
             rec: None,
         };
+        // Another mesh value: trees built for the original refuse it.
+        m.v_slots.stamp = Stamp::fresh();
         if let Some(r) = &self.rec {
             r.release_held_into(PerArena([&mut m.v_slots, &mut m.e_slots, &mut m.f_slots]));
         }
@@ -102,6 +105,38 @@ impl Mesh {
             Box::new(Column::<[f64; 3], Interpolate>::dense(Vec::new())),
         ));
         m
+    }
+
+    /// The edit count of this mesh value: 0 when made (built, cloned,
+    /// read), then changed by every edit — an operator, a setter, a mutable
+    /// position or attribute view, an undo, a redo, a rolled-back
+    /// transaction, a wholesale rebuild. Equal revisions of one mesh mean
+    /// nothing changed in between (a view taken but not written counts as
+    /// an edit: the count errs towards "changed").
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// let before = mesh.revision();
+    /// let v = mesh.vertices().next().unwrap();
+    /// mesh.set_position(v, [0.0, 0.0, 2.0])?;
+    /// assert_ne!(mesh.revision(), before);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn revision(&self) -> u64 {
+        self.v_slots.stamp.edits
+    }
+
+    /// Which mesh value this is and its edit count (see [`Stamp`]).
+    #[inline]
+    pub(crate) fn stamp(&self) -> Stamp {
+        self.v_slots.stamp
+    }
+
+    /// Note an edit (see [`Stamp`]).
+    #[inline(always)]
+    pub(crate) fn bump_revision(&mut self) {
+        let s = &mut self.v_slots.stamp;
+        s.edits = s.edits.wrapping_add(1);
     }
 
     // ----- counts ---------------------------------------------------------
@@ -839,8 +874,10 @@ impl Mesh {
         result.rec = None;
         self.wholesale(move |m| {
             let rec = m.rec.take();
+            let stamp = m.stamp();
             *m = result;
             m.rec = rec;
+            m.v_slots.stamp = stamp;
         });
     }
 }

@@ -75,6 +75,39 @@ mod undo;
 /// `MAX_LIVE_GENERATION + 1`, which is never reissued.
 pub(crate) const MAX_LIVE_GENERATION: u32 = u32::MAX - 2;
 
+/// A mesh's identity and edit count: what a derived structure (a
+/// [`FaceTree`](crate::query::FaceTree)) records to refuse a mesh that
+/// changed since, or another mesh. The mesh keeps it in its vertex arena's
+/// [`Slots`] (a place every constructor of a mesh already fills: a field of
+/// its own would have to be named in every struct literal of `Mesh`).
+///
+/// `mesh` is drawn from a process-wide counter when a mesh value is made
+/// (built, read, cloned, compacted), so two mesh values never share it;
+/// `edits` counts the edits of that value. The mesh bumps it at the narrow
+/// doors every change passes: the end of every operator and setter
+/// (`end_op`, `end_edit`), mutable position and attribute views, the
+/// journal's undo, redo and rollback (`open_step`) and wholesale rebuilds
+/// (`wholesale`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct Stamp {
+    /// Unique per mesh value.
+    pub(crate) mesh: u64,
+    /// Edits since the value was made.
+    pub(crate) edits: u64,
+}
+
+impl Stamp {
+    /// A new mesh value's stamp.
+    pub(crate) fn fresh() -> Stamp {
+        use std::sync::atomic::{AtomicU64, Ordering};
+        static NEXT: AtomicU64 = AtomicU64::new(1);
+        Stamp {
+            mesh: NEXT.fetch_add(1, Ordering::Relaxed),
+            edits: 0,
+        }
+    }
+}
+
 /// Generations and the free list of one arena.
 #[derive(Debug)]
 pub(crate) struct Slots {
@@ -94,6 +127,9 @@ pub(crate) struct Slots {
     /// Odd, at least `base`: no generation below it is issued any more
     /// (see the module docs). Equal to `base` until an undo raises it.
     fresh: u32,
+    /// The mesh's stamp, in its vertex arena (unused in the others; not
+    /// part of equality).
+    pub(crate) stamp: Stamp,
 }
 
 impl Clone for Slots {
@@ -113,6 +149,7 @@ impl Clone for Slots {
             base: self.base,
             state: self.state,
             fresh: self.fresh,
+            stamp: self.stamp,
         }
     }
 }
@@ -168,6 +205,7 @@ impl Slots {
             base: Self::FIRST_BASE,
             state: State::Intact,
             fresh: Self::FIRST_BASE,
+            stamp: Stamp::fresh(),
         }
     }
 
@@ -187,6 +225,7 @@ impl Slots {
             base,
             state: State::Intact,
             fresh: base,
+            stamp: Stamp::fresh(),
         }
     }
 
@@ -418,6 +457,7 @@ impl Slots {
             base: self.base,
             state: self.state,
             fresh: self.fresh,
+            stamp: self.stamp,
         }
     }
 
@@ -508,6 +548,7 @@ impl Slots {
             base,
             state,
             fresh,
+            stamp: Stamp::fresh(),
         })
     }
 

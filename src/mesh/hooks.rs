@@ -159,6 +159,7 @@ impl Mesh {
     /// records and no step group or transaction is open.
     #[inline(always)]
     pub(crate) fn end_op<J: Journaling>(&mut self) {
+        self.bump_revision();
         self.debug_validate();
         if J::ON {
             self.end_edit();
@@ -174,6 +175,7 @@ impl Mesh {
     /// `take_changes`, the group's end) seals it first.
     #[inline]
     pub(crate) fn end_edit(&mut self) {
+        self.bump_revision();
         if let Some(r) = self.rec.as_deref() {
             if r.group_depth == 0 {
                 self.seal();

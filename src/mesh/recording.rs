@@ -46,6 +46,8 @@ impl Mesh {
 
     /// Begin a new open step at the mesh as it is (a journal must be on).
     pub(crate) fn open_step(&mut self) {
+        // Undo, redo and a rollback end here: the mesh changed.
+        self.bump_revision();
         let (r, mut s) = self.recording().expect("no recorder");
         r.open_step(&mut s);
     }
@@ -60,8 +62,10 @@ impl Mesh {
 
     /// Record a wholesale rebuild `f` as one step holding the prior mesh.
     pub(crate) fn wholesale(&mut self, f: impl FnOnce(&mut Mesh)) {
+        self.bump_revision();
         let Some(r) = self.rec.as_deref() else {
             f(self);
+            self.bump_revision();
             return;
         };
         let keeps = r.keeps_steps();
@@ -126,6 +130,8 @@ impl Mesh {
     /// stays); the snapshot then holds the storage swapped out.
     pub(crate) fn swap_storage(&mut self, snap: &mut Snapshot) {
         let bytes = self.heap_bytes();
+        // The mesh stays the same mesh value (its edit count goes on).
+        let stamp = self.stamp();
         let Snapshot {
             v_halfedge,
             v_slots,
@@ -145,6 +151,7 @@ impl Mesh {
         std::mem::swap(&mut self.f_slots, f_slots);
         std::mem::swap(&mut self.holes, holes);
         std::mem::swap(&mut self.attrs, attrs);
+        self.v_slots.stamp = stamp;
         *held = bytes;
     }
 
@@ -210,6 +217,7 @@ impl Mesh {
         range: std::ops::Range<usize>,
     ) -> Option<&mut [[f64; 3]]> {
         let p = self.attrs.position?;
+        self.bump_revision();
         if self.rec.is_some() {
             self.save_bulk(ElementKind::Vertex, p, range);
         }
