@@ -69,6 +69,12 @@
 //! | [`attr`] | typed columns on vertices, half-edges (corners), edges and faces; the [`attr::Rule`] trait and the stock rules that merge, split and interpolate them inside every operator |
 //! | [`geometry`] | the [`geometry::Point`] trait (your own point types as positions) and measures: lengths, normals, areas, centroids |
 //!
+//! **Spatial queries.**
+//!
+//! | module | what it holds |
+//! |---|---|
+//! | [`query`] | [`query::FaceTree`]: a bounding volume hierarchy over the faces for ray casts, closest points, radius queries, nearest vertices and generalized winding numbers (inside tests), refused once the mesh changes without a refit |
+//!
 //! **Algorithms** ([`algo`]: one algorithm per module, each all or nothing,
 //! with a [`Progress`](algo::Progress) callback where it may take long).
 //!
@@ -126,6 +132,7 @@
 // - access: circulate iter traverse validate view link stats attr geometry serde_impl
 // - editing: journal ops
 // - building: build shapes repair arbitrary
+// - spatial: query
 // - algorithms: algo
 // - exchange: buffers io
 // - umbrella: any_error
@@ -150,6 +157,7 @@ pub mod link;
 pub mod map;
 mod mesh;
 pub mod ops;
+pub mod query;
 mod record;
 pub mod repair;
 #[cfg(feature = "serde")]

@@ -67,6 +67,47 @@ pub struct Mesh {
     /// tracking is on ([`journal`](crate::journal)); `None` otherwise, and
     /// then every mutator's journal check is one test of this pointer.
     pub(crate) rec: Option<Box<Recorder>>,
+    /// Which mesh value this is and how many edits it has had (see
+    /// [`Stamp`]).
+    pub(crate) stamp: Stamp,
+}
+
+/// A mesh value's identity and edit count: what a derived structure (a
+/// [`FaceTree`](crate::query::FaceTree)) records to refuse a mesh that
+/// changed since, or another mesh.
+///
+/// `mesh` is drawn from a process-wide counter when a mesh value is made
+/// (built, read, cloned, compacted), so two mesh values never share it;
+/// `edits` counts the edits of that value. The mesh bumps it at the narrow
+/// doors every change passes: the end of every operator and setter
+/// (`end_op`, `end_edit`), mutable position and attribute views, the
+/// journal's undo, redo and rollback (`open_step`) and wholesale rebuilds
+/// (`wholesale`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct Stamp {
+    /// Unique per mesh value.
+    pub(crate) mesh: u64,
+    /// Edits since the value was made.
+    pub(crate) edits: u64,
+}
+
+impl Default for Stamp {
+    /// A fresh stamp: a default mesh is a new mesh value.
+    fn default() -> Stamp {
+        Stamp::fresh()
+    }
+}
+
+impl Stamp {
+    /// A new mesh value's stamp.
+    pub(crate) fn fresh() -> Stamp {
+        use std::sync::atomic::{AtomicU64, Ordering};
+        static NEXT: AtomicU64 = AtomicU64::new(1);
+        Stamp {
+            mesh: NEXT.fetch_add(1, Ordering::Relaxed),
+            edits: 0,
+        }
+    }
 }
 
 impl Clone for Mesh {
@@ -84,6 +125,8 @@ impl Clone for Mesh {
             holes: self.holes,
             attrs: self.attrs.clone(),
             rec: None,
+            // Another mesh value: trees built for the original refuse it.
+            stamp: Stamp::fresh(),
         };
         if let Some(r) = &self.rec {
             r.release_held_into(PerArena([&mut m.v_slots, &mut m.e_slots, &mut m.f_slots]));
@@ -107,6 +150,38 @@ impl Mesh {
             Box::new(Column::<[f64; 3], Interpolate>::dense(Vec::new())),
         ));
         m
+    }
+
+    /// The edit count of this mesh value: 0 when made (built, cloned,
+    /// read), then changed by every edit — an operator, a setter, a mutable
+    /// position or attribute view, an undo, a redo, a rolled-back
+    /// transaction, a wholesale rebuild. Equal revisions of one mesh mean
+    /// nothing changed in between (a view taken but not written counts as
+    /// an edit: the count errs towards "changed").
+    ///
+    /// ```
+    /// let mut mesh = meshloom::shapes::cube();
+    /// let before = mesh.revision();
+    /// let v = mesh.vertices().next().unwrap();
+    /// mesh.set_position(v, [0.0, 0.0, 2.0])?;
+    /// assert_ne!(mesh.revision(), before);
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn revision(&self) -> u64 {
+        self.stamp.edits
+    }
+
+    /// Which mesh value this is and its edit count (see [`Stamp`]).
+    #[inline]
+    pub(crate) fn stamp(&self) -> Stamp {
+        self.stamp
+    }
+
+    /// Note an edit (see [`Stamp`]).
+    #[inline(always)]
+    pub(crate) fn bump_revision(&mut self) {
+        let s = &mut self.stamp;
+        s.edits = s.edits.wrapping_add(1);
     }
 
     // ----- counts ---------------------------------------------------------
@@ -702,8 +777,10 @@ impl Mesh {
         result.rec = None;
         self.wholesale(move |m| {
             let rec = m.rec.take();
+            let stamp = m.stamp();
             *m = result;
             m.rec = rec;
+            m.stamp = stamp;
         });
     }
 }

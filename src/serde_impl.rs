@@ -260,6 +260,7 @@ fn mesh_from(data: MeshData) -> Result<Mesh, String> {
         holes,
         attrs: Default::default(),
         rec: None,
+        stamp: crate::mesh::Stamp::fresh(),
     };
     mesh.attrs.vertex = columns_in(ElementKind::Vertex, data.vertex_attrs, nv)?;
     mesh.attrs.halfedge = columns_in(

@@ -457,6 +457,8 @@ impl Mesh {
         h: &Attr<K, T, R>,
     ) -> Result<AttrViewMut<'_, K, T>> {
         let i = self.resolve(h)?;
+        // The view may write anything (positions included).
+        self.bump_revision();
         let is_position = K::KIND == ElementKind::Vertex && self.attrs.position == Some(i);
         let (slots, shift) = match K::KIND {
             ElementKind::Vertex => (&self.v_slots, 0),

@@ -335,6 +335,7 @@ pub(super) fn assemble<P: Point>(
         holes,
         attrs: Default::default(),
         rec: None,
+        stamp: crate::mesh::Stamp::fresh(),
     };
     if let Some(p) = positions {
         let values: Vec<[f64; 3]> = match &vertices.input_of_slot {

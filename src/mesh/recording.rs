@@ -24,6 +24,7 @@ impl Mesh {
             holes,
             attrs,
             rec,
+            stamp: _,
         } = self;
         let r = rec.as_deref_mut()?;
         let s = Storage {
@@ -46,6 +47,8 @@ impl Mesh {
 
     /// Begin a new open step at the mesh as it is (a journal must be on).
     pub(crate) fn open_step(&mut self) {
+        // Undo, redo and a rollback end here: the mesh changed.
+        self.bump_revision();
         let (r, mut s) = self.recording().expect("no recorder");
         r.open_step(&mut s);
     }
@@ -60,8 +63,10 @@ impl Mesh {
 
     /// Record a wholesale rebuild `f` as one step holding the prior mesh.
     pub(crate) fn wholesale(&mut self, f: impl FnOnce(&mut Mesh)) {
+        self.bump_revision();
         let Some(r) = self.rec.as_deref() else {
             f(self);
+            self.bump_revision();
             return;
         };
         let keeps = r.keeps_steps();
@@ -108,6 +113,7 @@ impl Mesh {
             holes,
             attrs,
             rec: _,
+            stamp: _,
         } = copy;
         Snapshot {
             v_halfedge,
@@ -210,6 +216,7 @@ impl Mesh {
         range: std::ops::Range<usize>,
     ) -> Option<&mut [[f64; 3]]> {
         let p = self.attrs.position?;
+        self.bump_revision();
         if self.rec.is_some() {
             self.save_bulk(ElementKind::Vertex, p, range);
         }
@@ -233,6 +240,7 @@ impl Mesh {
     /// the group's end) seals it first.
     #[inline]
     pub(crate) fn end_edit(&mut self) {
+        self.bump_revision();
         if let Some(r) = self.rec.as_deref() {
             if r.group_depth == 0 {
                 self.seal();

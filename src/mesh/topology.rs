@@ -48,6 +48,7 @@ impl Topology {
             holes: self.hole_count,
             attrs,
             rec: None,
+            stamp: crate::mesh::Stamp::fresh(),
         }
     }
 }

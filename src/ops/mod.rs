@@ -228,6 +228,7 @@ impl<J: Journaling> Writer<'_, J> {
     /// ([`Mesh::end_edit`]).
     #[inline(always)]
     pub(crate) fn end_op(&mut self) {
+        self.bump_revision();
         self.debug_validate();
         if J::ON {
             self.end_edit();

@@ -1,0 +1,353 @@
+//! Spatial queries over a mesh's faces: [`FaceTree`], a bounding volume
+//! hierarchy for picking (ray casts), projection (closest points), radius
+//! searches, snapping (nearest vertex) and inside tests (generalized winding
+//! numbers).
+//!
+//! # How it is built
+//!
+//! Every face (holes are not faces) is cut into the fan of triangles
+//! `(c₀, cᵢ, cᵢ₊₁)` over its corners `c₀ … cₙ₋₁` in
+//! [`FaceView::vertices`](crate::FaceView::vertices) order; a query's answer
+//! names the face and its fan triangle's corners ([`FaceCoords`]). The
+//! triangles' corner positions are copied into the tree in leaf order (72
+//! bytes a triangle), so a query reads the tree's memory only. The tree is
+//! a binned surface-area-heuristic (SAH) hierarchy with 16 bins per axis,
+//! stored as a flat array of nodes in depth-first order (an inner node's
+//! first child is the next node), built in one pass with an explicit stack.
+//!
+//! # Kept honest under edits
+//!
+//! A tree records the mesh it was built for and that mesh's
+//! [`revision`](crate::Mesh::revision). Every query takes the mesh and
+//! compares: a mesh that changed since (or another mesh) is refused with
+//! [`QueryError::StaleTree`], never answered from old geometry. After
+//! positions move, [`FaceTree::refit`] recomputes the boxes in O(n)
+//! (checking that the faces did not change); after the faces change,
+//! rebuild.
+//!
+//! # Precision
+//!
+//! Everything is computed in `f64`. Box tests are widened by a relative
+//! 1e-12, so the tree never prunes a triangle that the triangle test would
+//! accept: the first hit and the closest point equal a brute-force loop's
+//! over the same triangles (on ties, the distance is equal and the face may
+//! be either of the tied ones). Rays are tested against both sides of each
+//! triangle (Möller–Trumbore); a degenerate triangle is never hit by a
+//! ray, but it still has closest points.
+//!
+//! ```
+//! use meshloom::query::{FaceTree, Ray};
+//! let mesh = meshloom::shapes::icosphere(3);
+//! let tree = FaceTree::build(&mesh)?;
+//! let hit = tree.ray_cast(&mesh, Ray::new([0.0, 0.0, -5.0], [0.0, 0.0, 1.0]))?.expect("a hit");
+//! assert!((hit.t - 4.0).abs() < 0.01); // the unit sphere's near side
+//! assert!(tree.contains(&mesh, [0.1, 0.2, 0.3])?);
+//! assert!(!tree.contains(&mesh, [2.0, 0.0, 0.0])?);
+//! # Ok::<(), meshloom::query::QueryError>(())
+//! ```
+
+mod build;
+mod closest;
+mod error;
+mod ray;
+mod winding;
+
+pub use closest::{Closest, Nearest};
+pub use error::QueryError;
+pub use ray::{Hit, Ray};
+pub use winding::WindingMode;
+#[doc(hidden)]
+pub use {closest::triangle_closest, ray::triangle_hit};
+
+use crate::keys::{FaceKey, VertexKey};
+use crate::mesh::{Mesh, Stamp};
+use crate::vec3::V3;
+
+/// A bounding volume hierarchy over a mesh's faces, for ray casts, closest
+/// points, radius queries and winding numbers (see the [module](self)).
+///
+/// ```
+/// use meshloom::query::{FaceTree, QueryError, Ray};
+/// let mut mesh = meshloom::shapes::cube();
+/// let mut tree = FaceTree::build(&mesh)?;
+/// let v = mesh.vertices().next().unwrap();
+/// mesh.set_position(v, [-0.7, -0.7, -0.7]).unwrap();
+/// let ray = Ray::new([0.0, 0.0, -3.0], [0.0, 0.0, 1.0]);
+/// // The mesh moved: the tree refuses until refitted.
+/// assert!(matches!(tree.ray_cast(&mesh, ray), Err(QueryError::StaleTree { .. })));
+/// tree.refit(&mesh)?;
+/// assert!(tree.ray_cast(&mesh, ray)?.is_some());
+/// # Ok::<(), QueryError>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct FaceTree {
+    /// The mesh and revision the boxes were computed for.
+    stamp: Stamp,
+    /// Depth-first: an inner node's first child is the next node.
+    nodes: Vec<Node>,
+    /// The fan triangles' corner positions, in leaf order.
+    tris: Vec<[V3; 3]>,
+    /// What each triangle is part of, in leaf order.
+    meta: Vec<TriMeta>,
+    /// Per node: the far-field data of the winding number.
+    dipoles: Vec<Dipole>,
+    /// The faces in build order, with their corners' span in `corners`
+    /// (for the refit's check that the faces did not change).
+    faces: Vec<(FaceKey, u32, u32)>,
+    /// Every face's corners, face after face.
+    corners: Vec<VertexKey>,
+}
+
+/// A node: a box, then either a leaf's triangles `first .. first + count`
+/// (`count > 0`) or an inner node whose children are the next node and
+/// node `first` (`count == 0`).
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    lo: V3,
+    hi: V3,
+    first: u32,
+    count: u32,
+}
+
+/// A fan triangle's face, corners and place in the face's fan.
+#[derive(Clone, Copy, Debug)]
+struct TriMeta {
+    face: FaceKey,
+    /// Its corners' vertices.
+    v: [VertexKey; 3],
+    /// The face corner index of its second corner (its corners are the
+    /// face's `0`, `fan`, `fan + 1`).
+    fan: u32,
+}
+
+/// A node's triangles seen from far away (Barill et al. 2018): their total
+/// area vector, area-weighted centroid and a radius about it that holds
+/// them all.
+#[derive(Clone, Copy, Debug, Default)]
+struct Dipole {
+    area: V3,
+    centre: V3,
+    /// The triangles' total (unsigned) area, the centre's weight.
+    weight: f64,
+    radius: f64,
+}
+
+impl FaceTree {
+    /// Build the tree over `mesh`'s faces.
+    ///
+    /// # Errors
+    /// [`QueryError::NoPositions`] when the mesh has no position column.
+    ///
+    /// # Complexity
+    /// O(n log n) time for n fan triangles; about 72 + 40 bytes a triangle,
+    /// 56 a node and 48 a node's winding-number data, plus 8 bytes a corner.
+    ///
+    /// ```
+    /// let mesh = meshloom::shapes::torus(24, 12, 1.0, 0.3).unwrap();
+    /// let tree = meshloom::query::FaceTree::build(&mesh)?;
+    /// assert_eq!(tree.triangle_count(), 2 * mesh.face_count()); // quads, two triangles each
+    /// # Ok::<(), meshloom::query::QueryError>(())
+    /// ```
+    pub fn build(mesh: &Mesh) -> Result<FaceTree, QueryError> {
+        let pos = mesh.position_slots().ok_or(QueryError::NoPositions)?;
+        let mut faces = Vec::with_capacity(mesh.face_count());
+        let mut corners = Vec::with_capacity(mesh.face_count() * 3);
+        let mut tris = Vec::with_capacity(mesh.face_count());
+        let mut meta = Vec::with_capacity(mesh.face_count());
+        for f in mesh.faces() {
+            let start = corners.len();
+            let view = mesh.face(f).expect("a listed face is live");
+            corners.extend(view.vertices());
+            let cs = &corners[start..];
+            faces.push((f, start as u32, cs.len() as u32));
+            for i in 1..cs.len().saturating_sub(1) {
+                let v = [cs[0], cs[i], cs[i + 1]];
+                tris.push(v.map(|v| pos[v.index()]));
+                meta.push(TriMeta {
+                    face: f,
+                    v,
+                    fan: i as u32,
+                });
+            }
+        }
+        let (nodes, order) = build::build(&tris);
+        let tris: Vec<[V3; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
+        let meta: Vec<TriMeta> = order.iter().map(|&i| meta[i as usize]).collect();
+        let mut tree = FaceTree {
+            stamp: mesh.stamp(),
+            nodes,
+            tris,
+            meta,
+            dipoles: Vec::new(),
+            faces,
+            corners,
+        };
+        tree.dipoles = vec![Dipole::default(); tree.nodes.len()];
+        tree.update_bounds(false);
+        Ok(tree)
+    }
+
+    /// Recompute the boxes after `mesh`'s positions moved, without
+    /// rebuilding: O(n). The faces must be the ones the tree was built over
+    /// with the same corners; only positions may have changed. Afterwards
+    /// the tree answers for `mesh` as it is.
+    ///
+    /// The hierarchy keeps its shape, so after large motions a rebuild may
+    /// answer faster; the answers are the same.
+    ///
+    /// # Errors
+    /// [`QueryError::NoPositions`]; [`QueryError::StaleTree`] (with
+    /// `same_mesh` false) for another mesh; [`QueryError::FaceCountChanged`]
+    /// or [`QueryError::TopologyChanged`] when the faces changed (the tree
+    /// is left as it was).
+    ///
+    /// ```
+    /// use meshloom::query::FaceTree;
+    /// let mut mesh = meshloom::shapes::icosphere(2);
+    /// let mut tree = FaceTree::build(&mesh)?;
+    /// for p in mesh.position_slots_mut().unwrap() {
+    ///     p[0] += 10.0;
+    /// }
+    /// tree.refit(&mesh)?;
+    /// let c = tree.closest_point(&mesh, [10.0, 0.0, 3.0], None)?.unwrap();
+    /// assert!((c.distance - 2.0).abs() < 0.01);
+    /// # Ok::<(), meshloom::query::QueryError>(())
+    /// ```
+    pub fn refit(&mut self, mesh: &Mesh) -> Result<(), QueryError> {
+        if mesh.stamp().mesh != self.stamp.mesh {
+            return Err(self.stale(mesh));
+        }
+        let pos = mesh.position_slots().ok_or(QueryError::NoPositions)?;
+        if mesh.face_count() != self.faces.len() {
+            return Err(QueryError::FaceCountChanged {
+                built: self.faces.len(),
+                now: mesh.face_count(),
+            });
+        }
+        for &(f, start, len) in &self.faces {
+            let view = mesh
+                .face(f)
+                .map_err(|_| QueryError::TopologyChanged { face: f })?;
+            let was = &self.corners[start as usize..(start + len) as usize];
+            let mut now = view.vertices();
+            if !was.iter().all(|&v| now.next() == Some(v)) || now.next().is_some() {
+                return Err(QueryError::TopologyChanged { face: f });
+            }
+        }
+        for (t, m) in self.tris.iter_mut().zip(&self.meta) {
+            *t = m.v.map(|v| pos[v.index()]);
+        }
+        self.update_bounds(true);
+        self.stamp = mesh.stamp();
+        Ok(())
+    }
+
+    /// Number of fan triangles (a face of n corners gives n − 2).
+    pub fn triangle_count(&self) -> usize {
+        self.tris.len()
+    }
+
+    /// Number of faces the tree was built over.
+    pub fn face_count(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// Number of nodes of the hierarchy.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Heap bytes the tree holds.
+    pub fn heap_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.nodes.capacity() * size_of::<Node>()
+            + self.tris.capacity() * size_of::<[V3; 3]>()
+            + self.meta.capacity() * size_of::<TriMeta>()
+            + self.dipoles.capacity() * size_of::<Dipole>()
+            + self.faces.capacity() * size_of::<(FaceKey, u32, u32)>()
+            + self.corners.capacity() * size_of::<VertexKey>()
+    }
+
+    /// The revision of the mesh the tree answers for (see
+    /// [`Mesh::revision`]).
+    pub fn revision(&self) -> u64 {
+        self.stamp.edits
+    }
+
+    /// Whether the tree answers for `mesh` as it is now (the same mesh, no
+    /// edit since the build or the last refit).
+    pub fn is_current(&self, mesh: &Mesh) -> bool {
+        mesh.stamp() == self.stamp
+    }
+
+    /// `Ok` if the tree answers for `mesh`.
+    fn check(&self, mesh: &Mesh) -> Result<(), QueryError> {
+        if mesh.stamp() == self.stamp {
+            Ok(())
+        } else {
+            Err(self.stale(mesh))
+        }
+    }
+
+    fn stale(&self, mesh: &Mesh) -> QueryError {
+        QueryError::StaleTree {
+            built: self.stamp.edits,
+            now: mesh.stamp().edits,
+            same_mesh: mesh.stamp().mesh == self.stamp.mesh,
+        }
+    }
+
+    /// Boxes and far-field data of every node from the triangles, children
+    /// before parents (nodes are in depth-first order, so in reverse).
+    /// `boxes`: recompute the boxes too (a refit); a build made them.
+    fn update_bounds(&mut self, boxes: bool) {
+        for i in (0..self.nodes.len()).rev() {
+            let n = self.nodes[i];
+            let d = if n.count > 0 {
+                let range = n.first as usize..(n.first + n.count) as usize;
+                if boxes {
+                    let (lo, hi) = build::bounds(&self.tris[range.clone()]);
+                    self.nodes[i].lo = lo;
+                    self.nodes[i].hi = hi;
+                }
+                winding::leaf_dipole(&self.tris[range])
+            } else {
+                let (a, b) = (i + 1, n.first as usize);
+                if boxes {
+                    let (na, nb) = (self.nodes[a], self.nodes[b]);
+                    self.nodes[i].lo = build::min3(na.lo, nb.lo);
+                    self.nodes[i].hi = build::max3(na.hi, nb.hi);
+                }
+                winding::merge_dipoles(self.dipoles[a], self.dipoles[b])
+            };
+            let n = self.nodes[i];
+            self.dipoles[i] = winding::with_radius(d, n.lo, n.hi);
+        }
+    }
+
+    /// The face coordinates of fan triangle `tri` with weights `w`.
+    fn coords(&self, tri: usize, w: [f64; 3]) -> FaceCoords {
+        let fan = self.meta[tri].fan as usize;
+        FaceCoords {
+            corners: [0, fan, fan + 1],
+            weights: w,
+        }
+    }
+}
+
+/// Where on a face a point lies: weights of three of the face's corners
+/// (indices into its corners in [`FaceView::vertices`](crate::FaceView::vertices)
+/// order) that sum to 1 and give the point as their weighted sum. For a
+/// triangle the corners are `[0, 1, 2]` and the weights its barycentric
+/// coordinates; for a polygon they are the corners `0, i, i + 1` of the fan
+/// triangle the point lies in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FaceCoords {
+    /// Indices of three of the face's corners.
+    pub corners: [usize; 3],
+    /// Their weights, summing to 1.
+    pub weights: [f64; 3],
+}
+
+#[cfg(test)]
+mod tests;
