@@ -222,6 +222,15 @@ Example:
   meshloom remesh bunny.off even.off --edge-length 0.002
   meshloom remesh part.obj part-remeshed.obj --adaptive 0.001 --feature-angle 40 --json")]
     Remesh(RemeshArgs),
+    /// Write N points uniformly distributed inside a closed mesh as CSV.
+    ///
+    /// Rejection sampling in the bounding box with the face tree's inside
+    /// test (winding number above 1/2). The same seed gives the same
+    /// points. Fails (exit 1) when the mesh encloses almost no volume.
+    #[command(after_help = "\
+Example:
+  meshloom sample data/bunny.off inside.csv --inside 10000 --seed 7")]
+    Sample(SampleArgs),
 }
 
 /// How to read an input file.
@@ -673,6 +682,24 @@ pub struct RenderArgs {
     /// concave, white flat, red convex; range ± the 98th percentile of |H|).
     #[arg(long, value_enum, default_value = "plain")]
     pub color: ColorBy,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
+/// `meshloom sample`.
+#[derive(Args, Debug)]
+pub struct SampleArgs {
+    /// The mesh file (closed).
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// The CSV file to write: a header `x,y,z`, then one point a line.
+    pub output: PathBuf,
+    /// How many points inside the mesh.
+    #[arg(long, value_name = "N")]
+    pub inside: usize,
+    /// The random seed.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
     #[command(flatten)]
     pub read: ReadArgs,
 }

@@ -20,7 +20,9 @@ use std::process::ExitCode;
 use clap::Parser;
 
 use cli::{Cli, Command};
-use commands::{convert, decimate, fair, remesh, render, smooth, stats, subdivide, validate};
+use commands::{
+    convert, decimate, fair, remesh, render, sample, smooth, stats, subdivide, validate,
+};
 
 /// Why a command failed, and the exit code that says so.
 #[derive(Debug)]
@@ -71,6 +73,7 @@ fn main() -> ExitCode {
         Command::Render(a) => render::run(&a),
         Command::Subdivide(a) => subdivide::run(&a),
         Command::Remesh(a) => remesh::run(&a),
+        Command::Sample(a) => sample::run(&a),
     };
     match done {
         Ok(()) => ExitCode::SUCCESS,

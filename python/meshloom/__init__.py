@@ -11,17 +11,19 @@ every edit.
 - `Mesh.from_arrays` / `Mesh.to_arrays` with numpy; meshes pickle.
 """
 
-from ._meshloom import Edge, Face, Halfedge, Mesh, Vertex, __version__, read, read_with, write
+from ._meshloom import Edge, Face, FaceTree, Halfedge, Mesh, Vertex, __version__, read, read_with, write
 from .errors import (
     BuildError,
     CancelledError,
     ColumnError,
     MeshloomError,
     NonFiniteError,
+    QueryError,
     ReadError,
     ReentrantError,
     RefusedError,
     StaleKeyError,
+    StaleTreeError,
     TooLargeError,
     UnsuitableError,
     ValidationError,
@@ -33,6 +35,7 @@ __all__ = [
     "Halfedge",
     "Edge",
     "Face",
+    "FaceTree",
     "read",
     "read_with",
     "write",
@@ -48,5 +51,7 @@ __all__ = [
     "TooLargeError",
     "NonFiniteError",
     "ReentrantError",
+    "QueryError",
+    "StaleTreeError",
     "__version__",
 ]

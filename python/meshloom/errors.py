@@ -110,6 +110,16 @@ class NonFiniteError(MeshloomError, ArithmeticError):
     element: Any = None
 
 
+class QueryError(MeshloomError, ValueError):
+    """A spatial query refused its input (a point, ray or bound that is
+    not finite or is negative, a mesh without positions)."""
+
+
+class StaleTreeError(QueryError):
+    """A `FaceTree` was used after its mesh changed: `refit()` it when only
+    positions moved, or build a new one with `Mesh.tree()`."""
+
+
 __all__ = [
     "MeshloomError",
     "StaleKeyError",
@@ -123,4 +133,6 @@ __all__ = [
     "ReentrantError",
     "TooLargeError",
     "NonFiniteError",
+    "QueryError",
+    "StaleTreeError",
 ]

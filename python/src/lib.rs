@@ -19,6 +19,7 @@ pub mod errors;
 pub mod gc;
 pub mod io;
 pub mod mesh;
+pub mod tree;
 
 /// The native module.
 #[pymodule]
@@ -28,6 +29,7 @@ fn _meshloom(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<elements::PyHalfedge>()?;
     m.add_class::<elements::PyEdge>()?;
     m.add_class::<elements::PyFace>()?;
+    m.add_class::<tree::PyFaceTree>()?;
     m.add_function(wrap_pyfunction!(io::read, m)?)?;
     m.add_function(wrap_pyfunction!(io::read_with, m)?)?;
     m.add_function(wrap_pyfunction!(io::write, m)?)?;

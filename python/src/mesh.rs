@@ -278,6 +278,13 @@ fn u32s<'py>(py: Python<'py>, v: Vec<u32>) -> Bound<'py, PyArray1<u32>> {
 
 #[pymethods]
 impl PyMesh {
+    /// A bounding-volume hierarchy over the faces for ray casts, closest
+    /// points, inside tests, winding numbers and radius queries. It answers
+    /// for the mesh as it is now; after an edit, refit or rebuild it.
+    fn tree(slf: &Bound<'_, Self>) -> PyResult<crate::tree::PyFaceTree> {
+        crate::tree::PyFaceTree::build(slf)
+    }
+
     /// An empty mesh.
     #[new]
     fn new() -> Self {

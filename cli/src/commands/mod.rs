@@ -7,6 +7,7 @@ pub mod fair;
 pub mod normals;
 pub mod remesh;
 pub mod render;
+pub mod sample;
 pub mod smooth;
 pub mod stats;
 pub mod subdivide;
