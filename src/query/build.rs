@@ -99,21 +99,11 @@ pub(super) fn build(tris: &[[V3; 3]]) -> (Vec<Node>, Vec<u32>) {
         }
         match split(slice, lo, hi, clo, chi) {
             Some(mid) => {
-                nodes.push(Node {
-                    lo,
-                    hi,
-                    first: 0,
-                    count: 0,
-                });
+                nodes.push(Node::new(lo, hi, 0, 0));
                 stack.push((start + mid, end, Some(me)));
                 stack.push((start, start + mid, None));
             }
-            None => nodes.push(Node {
-                lo,
-                hi,
-                first: start as u32,
-                count: (end - start) as u32,
-            }),
+            None => nodes.push(Node::new(lo, hi, start as u32, (end - start) as u32)),
         }
     }
     (nodes, prims.iter().map(|p| p.index).collect())

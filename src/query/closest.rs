@@ -143,12 +143,12 @@ impl FaceTree {
     ///
     /// ```
     /// use meshloom::query::FaceTree;
-    /// let mesh = meshloom::shapes::cube(); // [-0.5, 0.5]³
+    /// let mesh = meshloom::shapes::cube(); // [0, 1]³
     /// let tree = FaceTree::build(&mesh)?;
-    /// let c = tree.closest_point(&mesh, [2.0, 0.1, 0.2], None)?.unwrap();
+    /// let c = tree.closest_point(&mesh, [2.5, 0.25, 0.75], None)?.unwrap();
     /// assert!((c.distance - 1.5).abs() < 1e-12);
-    /// assert_eq!(c.point, [0.5, 0.1, 0.2]);
-    /// assert!(tree.closest_point(&mesh, [2.0, 0.1, 0.2], Some(1.0))?.is_none());
+    /// assert_eq!(c.point, [1.0, 0.25, 0.75]);
+    /// assert!(tree.closest_point(&mesh, [2.5, 0.25, 0.75], Some(1.0))?.is_none());
     /// # Ok::<(), meshloom::query::QueryError>(())
     /// ```
     pub fn closest_point(
@@ -230,10 +230,10 @@ impl FaceTree {
     ///
     /// ```
     /// use meshloom::query::FaceTree;
-    /// let mesh = meshloom::shapes::cube();
+    /// let mesh = meshloom::shapes::cube(); // [0, 1]³
     /// let tree = FaceTree::build(&mesh)?;
-    /// assert_eq!(tree.faces_within(&mesh, [0.6, 0.0, 0.0], 0.2)?.len(), 1);
-    /// assert_eq!(tree.faces_within(&mesh, [0.6, 0.6, 0.6], 0.2)?.len(), 3); // a corner
+    /// assert_eq!(tree.faces_within(&mesh, [1.1, 0.5, 0.5], 0.2)?.len(), 1);
+    /// assert_eq!(tree.faces_within(&mesh, [1.1, 1.1, 1.1], 0.2)?.len(), 3); // a corner
     /// # Ok::<(), meshloom::query::QueryError>(())
     /// ```
     pub fn faces_within(
@@ -269,8 +269,8 @@ impl FaceTree {
     /// use meshloom::query::FaceTree;
     /// let mesh = meshloom::shapes::cube();
     /// let tree = FaceTree::build(&mesh)?;
-    /// assert_eq!(tree.vertices_within(&mesh, [0.6, 0.6, 0.6], 0.2)?.len(), 1);
-    /// assert_eq!(tree.vertices_within(&mesh, [0.0, 0.0, 0.0], 1.0)?.len(), 8);
+    /// assert_eq!(tree.vertices_within(&mesh, [1.1, 1.1, 1.1], 0.2)?.len(), 1);
+    /// assert_eq!(tree.vertices_within(&mesh, [0.5, 0.5, 0.5], 1.0)?.len(), 8);
     /// # Ok::<(), meshloom::query::QueryError>(())
     /// ```
     pub fn vertices_within(
@@ -307,8 +307,8 @@ impl FaceTree {
     /// use meshloom::query::FaceTree;
     /// let mesh = meshloom::shapes::cube();
     /// let tree = FaceTree::build(&mesh)?;
-    /// let n = tree.nearest_vertex(&mesh, [0.4, 0.6, -0.5])?.unwrap();
-    /// assert_eq!(mesh.position(n.vertex).unwrap(), [0.5, 0.5, -0.5]);
+    /// let n = tree.nearest_vertex(&mesh, [0.9, 1.1, 0.0])?.unwrap();
+    /// assert_eq!(mesh.position(n.vertex).unwrap(), [1.0, 1.0, 0.0]);
     /// # Ok::<(), meshloom::query::QueryError>(())
     /// ```
     pub fn nearest_vertex(
@@ -361,8 +361,8 @@ impl FaceTree {
                 }
             } else {
                 let (a, b) = (node + 1, n.first as usize);
-                let da = box_dist2(q, self.nodes[a].lo, self.nodes[a].hi);
-                let db = box_dist2(q, self.nodes[b].lo, self.nodes[b].hi);
+                let da = box_dist2(q, self.nodes[a].lo(), self.nodes[a].hi());
+                let db = box_dist2(q, self.nodes[b].lo(), self.nodes[b].hi());
                 let (near, dn, far, df) = if da <= db {
                     (a, da, b, db)
                 } else {
@@ -379,7 +379,7 @@ impl FaceTree {
             loop {
                 let Some(next) = stack.pop() else { return };
                 let m = &self.nodes[next as usize];
-                if box_dist2(q, m.lo, m.hi) <= bound {
+                if box_dist2(q, m.lo(), m.hi()) <= bound {
                     node = next as usize;
                     break;
                 }

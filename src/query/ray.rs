@@ -145,10 +145,10 @@ impl FaceTree {
     ///
     /// ```
     /// use meshloom::query::{FaceTree, Ray};
-    /// let mesh = meshloom::shapes::cube(); // [-0.5, 0.5]³
+    /// let mesh = meshloom::shapes::cube(); // [0, 1]³
     /// let tree = FaceTree::build(&mesh)?;
-    /// let hit = tree.ray_cast(&mesh, Ray::new([0.1, 0.2, 3.0], [0.0, 0.0, -2.0]))?.unwrap();
-    /// assert!((hit.t - 1.25).abs() < 1e-12 && (hit.point[2] - 0.5).abs() < 1e-12);
+    /// let hit = tree.ray_cast(&mesh, Ray::new([0.25, 0.75, 3.5], [0.0, 0.0, -2.0]))?.unwrap();
+    /// assert!((hit.t - 1.25).abs() < 1e-12 && (hit.point[2] - 1.0).abs() < 1e-12);
     /// let w = hit.coords.weights;
     /// assert!((w[0] + w[1] + w[2] - 1.0).abs() < 1e-12);
     /// # Ok::<(), meshloom::query::QueryError>(())
@@ -226,9 +226,9 @@ impl FaceTree {
     ///
     /// ```
     /// use meshloom::query::{FaceTree, Ray};
-    /// let mesh = meshloom::shapes::cube();
+    /// let mesh = meshloom::shapes::cube(); // [0, 1]³
     /// let tree = FaceTree::build(&mesh)?;
-    /// let ray = Ray::new([0.0, 0.0, 3.0], [0.0, 0.0, -1.0]);
+    /// let ray = Ray::new([0.5, 0.5, 3.5], [0.0, 0.0, -1.0]);
     /// assert!(tree.any_hit(&mesh, ray, f64::INFINITY)?);
     /// assert!(!tree.any_hit(&mesh, ray, 2.0)?); // the cube starts at t = 2.5
     /// # Ok::<(), meshloom::query::QueryError>(())
@@ -306,8 +306,8 @@ impl FaceTree {
                 }
             } else {
                 let (a, b) = (node + 1, n.first as usize);
-                let ta = r.enter(self.nodes[a].lo, self.nodes[a].hi, t_max);
-                let tb = r.enter(self.nodes[b].lo, self.nodes[b].hi, t_max);
+                let ta = r.enter(self.nodes[a].lo(), self.nodes[a].hi(), t_max);
+                let tb = r.enter(self.nodes[b].lo(), self.nodes[b].hi(), t_max);
                 match (ta, tb) {
                     (Some(x), Some(y)) => {
                         let (near, far) = if x <= y { (a, b) } else { (b, a) };
@@ -330,7 +330,7 @@ impl FaceTree {
             loop {
                 let Some(next) = stack.pop() else { return };
                 let m = &self.nodes[next as usize];
-                if r.enter(m.lo, m.hi, t_max).is_some() {
+                if r.enter(m.lo(), m.hi(), t_max).is_some() {
                     node = next as usize;
                     break;
                 }
@@ -343,7 +343,7 @@ impl FaceTree {
     pub(super) fn root_met(&self, ray: &Ray) -> bool {
         self.nodes.first().is_some_and(|n| {
             Prepared::new(ray)
-                .enter(n.lo, n.hi, f64::INFINITY)
+                .enter(n.lo(), n.hi(), f64::INFINITY)
                 .is_some()
         })
     }

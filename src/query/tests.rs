@@ -10,12 +10,12 @@ fn every_triangle_sits_in_one_leaf_inside_every_box_on_its_path() {
     let tree = FaceTree::build(&mesh).unwrap();
     let mut seen = vec![0u32; tree.tris.len()];
     // Walk from the root, carrying the parent's box.
-    let mut stack = vec![(0usize, tree.nodes[0].lo, tree.nodes[0].hi)];
+    let mut stack = vec![(0usize, tree.nodes[0].lo(), tree.nodes[0].hi())];
     while let Some((i, plo, phi)) = stack.pop() {
         let n = tree.nodes[i];
         for k in 0..3 {
             assert!(
-                n.lo[k] >= plo[k] && n.hi[k] <= phi[k],
+                n.lo()[k] >= plo[k] && n.hi()[k] <= phi[k],
                 "node {i} outside its parent"
             );
         }
@@ -23,15 +23,15 @@ fn every_triangle_sits_in_one_leaf_inside_every_box_on_its_path() {
             for t in n.first..n.first + n.count {
                 seen[t as usize] += 1;
                 for p in tree.tris[t as usize] {
-                    for ((x, lo), hi) in p.iter().zip(n.lo).zip(n.hi) {
+                    for ((x, lo), hi) in p.iter().zip(n.lo()).zip(n.hi()) {
                         assert!(*x >= lo && *x <= hi);
                     }
                 }
             }
         } else {
             assert!(n.first as usize > i + 1);
-            stack.push((i + 1, n.lo, n.hi));
-            stack.push((n.first as usize, n.lo, n.hi));
+            stack.push((i + 1, n.lo(), n.hi()));
+            stack.push((n.first as usize, n.lo(), n.hi()));
         }
     }
     assert!(seen.iter().all(|&c| c == 1));
