@@ -80,7 +80,7 @@ impl FaceTree {
     /// mesh.poke_face(f).unwrap();
     /// let changes = mesh.history_mut().take_changes();
     /// let report = tree.update(&mesh, &changes)?;
-    /// assert_eq!(report.inserted_triangles, 3);
+    /// assert!(report.inserted_triangles >= 3 && !report.full_rebuild);
     /// assert_eq!(tree.triangle_count(), mesh.face_count());
     /// // The same change set again does not start at the tree's revision.
     /// assert!(matches!(tree.update(&mesh, &changes), Err(QueryError::ChangesMismatch { .. })));
