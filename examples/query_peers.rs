@@ -126,7 +126,10 @@ fn ray_cast(name: &str, mesh: &Mesh, rays: &[Ray], rounds: usize) {
         name,
         t,
         &format!("{hits} hits"),
-        &format!("{rate:.3e} rays/s; {} rays, ray_cast_batch (f64)", rays.len()),
+        &format!(
+            "{rate:.3e} rays/s; {} rays, ray_cast_batch (f64)",
+            rays.len()
+        ),
     );
 }
 

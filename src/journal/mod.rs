@@ -277,6 +277,16 @@ pub struct Changes {
     /// of one): every key may have changed; the lists above cover only
     /// what happened after the last rebuild. Re-upload everything.
     pub rebuilt: bool,
+    /// The [`Mesh::revision`] this change set starts from: the revision at
+    /// the previous [`HistoryMut::take_changes`] (or when
+    /// [`HistoryMut::track_changes`] turned tracking on). A consumer that
+    /// holds state for revision `r` may apply this set only if
+    /// `from_revision == r` (otherwise a set was skipped).
+    pub from_revision: u64,
+    /// The [`Mesh::revision`] this change set brings a consumer to: the
+    /// mesh's revision when it was taken. With tracking off both
+    /// revisions are the mesh's current one and the lists are empty.
+    pub to_revision: u64,
 }
 
 impl Changes {
@@ -552,7 +562,12 @@ impl Mesh {
     /// [`HistoryMut::track_changes`]'s body.
     fn track_changes(&mut self, on: bool) {
         if on {
+            let was = self.rec.as_ref().is_some_and(|r| r.tracking);
             self.ensure_recorder().tracking = true;
+            if !was {
+                let now = self.revision();
+                self.r().taken_at = now;
+            }
         } else if let Some(r) = self.rec.as_deref_mut() {
             r.tracking = false;
             r.touched = Default::default();
@@ -565,10 +580,16 @@ impl Mesh {
     /// [`HistoryMut::take_changes`]'s body.
     fn take_changes(&mut self) -> Changes {
         if !self.rec.as_ref().is_some_and(|r| r.tracking) {
-            return Changes::default();
+            return Changes {
+                from_revision: self.revision(),
+                to_revision: self.revision(),
+                ..Changes::default()
+            };
         }
         self.seal();
+        let to_revision = self.revision();
         let r = self.r();
+        let from_revision = std::mem::replace(&mut r.taken_at, to_revision);
         let touched = std::mem::take(&mut r.touched);
         let cols = std::mem::take(&mut r.cols);
         let rebuilt = std::mem::take(&mut r.rebuilt);
@@ -594,6 +615,8 @@ impl Mesh {
             },
             columns: self.column_changes(cols),
             rebuilt,
+            from_revision,
+            to_revision,
         }
     }
 

@@ -42,6 +42,22 @@ pub enum QueryError {
         /// Faces now.
         now: usize,
     },
+    /// Occurs when [`update`](super::FaceTree::update) is given a change
+    /// set that does not cover exactly the edits since the tree's revision:
+    /// it must start at the tree's revision (`from == tree`) and end at the
+    /// mesh's (`to == now`); see
+    /// [`Changes::from_revision`](crate::journal::Changes::from_revision).
+    #[error("the change set covers revisions {from}..{to}, the tree is at {tree} and the mesh at {now}: rebuild the tree")]
+    ChangesMismatch {
+        /// The tree's revision.
+        tree: u64,
+        /// The change set's first revision.
+        from: u64,
+        /// The change set's last revision.
+        to: u64,
+        /// The mesh's revision now.
+        now: u64,
+    },
     /// Occurs when a ray's origin or direction has a NaN or infinite
     /// coordinate.
     #[error("ray {index}: origin {origin:?} or direction {direction:?} is not finite")]

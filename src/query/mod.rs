@@ -24,8 +24,10 @@
 //! compares: a mesh that changed since (or another mesh) is refused with
 //! [`QueryError::StaleTree`], never answered from old geometry. After
 //! positions move, [`FaceTree::refit`] recomputes the boxes in O(n)
-//! (checking that the faces did not change); after the faces change,
-//! rebuild.
+//! (checking that the faces did not change); after any edit with change
+//! tracking on, [`FaceTree::update`] applies the journal's change set
+//! (refusing one that does not cover exactly the edits since the tree's
+//! revision); otherwise rebuild.
 //!
 //! # Precision
 //!
@@ -52,11 +54,13 @@ mod build;
 mod closest;
 mod error;
 mod ray;
+mod update;
 mod winding;
 
 pub use closest::{Closest, Nearest};
 pub use error::QueryError;
 pub use ray::{Hit, Ray};
+pub use update::UpdateReport;
 pub use winding::WindingMode;
 #[doc(hidden)]
 pub use {closest::triangle_closest, ray::triangle_hit};
@@ -98,6 +102,9 @@ pub struct FaceTree {
     faces: Vec<(FaceKey, u32, u32)>,
     /// Every face's corners, face after face.
     corners: Vec<VertexKey>,
+    /// Triangles reinserted by [`update`](FaceTree::update) since the
+    /// build (see the `update` module's rebuild rule).
+    churn: usize,
 }
 
 /// A node: a box, then either a leaf's triangles `first .. first + count`
@@ -241,6 +248,7 @@ impl FaceTree {
             dipoles: Vec::new(),
             faces,
             corners,
+            churn: 0,
         };
         tree.dipoles = vec![Dipole::default(); tree.nodes.len()];
         tree.update_bounds(false);

@@ -160,6 +160,9 @@ pub(crate) struct Recorder {
     /// `(set, column id) -> (existed at the last take, name)`.
     pub(crate) cols: HashMap<(ElementKind, u64), (bool, String)>,
     pub(crate) rebuilt: bool,
+    /// The mesh revision at the last `take_changes` (or when tracking
+    /// was turned on): the start of the next change set's span.
+    pub(crate) taken_at: u64,
     // ----- scratch
     pub(crate) step: Step,
 }
