@@ -38,13 +38,15 @@ fn shape(m: &Mesh) -> meshloom::Polygons {
 }
 
 fn temp(name: &str) -> TempFile {
-    let dir = std::env::temp_dir().join(format!("meshloom-io-tests-{}", std::process::id()));
+    static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("meshloom-io-tests-{}-{n}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     TempFile(dir.join(name))
 }
 
-/// A scratch file that removes itself when the test ends, and its folder
-/// once that is empty (the last test out leaves nothing in the temp dir).
+/// A scratch file in a folder of its own (tests run in parallel), removed
+/// with the folder when the test ends.
 struct TempFile(std::path::PathBuf);
 
 impl std::ops::Deref for TempFile {
@@ -62,9 +64,8 @@ impl AsRef<std::path::Path> for TempFile {
 
 impl Drop for TempFile {
     fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
         if let Some(dir) = self.0.parent() {
-            let _ = std::fs::remove_dir(dir);
+            let _ = std::fs::remove_dir_all(dir);
         }
     }
 }
