@@ -40,7 +40,7 @@ pub struct UpdateReport {
     pub inserted_triangles: usize,
     /// Leaves rebuilt as subtrees because insertions overfilled them.
     pub split_leaves: usize,
-    /// The whole tree was rebuilt (see the [module](self) for when).
+    /// The whole tree was rebuilt (see [`FaceTree::update`] for when).
     pub full_rebuild: bool,
 }
 
@@ -68,8 +68,10 @@ impl FaceTree {
     ///
     /// # Complexity
     /// O(n) copying of the tree's arrays plus O(k log n) for k dirty
-    /// triangles, far below a rebuild's O(n log n) (see the
-    /// [module](self) for when it rebuilds instead).
+    /// triangles, far below a rebuild's O(n log n). It rebuilds the whole
+    /// tree instead when `changes.rebuilt` is set, when one update removes
+    /// and inserts more than a quarter of the tree's triangles, or when the
+    /// triangles reinserted since the last full build pass half of them.
     ///
     /// ```
     /// use meshloom::query::{FaceTree, QueryError, Ray};
