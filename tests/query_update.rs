@@ -6,36 +6,9 @@ use meshloom::query::{FaceTree, QueryError, Ray, WindingMode};
 use meshloom::shapes::{self, GridFaces};
 use meshloom::Mesh;
 
-/// xorshift64*: a fixed stream of numbers in [0, 1).
-struct Rng(u64);
+mod common;
 
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn below(&mut self, n: usize) -> usize {
-        ((self.next() * n as f64) as usize).min(n.saturating_sub(1))
-    }
-    fn in_box(&mut self, lo: [f64; 3], hi: [f64; 3]) -> [f64; 3] {
-        [0, 1, 2].map(|k| lo[k] + (hi[k] - lo[k]) * self.next())
-    }
-}
-
-fn bbox(mesh: &Mesh) -> ([f64; 3], [f64; 3]) {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for v in mesh.vertices() {
-        let p = mesh.position(v).unwrap();
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    (lo, hi)
-}
+use common::query::{bbox, Rng};
 
 /// One random edit (it may be refused; a refused edit changes nothing).
 fn edit(mesh: &mut Mesh, rng: &mut Rng) {

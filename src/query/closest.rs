@@ -339,9 +339,24 @@ impl FaceTree {
     /// Visit every triangle in a box within the bound of `q`, nearest box
     /// first; `visit(tree, tri)` returns the squared distance bound for the
     /// boxes still to visit.
-    fn walk_point(
+    pub(super) fn walk_point(
         &self,
         q: V3,
+        bound: f64,
+        stack: &mut Vec<u32>,
+        visit: impl FnMut(&FaceTree, usize) -> f64,
+    ) {
+        self.walk_nearest(|lo, hi| box_dist2(q, lo, hi), bound, stack, visit);
+    }
+
+    /// Visit every triangle in a box whose `key` (a lower bound of what
+    /// the box's triangles can score) is within the bound, lowest key
+    /// first; `visit(tree, tri)` returns the bound for the boxes still to
+    /// visit.
+    #[inline]
+    pub(super) fn walk_nearest(
+        &self,
+        key: impl Fn(V3, V3) -> f64,
         bound: f64,
         stack: &mut Vec<u32>,
         mut visit: impl FnMut(&FaceTree, usize) -> f64,
@@ -361,8 +376,8 @@ impl FaceTree {
                 }
             } else {
                 let (a, b) = (node + 1, n.first as usize);
-                let da = box_dist2(q, self.nodes[a].lo(), self.nodes[a].hi());
-                let db = box_dist2(q, self.nodes[b].lo(), self.nodes[b].hi());
+                let da = key(self.nodes[a].lo(), self.nodes[a].hi());
+                let db = key(self.nodes[b].lo(), self.nodes[b].hi());
                 let (near, dn, far, df) = if da <= db {
                     (a, da, b, db)
                 } else {
@@ -379,7 +394,7 @@ impl FaceTree {
             loop {
                 let Some(next) = stack.pop() else { return };
                 let m = &self.nodes[next as usize];
-                if box_dist2(q, m.lo(), m.hi()) <= bound {
+                if key(m.lo(), m.hi()) <= bound {
                     node = next as usize;
                     break;
                 }

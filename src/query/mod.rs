@@ -1,7 +1,8 @@
 //! Spatial queries over a mesh's faces: [`FaceTree`], a bounding volume
 //! hierarchy for picking (ray casts), projection (closest points), radius
-//! searches, snapping (nearest vertex) and inside tests (generalized winding
-//! numbers).
+//! searches, snapping (nearest vertex or edge), picking under a cursor
+//! (the vertex or edge nearest a [`Cone`]'s axis, optionally only those the
+//! surface does not hide) and inside tests (generalized winding numbers).
 //!
 //! # How it is built
 //!
@@ -53,17 +54,23 @@
 mod build;
 mod closest;
 mod error;
+mod pick;
 mod ray;
 mod update;
 mod winding;
 
 pub use closest::{Closest, Nearest};
 pub use error::QueryError;
+pub use pick::{Cone, NearestEdge, Occlusion, Pick};
 pub use ray::{Hit, Ray};
 pub use update::UpdateReport;
 pub use winding::WindingMode;
 #[doc(hidden)]
-pub use {closest::triangle_closest, ray::triangle_hit};
+pub use {
+    closest::triangle_closest,
+    pick::{point_in_cone, segment_in_cone},
+    ray::triangle_hit,
+};
 
 use crate::keys::{FaceKey, VertexKey};
 use crate::mesh::{Mesh, Stamp};

@@ -27,7 +27,7 @@ impl Ray {
     }
 
     /// `Ok` if the ray is finite with a non-zero direction.
-    fn check(&self, index: usize) -> Result<(), QueryError> {
+    pub(super) fn check(&self, index: usize) -> Result<(), QueryError> {
         if !self
             .origin
             .iter()

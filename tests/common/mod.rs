@@ -4,6 +4,7 @@
 
 pub mod hausdorff;
 pub mod ops;
+pub mod query;
 
 use meshloom::attr::{Conserved, FaceAttr, VertexAttr};
 use meshloom::{FaceKey, HalfedgeKey, Mesh, VertexKey};
