@@ -1,7 +1,9 @@
 //! meshloom's side of the pypeers spatial-query workloads
 //! (`../shared/peers/pypeers/README.md`): `ray_cast_random_{100k,2m}`,
 //! `closest_point_100k`, `winding_number_100k`, each with `.build`, on the
-//! files of its `gen_inputs.py`, printed in its tab-separated format.
+//! files of its `gen_inputs.py`, printed in its tab-separated format; and
+//! meshloom's own `tree_update_1k_2m` (no peer: an update against a
+//! rebuild).
 //!
 //! ```text
 //! cargo run --release --example query_peers -- target/peers/inputs [ROUNDS]
@@ -13,7 +15,7 @@
 //! filters the workloads.
 
 use meshloom::query::{FaceTree, Ray, WindingMode};
-use meshloom::Mesh;
+use meshloom::{EdgeKey, Mesh};
 use std::path::Path;
 use std::time::Instant;
 
@@ -50,6 +52,10 @@ fn main() {
     }
     if wanted("winding_number_100k") {
         winding(&torus(), &points(), rounds);
+    }
+    if wanted("tree_update_1k_2m") {
+        let mesh = meshloom::io::read(dir.join("torus_2m.off")).expect("mesh");
+        update_1k(mesh, rounds);
     }
 }
 
@@ -193,4 +199,42 @@ fn read_tagged(path: &Path, tag: &str) -> Vec<[f64; 3]> {
             })
         })
         .collect()
+}
+
+/// `FaceTree::update` after 500 edge flips (1,000 faces changed), spread
+/// over the 2M-triangle torus, against the build on the line before it.
+/// The flips are outside the clock; each round flips other edges.
+fn update_1k(mut mesh: Mesh, rounds: usize) {
+    let name = "tree_update_1k_2m";
+    mesh.history_mut().track_changes(true);
+    let mut tree = build_line(name, &mesh, rounds);
+    let edges: Vec<EdgeKey> = mesh.edges().collect();
+    let mut next = 0usize;
+    let (mut cpus, mut walls, mut changed) = (Vec::new(), Vec::new(), 0);
+    for _ in 0..rounds.max(1) {
+        let mut faces = 0;
+        while faces < 1000 {
+            // A stride coprime with the count: spread, each edge once.
+            next = (next + 1_000_003) % edges.len();
+            if mesh.flip_edge(edges[next]).is_ok() {
+                faces += 2;
+            }
+        }
+        let changes = mesh.history_mut().take_changes();
+        let (t, c) = (Instant::now(), cpu());
+        let report = tree.update(&mesh, &changes).expect("update");
+        cpus.push(cpu() - c);
+        walls.push(t.elapsed().as_secs_f64());
+        assert!(!report.full_rebuild);
+        changed = report.inserted_triangles;
+    }
+    cpus.sort_by(f64::total_cmp);
+    walls.sort_by(f64::total_cmp);
+    let n = cpus.len();
+    line(
+        name,
+        [cpus[n / 2], cpus[0], cpus[n - 1], walls[n / 2]],
+        &format!("{changed} triangles reinserted"),
+        "FaceTree::update after 500 flips (1,000 faces)",
+    );
 }

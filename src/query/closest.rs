@@ -369,13 +369,13 @@ impl FaceTree {
         let mut node = 0usize;
         loop {
             let n = &self.nodes[node];
-            if n.count > 0 {
+            if n.is_leaf() {
                 let first = n.first as usize;
                 for tri in first..first + n.count as usize {
                     bound = visit(self, tri);
                 }
             } else {
-                let (a, b) = (node + 1, n.first as usize);
+                let (a, b) = n.children(node);
                 let da = key(self.nodes[a].lo(), self.nodes[a].hi());
                 let db = key(self.nodes[b].lo(), self.nodes[b].hi());
                 let (near, dn, far, df) = if da <= db {

@@ -112,11 +112,23 @@ pub struct FaceTree {
     /// Triangles reinserted by [`update`](FaceTree::update) since the
     /// build (see the `update` module's rebuild rule).
     churn: usize,
+    /// Slots of `tris` and `meta` no leaf holds any more (left behind by
+    /// [`update`](FaceTree::update), which edits in place).
+    dead_tris: usize,
+    /// Records of `faces` of faces gone or re-added since (their length is
+    /// [`GONE`]).
+    dead_faces: usize,
 }
 
+/// The length of a face record whose face is gone.
+const GONE: u32 = u32::MAX;
+
 /// A node: a box, then either a leaf's triangles `first .. first + count`
-/// (`count > 0`) or an inner node whose children are the next node and
-/// node `first` (`count == 0`).
+/// (`0 < count < DETACHED`), or an inner node whose children are the next
+/// node and node `first` (`count == 0`, as a build lays them out), or an
+/// inner node whose children are node `count − DETACHED` and node `first`
+/// (`count ≥ DETACHED`, as [`FaceTree::update`] rewires them). A child's
+/// index is always above its parent's.
 ///
 /// The box is kept in `f32`, rounded outwards (so it still holds every
 /// `f64` point it was made from): 32 bytes a node instead of 56, which is
@@ -129,7 +141,36 @@ struct Node {
     count: u32,
 }
 
+/// The flag of an inner node whose first child is not the next node.
+const DETACHED: u32 = 1 << 31;
+
 impl Node {
+    /// Whether the node is a leaf.
+    #[inline(always)]
+    fn is_leaf(&self) -> bool {
+        (self.count as i32) > 0
+    }
+
+    /// An inner node's children, the node being at index `at`.
+    #[inline(always)]
+    fn children(&self, at: usize) -> (usize, usize) {
+        let a = if self.count == 0 {
+            at + 1
+        } else {
+            (self.count - DETACHED) as usize
+        };
+        (a, self.first as usize)
+    }
+
+    /// The node moved from index `from`: an inner node whose first child
+    /// was the next node now names it.
+    fn moved(mut self, from: usize) -> Node {
+        if self.count == 0 {
+            self.count = DETACHED | (from as u32 + 1);
+        }
+        self
+    }
+
     /// A node with the box `lo`–`hi` (rounded outwards).
     fn new(lo: V3, hi: V3, first: u32, count: u32) -> Node {
         let mut n = Node {
@@ -158,6 +199,24 @@ impl Node {
     fn set_box(&mut self, lo: V3, hi: V3) {
         self.lo = lo.map(round_down);
         self.hi = hi.map(round_up);
+    }
+}
+
+/// `f(node, triangles)` for every leaf reachable from the root of `nodes`.
+fn for_each_leaf(nodes: &[Node], mut f: impl FnMut(usize, std::ops::Range<usize>)) {
+    let mut stack = Vec::new();
+    if !nodes.is_empty() {
+        stack.push(0);
+    }
+    while let Some(i) = stack.pop() {
+        let n = nodes[i];
+        if n.is_leaf() {
+            f(i, n.first as usize..(n.first + n.count) as usize);
+        } else {
+            let (a, b) = n.children(i);
+            stack.push(b);
+            stack.push(a);
+        }
     }
 }
 
@@ -256,6 +315,8 @@ impl FaceTree {
             faces,
             corners,
             churn: 0,
+            dead_tris: 0,
+            dead_faces: 0,
         };
         tree.dipoles = vec![Dipole::default(); tree.nodes.len()];
         tree.update_bounds(false);
@@ -293,13 +354,13 @@ impl FaceTree {
             return Err(self.stale(mesh));
         }
         let pos = mesh.position_slots().ok_or(QueryError::NoPositions)?;
-        if mesh.face_count() != self.faces.len() {
+        if mesh.face_count() != self.face_count() {
             return Err(QueryError::FaceCountChanged {
-                built: self.faces.len(),
+                built: self.face_count(),
                 now: mesh.face_count(),
             });
         }
-        for &(f, start, len) in &self.faces {
+        for &(f, start, len) in self.faces.iter().filter(|r| r.2 != GONE) {
             let view = mesh
                 .face(f)
                 .map_err(|_| QueryError::TopologyChanged { face: f })?;
@@ -309,9 +370,12 @@ impl FaceTree {
                 return Err(QueryError::TopologyChanged { face: f });
             }
         }
-        for (t, m) in self.tris.iter_mut().zip(&self.meta) {
-            *t = m.v.map(|v| pos[v.index()]);
-        }
+        let (tris, meta) = (&mut self.tris, &self.meta);
+        for_each_leaf(&self.nodes, |_, range| {
+            for (t, m) in tris[range.clone()].iter_mut().zip(&meta[range]) {
+                *t = m.v.map(|v| pos[v.index()]);
+            }
+        });
         self.update_bounds(true);
         self.stamp = mesh.stamp();
         Ok(())
@@ -319,12 +383,12 @@ impl FaceTree {
 
     /// Number of fan triangles (a face of n corners gives n − 2).
     pub fn triangle_count(&self) -> usize {
-        self.tris.len()
+        self.tris.len() - self.dead_tris
     }
 
     /// Number of faces the tree was built over.
     pub fn face_count(&self) -> usize {
-        self.faces.len()
+        self.faces.len() - self.dead_faces
     }
 
     /// Number of nodes of the hierarchy.
@@ -378,7 +442,7 @@ impl FaceTree {
     fn update_bounds(&mut self, boxes: bool) {
         for i in (0..self.nodes.len()).rev() {
             let n = self.nodes[i];
-            let d = if n.count > 0 {
+            let d = if n.is_leaf() {
                 let range = n.first as usize..(n.first + n.count) as usize;
                 if boxes {
                     let (lo, hi) = build::bounds(&self.tris[range.clone()]);
@@ -386,7 +450,7 @@ impl FaceTree {
                 }
                 winding::leaf_dipole(&self.tris[range])
             } else {
-                let (a, b) = (i + 1, n.first as usize);
+                let (a, b) = n.children(i);
                 if boxes {
                     let (na, nb) = (self.nodes[a], self.nodes[b]);
                     self.nodes[i].lo = std::array::from_fn(|k| na.lo[k].min(nb.lo[k]));
@@ -397,6 +461,11 @@ impl FaceTree {
             let n = self.nodes[i];
             self.dipoles[i] = winding::with_radius(d, n.lo(), n.hi());
         }
+    }
+
+    /// `f(node, triangles)` for every leaf reachable from the root.
+    fn for_each_leaf(&self, f: impl FnMut(usize, std::ops::Range<usize>)) {
+        for_each_leaf(&self.nodes, f);
     }
 
     /// The face coordinates of fan triangle `tri` with weights `w`.

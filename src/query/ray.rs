@@ -287,7 +287,7 @@ impl FaceTree {
         let mut node = 0usize;
         loop {
             let n = &self.nodes[node];
-            if n.count > 0 {
+            if n.is_leaf() {
                 let first = n.first as usize;
                 for (i, p) in self.tris[first..first + n.count as usize]
                     .iter()
@@ -305,7 +305,7 @@ impl FaceTree {
                     }
                 }
             } else {
-                let (a, b) = (node + 1, n.first as usize);
+                let (a, b) = n.children(node);
                 let ta = r.enter(self.nodes[a].lo(), self.nodes[a].hi(), t_max);
                 let tb = r.enter(self.nodes[b].lo(), self.nodes[b].hi(), t_max);
                 match (ta, tb) {

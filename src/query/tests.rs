@@ -82,3 +82,173 @@ fn an_empty_mesh_gives_an_empty_tree_that_answers_nothing() {
         0.0
     );
 }
+
+/// Every node reached from the root holds its triangles and children in
+/// its box, and its far-field data is its triangles' (area and weight
+/// summed afresh); every triangle reached is live and reached once; the
+/// faces reached are the mesh's, each with its whole fan. Returns the
+/// number of leaves reached.
+fn check_structure(tree: &FaceTree, mesh: &Mesh) -> usize {
+    use std::collections::BTreeMap;
+    fn walk(
+        tree: &FaceTree,
+        i: usize,
+        seen: &mut Vec<u32>,
+        leaves: &mut usize,
+    ) -> (crate::vec3::V3, f64) {
+        let n = tree.nodes[i];
+        let inside = |p: crate::vec3::V3| (0..3).all(|k| p[k] >= n.lo()[k] && p[k] <= n.hi()[k]);
+        let (area, weight) = if n.is_leaf() {
+            *leaves += 1;
+            for t in n.first..n.first + n.count {
+                seen[t as usize] += 1;
+                assert!(tree.tris[t as usize].iter().all(|p| inside(*p)), "node {i}");
+            }
+            let range = n.first as usize..(n.first + n.count) as usize;
+            let d = winding::leaf_dipole(&tree.tris[range]);
+            (d.area, d.weight)
+        } else {
+            let (a, b) = n.children(i);
+            assert!(a > i && b > i && a != b, "node {i}: children {a}, {b}");
+            for c in [a, b] {
+                assert!(
+                    inside(tree.nodes[c].lo()) && inside(tree.nodes[c].hi()),
+                    "node {i}"
+                );
+            }
+            let (x, wx) = walk(tree, a, seen, leaves);
+            let (y, wy) = walk(tree, b, seen, leaves);
+            (crate::vec3::add(x, y), wx + wy)
+        };
+        let d = tree.dipoles[i];
+        let scale = 1e-9 * weight.max(1e-300);
+        assert!(
+            (0..3).all(|k| (d.area[k] - area[k]).abs() <= scale),
+            "node {i}: area"
+        );
+        assert!((d.weight - weight).abs() <= scale, "node {i}: weight");
+        (area, weight)
+    }
+    let mut seen = vec![0u32; tree.tris.len()];
+    let mut leaves = 0;
+    if !tree.nodes.is_empty() {
+        walk(tree, 0, &mut seen, &mut leaves);
+    }
+    assert!(seen.iter().all(|&c| c <= 1));
+    let live: usize = seen.iter().map(|&c| c as usize).sum();
+    assert_eq!(live, tree.triangle_count());
+    let mut fans: BTreeMap<FaceKey, usize> = BTreeMap::new();
+    for (t, _) in seen.iter().enumerate().filter(|s| *s.1 == 1) {
+        *fans.entry(tree.meta[t].face).or_default() += 1;
+    }
+    let want: BTreeMap<FaceKey, usize> = mesh
+        .faces()
+        .map(|f| (f, mesh.face(f).unwrap().vertices().count() - 2))
+        .collect();
+    assert_eq!(fans, want);
+    assert_eq!(tree.face_count(), mesh.face_count());
+    leaves
+}
+
+#[test]
+fn updates_in_place_keep_every_node_whole_through_splits_and_emptied_leaves() {
+    let mut mesh = shapes::grid(40, 30, shapes::GridFaces::Triangles);
+    mesh.history_mut().track_changes(true);
+    let mut tree = FaceTree::build(&mesh).unwrap();
+    check_structure(&tree, &mesh);
+    let (mut splits, mut partial) = (0, 0);
+    let mut faces: Vec<FaceKey> = mesh.faces().collect();
+    for round in 0..30 {
+        // Poke a run of neighbouring faces (their leaves overfill), remove
+        // another run (leaves empty), move a few vertices.
+        let at = (round * 37) % faces.len().max(1);
+        let around = |k: usize, r: f64| {
+            let v = mesh.face(faces[k % faces.len()]).unwrap().vertices().next();
+            tree.faces_within(&mesh, mesh.position(v.unwrap()).unwrap(), r)
+                .unwrap()
+        };
+        let (poke, remove) = (around(at, 1.8), around(at + 300, 1.5));
+        for f in poke {
+            let _ = mesh.poke_face(f);
+        }
+        for f in remove {
+            let _ = mesh.remove_face(f);
+        }
+        for v in mesh.vertices().skip(round * 11).take(3).collect::<Vec<_>>() {
+            let mut p = mesh.position(v).unwrap();
+            p[2] += 0.05;
+            mesh.set_position(v, p).unwrap();
+        }
+        let changes = mesh.history_mut().take_changes();
+        let report = tree.update(&mesh, &changes).unwrap();
+        splits += report.split_leaves;
+        partial += usize::from(!report.full_rebuild);
+        check_structure(&tree, &mesh);
+        faces = mesh.faces().collect();
+    }
+    assert!(
+        partial >= 10 && splits > 0,
+        "{partial} partial updates, {splits} splits"
+    );
+    // Remove every face: the tree empties, then fills again.
+    for f in mesh.faces().collect::<Vec<_>>() {
+        mesh.remove_face(f).unwrap();
+    }
+    let changes = mesh.history_mut().take_changes();
+    tree.update(&mesh, &changes).unwrap();
+    check_structure(&tree, &mesh);
+    assert_eq!(tree.triangle_count(), 0);
+}
+
+#[test]
+fn an_update_that_empties_a_leaf_under_the_root_keeps_the_rest() {
+    // A grid and one triangle far away: the root's split puts the far
+    // triangle in a leaf of its own, right under the root.
+    let grid = shapes::grid(10, 10, shapes::GridFaces::Triangles);
+    let mut p: Vec<[f64; 3]> = grid.vertices().map(|v| grid.position(v).unwrap()).collect();
+    let mut tris: Vec<[u32; 3]> = grid
+        .faces()
+        .map(|f| {
+            let vs: Vec<u32> = grid
+                .face(f)
+                .unwrap()
+                .vertices()
+                .map(|v| v.index() as u32)
+                .collect();
+            [vs[0], vs[1], vs[2]]
+        })
+        .collect();
+    let n = p.len() as u32;
+    p.extend([[1e4, 0.0, 0.0], [1e4 + 1.0, 0.0, 0.0], [1e4, 1.0, 0.0]]);
+    tris.push([n, n + 1, n + 2]);
+    for far_first in [true, false] {
+        let mut mesh = Mesh::from_polygons(&p, &tris).unwrap();
+        mesh.history_mut().track_changes(true);
+        let mut tree = FaceTree::build(&mesh).unwrap();
+        let root = tree.nodes[0];
+        let (a, b) = root.children(0);
+        let far = if tree.nodes[a].is_leaf() && tree.nodes[a].count == 1 {
+            a
+        } else {
+            b
+        };
+        assert!(tree.nodes[far].is_leaf() && tree.nodes[far].count == 1);
+        let f = tree.meta[tree.nodes[far].first as usize].face;
+        if far_first {
+            mesh.remove_face(f).unwrap();
+        } else {
+            // Also a face of the big side, so both kinds of change meet.
+            let other = mesh.faces().find(|&g| g != f).unwrap();
+            mesh.remove_face(other).unwrap();
+            mesh.remove_face(f).unwrap();
+        }
+        let changes = mesh.history_mut().take_changes();
+        let report = tree.update(&mesh, &changes).unwrap();
+        assert!(!report.full_rebuild);
+        check_structure(&tree, &mesh);
+        assert!(
+            tree.dipoles[0].radius < 20.0,
+            "the root's box still holds the far triangle"
+        );
+    }
+}

@@ -2,13 +2,20 @@
 //! set instead of rebuilding it.
 //!
 //! The faces the change set names (created, removed, modified) and the
-//! faces with a corner at a modified or removed vertex are *dirty*: their
-//! fan triangles leave the tree, and those that are faces now (not holes)
-//! are cut into fans again and inserted, each into the leaf whose box grows
-//! least (in surface area) on the way down from the root. Only the touched
-//! leaves and their ancestors are recomputed; a touched leaf that grows past
-//! [`SPLIT_LEAF`] triangles is rebuilt as a binned-SAH subtree, an emptied
-//! leaf disappears (its sibling takes its parent's place).
+//! faces around its modified vertices are *dirty*: their fan triangles leave
+//! the tree, and those that are faces now (not holes) are cut into fans
+//! again and inserted, each into the leaf whose box grows least (in surface
+//! area) on the way down from the root.
+//!
+//! The tree is edited in place, so an update costs what changed plus one
+//! pass over the leaves (to find the dirty triangles): a leaf that only
+//! loses triangles keeps the survivors at the front of its slots; a leaf
+//! that gains moves to new slots at the end of the arrays, as a leaf or,
+//! past [`SPLIT_LEAF`] triangles, as a binned-SAH subtree whose root takes
+//! the leaf's place; an emptied leaf disappears (its sibling takes its
+//! parent's place). Only the touched nodes and their ancestors are
+//! recomputed. The slots left behind are counted, and the rebuild rule
+//! below bounds them.
 //!
 //! # When it rebuilds instead
 //!
@@ -18,11 +25,12 @@
 //! - the triangles removed plus inserted by this update exceed a quarter of
 //!   the tree's, or
 //! - those reinserted since the last full build exceed half of the tree's
-//!   (the drift bound).
+//!   (the drift bound, which also keeps the slots left behind below half of
+//!   the arrays).
 
-use std::collections::{HashMap, HashSet};
+use std::collections::{BTreeMap, HashSet};
 
-use super::{build, winding, Dipole, FaceTree, Node, QueryError, TriMeta};
+use super::{build, winding, Dipole, FaceTree, Node, QueryError, TriMeta, DETACHED, GONE};
 use crate::journal::Changes;
 use crate::keys::{FaceKey, VertexKey};
 use crate::mesh::Mesh;
@@ -44,15 +52,6 @@ pub struct UpdateReport {
     pub full_rebuild: bool,
 }
 
-/// The new arrays, emitted depth-first.
-struct Out {
-    nodes: Vec<Node>,
-    tris: Vec<[V3; 3]>,
-    meta: Vec<TriMeta>,
-    dipoles: Vec<Dipole>,
-    split: usize,
-}
-
 impl FaceTree {
     /// Bring the tree up to date with `mesh` from `changes`, the change set
     /// of every edit since the tree's [revision](FaceTree::revision) (from
@@ -67,8 +66,8 @@ impl FaceTree {
     /// mesh; [`QueryError::NoPositions`].
     ///
     /// # Complexity
-    /// O(n) copying of the tree's arrays plus O(k log n) for k dirty
-    /// triangles, far below a rebuild's O(n log n). It rebuilds the whole
+    /// One read of the leaves and the face records (O(n), no copying) plus
+    /// O(k log n) for k dirty triangles, far below a rebuild's O(n log n). It rebuilds the whole
     /// tree instead when `changes.rebuilt` is set, when one update removes
     /// and inserts more than a quarter of the tree's triangles, or when the
     /// triangles reinserted since the last full build pass half of them.
@@ -105,37 +104,38 @@ impl FaceTree {
         if changes.rebuilt || self.nodes.is_empty() {
             return self.rebuild(mesh);
         }
-        let (dmark, dirty) = self.dirty_faces(changes);
-        let added = readd(mesh, changes, &dmark, dirty);
-        let mut new_tris = Vec::new();
-        let mut new_meta = Vec::new();
-        let mut new_corners = Vec::new();
-        let mut new_faces = Vec::new();
-        for (f, cs) in &added {
-            let start = new_corners.len();
-            new_corners.extend_from_slice(cs);
-            new_faces.push((*f, start as u32, cs.len() as u32));
-            fan(*f, cs, pos, &mut new_tris, &mut new_meta);
-        }
-        let dead: Vec<bool> = self.meta.iter().map(|m| marked(&dmark, m.face)).collect();
-        let removed = dead.iter().filter(|&&d| d).count();
-        let churn = removed + new_tris.len();
+        let dmark = dirty_marks(mesh, changes);
+        let (mut fresh, new_faces, new_corners) = fresh_fans(mesh, changes, &dmark, pos);
+        let (parent, lost) = self.dirty_leaves(&dmark);
+        let removed: usize = lost.iter().map(|l| l.1).sum();
+        let live = self.triangle_count();
+        let churn = removed + fresh.tris.len();
         self.churn += churn;
-        if churn * 4 > self.tris.len() || self.churn * 2 > self.tris.len() {
+        if churn * 4 > live || self.churn * 2 > live {
             return self.rebuild(mesh);
         }
-        let inserts = self.place(&new_tris);
-        let out = self.emit(&dead, &inserts, &new_tris, &new_meta);
-        self.nodes = out.nodes;
-        self.tris = out.tris;
-        self.meta = out.meta;
-        self.dipoles = out.dipoles;
+        let mut touched: BTreeMap<u32, Vec<u32>> = lost.iter().map(|l| (l.0, Vec::new())).collect();
+        for (leaf, new) in self.place(&fresh.tris) {
+            touched.entry(leaf).or_default().extend(new);
+        }
+        let mut emptied = Vec::new();
+        for (&leaf, new) in &touched {
+            if self.refill(leaf as usize, &dmark, new, &mut fresh) {
+                emptied.push(leaf as usize);
+            }
+        }
+        let mut recompute: Vec<usize> = touched.keys().map(|&l| l as usize).collect();
+        self.drop_leaves(&emptied, parent, &mut recompute);
+        if self.nodes.is_empty() {
+            return self.rebuild(mesh);
+        }
+        self.recompute(&recompute);
         self.update_faces(&dmark, new_faces, &new_corners);
         self.stamp = now;
         Ok(UpdateReport {
             removed_triangles: removed,
-            inserted_triangles: new_tris.len(),
-            split_leaves: out.split,
+            inserted_triangles: fresh.tris.len(),
+            split_leaves: fresh.split,
             full_rebuild: false,
         })
     }
@@ -150,45 +150,44 @@ impl FaceTree {
         })
     }
 
-    /// The dirty faces' slots (a bit per face slot) and the keys of the
-    /// dirty faces the tree holds.
-    fn dirty_faces(&self, changes: &Changes) -> (Vec<bool>, Vec<FaceKey>) {
-        let mut vmark = Vec::new();
-        for &v in changes
-            .vertices
-            .modified
-            .iter()
-            .chain(&changes.vertices.removed)
-        {
-            set(&mut vmark, v.index());
-        }
-        let mut dmark = Vec::new();
-        let f = &changes.faces;
-        for &k in f.created.iter().chain(&f.removed).chain(&f.modified) {
-            set(&mut dmark, k.index());
-        }
-        let mut dirty = Vec::new();
-        for &(f, start, len) in &self.faces {
-            let cs = &self.corners[start as usize..(start + len) as usize];
-            if marked(&dmark, f) || cs.iter().any(|v| vmark.get(v.index()) == Some(&true)) {
-                dirty.push(f);
+    /// Every reachable node's parent (`u32::MAX` for the root and
+    /// unreachable nodes), and the leaves holding dirty triangles with how
+    /// many they hold.
+    fn dirty_leaves(&self, dmark: &[bool]) -> (Vec<u32>, Vec<(u32, usize)>) {
+        let mut parent = vec![u32::MAX; self.nodes.len()];
+        let mut lost = Vec::new();
+        let mut stack = vec![0usize];
+        while let Some(i) = stack.pop() {
+            let n = self.nodes[i];
+            if n.is_leaf() {
+                let range = n.first as usize..(n.first + n.count) as usize;
+                let dead = self.meta[range]
+                    .iter()
+                    .filter(|m| marked(dmark, m.face))
+                    .count();
+                if dead > 0 {
+                    lost.push((i as u32, dead));
+                }
+            } else {
+                let (a, b) = n.children(i);
+                parent[a] = i as u32;
+                parent[b] = i as u32;
+                stack.push(b);
+                stack.push(a);
             }
         }
-        for &f in &dirty {
-            set(&mut dmark, f.index());
-        }
-        (dmark, dirty)
+        (parent, lost)
     }
 
     /// For each new triangle, the leaf it goes into: down from the root,
     /// into the child whose box's area grows least.
-    fn place(&self, tris: &[[V3; 3]]) -> HashMap<u32, Vec<u32>> {
-        let mut inserts: HashMap<u32, Vec<u32>> = HashMap::new();
+    fn place(&self, tris: &[[V3; 3]]) -> BTreeMap<u32, Vec<u32>> {
+        let mut inserts: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
         for (i, t) in tris.iter().enumerate() {
             let (lo, hi) = build::bounds(std::slice::from_ref(t));
             let mut n = 0usize;
-            while self.nodes[n].count == 0 {
-                let (a, b) = (n + 1, self.nodes[n].first as usize);
+            while !self.nodes[n].is_leaf() {
+                let (a, b) = self.nodes[n].children(n);
                 let grow = |c: usize| {
                     let c = self.nodes[c];
                     let u = half_area(build::min3(c.lo(), lo), build::max3(c.hi(), hi));
@@ -201,241 +200,267 @@ impl FaceTree {
         inserts
     }
 
-    /// The tree's arrays without the dead triangles and with the inserted
-    /// ones, untouched subtrees copied as blocks.
-    fn emit(
-        &self,
-        dead: &[bool],
-        inserts: &HashMap<u32, Vec<u32>>,
-        new_tris: &[[V3; 3]],
-        new_meta: &[TriMeta],
-    ) -> Out {
-        // Touched nodes: leaves losing or gaining triangles, and their
-        // ancestors; per touched node, its triangle count afterwards.
-        let mut parent = vec![u32::MAX; self.nodes.len()];
-        let mut after: HashMap<u32, usize> = HashMap::new();
-        for (i, n) in self.nodes.iter().enumerate() {
-            if n.count == 0 {
-                parent[i + 1] = i as u32;
-                parent[n.first as usize] = i as u32;
+    /// Take leaf `leaf`'s dirty triangles out (the survivors move to the
+    /// front of its slots) and put fresh triangles `new` in (the leaf moves
+    /// to new slots at the end, as a leaf or a subtree). Returns whether
+    /// the leaf is left empty.
+    fn refill(&mut self, leaf: usize, dmark: &[bool], new: &[u32], fresh: &mut Fresh) -> bool {
+        let n = self.nodes[leaf];
+        let (first, count) = (n.first as usize, n.count as usize);
+        let mut live = first;
+        for i in first..first + count {
+            if !marked(dmark, self.meta[i].face) {
+                self.tris[live] = self.tris[i];
+                self.meta[live] = self.meta[i];
+                live += 1;
+            }
+        }
+        let live = live - first;
+        if new.is_empty() {
+            self.dead_tris += count - live;
+            self.nodes[leaf].count = live as u32;
+            return live == 0;
+        }
+        self.dead_tris += count;
+        let mut tris = self.tris[first..first + live].to_vec();
+        let mut meta = self.meta[first..first + live].to_vec();
+        tris.extend(new.iter().map(|&i| fresh.tris[i as usize]));
+        meta.extend(new.iter().map(|&i| fresh.meta[i as usize]));
+        let base = self.tris.len() as u32;
+        if tris.len() <= SPLIT_LEAF {
+            self.tris.extend_from_slice(&tris);
+            self.meta.extend_from_slice(&meta);
+            self.nodes[leaf] = Node {
+                first: base,
+                count: tris.len() as u32,
+                ..n
+            };
+            return false;
+        }
+        fresh.split += 1;
+        let (nodes, order) = build::build(&tris);
+        let at = self.nodes.len();
+        for mut node in nodes {
+            if node.is_leaf() {
+                node.first += base;
             } else {
-                let r = n.first as usize..(n.first + n.count) as usize;
-                let lost = dead[r].iter().filter(|&&d| d).count();
-                let gained = inserts.get(&(i as u32)).map_or(0, Vec::len);
-                if lost > 0 || gained > 0 {
-                    after.insert(i as u32, n.count as usize - lost + gained);
+                node.first += at as u32;
+                if node.count != 0 {
+                    node.count += at as u32;
+                }
+            }
+            self.nodes.push(node);
+        }
+        self.tris.extend(order.iter().map(|&i| tris[i as usize]));
+        self.meta.extend(order.iter().map(|&i| meta[i as usize]));
+        self.dipoles.resize(self.nodes.len(), Dipole::default());
+        for i in (at..self.nodes.len()).rev() {
+            self.bound(i);
+        }
+        // The subtree's root takes the leaf's place (its old slot stays
+        // unreached).
+        self.nodes[leaf] = self.nodes[at].moved(at);
+        false
+    }
+
+    /// Take the emptied leaves out: each one's sibling takes its parent's
+    /// place. The nodes whose boxes shrink join `recompute`.
+    fn drop_leaves(&mut self, emptied: &[usize], mut parent: Vec<u32>, recompute: &mut Vec<usize>) {
+        for &leaf in emptied {
+            let p = parent[leaf];
+            let p = p as usize;
+            let sibling = match p {
+                _ if p == u32::MAX as usize => None,
+                _ => {
+                    let (a, b) = self.nodes[p].children(p);
+                    Some(if a == leaf { b } else { a })
+                }
+            };
+            let Some(sibling) = sibling.filter(|s| !emptied.contains(s) || parent[p] != u32::MAX)
+            else {
+                // The root, or both children of the root, emptied: the tree
+                // is empty.
+                self.nodes.clear();
+                return;
+            };
+            let g = parent[p];
+            if g == u32::MAX {
+                // The parent is the root, which stays at index 0.
+                let s = self.nodes[sibling].moved(sibling);
+                self.nodes[0] = s;
+                if !s.is_leaf() {
+                    let (x, y) = s.children(0);
+                    for c in [x, y] {
+                        if let Some(pc) = parent.get_mut(c) {
+                            *pc = 0;
+                        }
+                    }
+                }
+                recompute.push(0);
+                continue;
+            }
+            let g = g as usize;
+            let (ga, _) = self.nodes[g].children(g);
+            if ga == p {
+                self.nodes[g].count = DETACHED | sibling as u32;
+            } else {
+                self.nodes[g].first = sibling as u32;
+            }
+            parent[sibling] = g as u32;
+            recompute.push(g);
+        }
+    }
+
+    /// Recompute the boxes and far-field data of `nodes` and of every node
+    /// above them, children before parents (a child's index is above its
+    /// parent's).
+    fn recompute(&mut self, nodes: &[usize]) {
+        let mut parent = vec![u32::MAX; self.nodes.len()];
+        let mut stack = vec![0usize];
+        while let Some(i) = stack.pop() {
+            let n = self.nodes[i];
+            if !n.is_leaf() {
+                let (a, b) = n.children(i);
+                parent[a] = i as u32;
+                parent[b] = i as u32;
+                stack.push(b);
+                stack.push(a);
+            }
+        }
+        let mut all: HashSet<usize> = HashSet::new();
+        // Nodes no longer reached (emptied leaves, replaced parents) are
+        // left alone.
+        for &i in nodes.iter().filter(|&&i| i == 0 || parent[i] != u32::MAX) {
+            let mut i = i;
+            while all.insert(i) {
+                match parent[i] {
+                    u32::MAX => break,
+                    p => i = p as usize,
                 }
             }
         }
-        let mut ancestors = HashSet::new();
-        for &leaf in after.keys() {
-            let mut p = parent[leaf as usize];
-            while p != u32::MAX && ancestors.insert(p) {
-                p = parent[p as usize];
-            }
+        let mut all: Vec<usize> = all.into_iter().collect();
+        all.sort_unstable_by(|a, b| b.cmp(a));
+        for i in all {
+            self.bound(i);
         }
-        let mut inner: Vec<u32> = ancestors.into_iter().collect();
-        // Children before parents: a child's index is above its parent's.
-        inner.sort_unstable_by(|a, b| b.cmp(a));
-        for p in inner {
-            let (a, b) = (p + 1, self.nodes[p as usize].first);
-            // An untouched subtree is not empty.
-            let count = |c: u32| after.get(&c).copied().unwrap_or(1);
-            let c = count(a) + count(b);
-            after.insert(p, c);
-        }
-        let mut out = Out {
-            nodes: Vec::with_capacity(self.nodes.len() + new_tris.len()),
-            tris: Vec::with_capacity(self.tris.len() + new_tris.len()),
-            meta: Vec::with_capacity(self.tris.len() + new_tris.len()),
-            dipoles: Vec::with_capacity(self.nodes.len() + new_tris.len()),
-            split: 0,
-        };
-        let ctx = Emit {
-            tree: self,
-            dead,
-            inserts,
-            new_tris,
-            new_meta,
-            after: &after,
-        };
-        if after.get(&0).is_none_or(|&c| c > 0) {
-            ctx.node(0, &mut out);
-        }
-        out
     }
 
-    /// The face records without the dirty faces, plus the re-added ones.
+    /// Node `i`'s box and far-field data from its triangles or children.
+    fn bound(&mut self, i: usize) {
+        let n = self.nodes[i];
+        let (lo, hi, d) = if n.is_leaf() {
+            let range = n.first as usize..(n.first + n.count) as usize;
+            let (lo, hi) = build::bounds(&self.tris[range.clone()]);
+            (lo, hi, winding::leaf_dipole(&self.tris[range]))
+        } else {
+            let (a, b) = n.children(i);
+            let (na, nb) = (self.nodes[a], self.nodes[b]);
+            let (lo, hi) = (build::min3(na.lo(), nb.lo()), build::max3(na.hi(), nb.hi()));
+            (
+                lo,
+                hi,
+                winding::merge_dipoles(self.dipoles[a], self.dipoles[b]),
+            )
+        };
+        self.nodes[i].set_box(lo, hi);
+        self.dipoles[i] = winding::with_radius(d, lo, hi);
+    }
+
+    /// Mark the dirty faces' records gone and append the re-added ones;
+    /// compact the records when the gone ones outnumber the live.
     fn update_faces(
         &mut self,
         dmark: &[bool],
         added: Vec<(FaceKey, u32, u32)>,
         added_corners: &[VertexKey],
     ) {
-        let mut faces = Vec::with_capacity(self.faces.len() + added.len());
-        let mut corners = Vec::with_capacity(self.corners.len() + added_corners.len());
-        for &(f, start, len) in &self.faces {
-            if !marked(dmark, f) {
-                let s = corners.len() as u32;
-                corners.extend_from_slice(&self.corners[start as usize..(start + len) as usize]);
-                faces.push((f, s, len));
+        for r in self.faces.iter_mut() {
+            if r.2 != GONE && marked(dmark, r.0) {
+                r.2 = GONE;
+                self.dead_faces += 1;
             }
         }
-        let base = corners.len() as u32;
-        corners.extend_from_slice(added_corners);
-        faces.extend(added.into_iter().map(|(f, s, l)| (f, s + base, l)));
-        self.faces = faces;
+        let base = self.corners.len() as u32;
+        self.corners.extend_from_slice(added_corners);
+        self.faces
+            .extend(added.into_iter().map(|(f, s, l)| (f, s + base, l)));
+        if self.dead_faces * 2 <= self.faces.len() {
+            return;
+        }
+        let mut corners = Vec::with_capacity(self.corners.len());
+        self.faces.retain(|r| r.2 != GONE);
+        for r in self.faces.iter_mut() {
+            let s = corners.len() as u32;
+            corners.extend_from_slice(&self.corners[r.1 as usize..(r.1 + r.2) as usize]);
+            r.1 = s;
+        }
         self.corners = corners;
+        self.dead_faces = 0;
     }
 }
 
-/// The recursive emission of [`FaceTree::emit`].
-struct Emit<'a> {
-    tree: &'a FaceTree,
-    dead: &'a [bool],
-    inserts: &'a HashMap<u32, Vec<u32>>,
-    new_tris: &'a [[V3; 3]],
-    new_meta: &'a [TriMeta],
-    /// Touched nodes' triangle counts afterwards.
-    after: &'a HashMap<u32, usize>,
+/// The fresh fan triangles of an update, and the leaves it split.
+#[derive(Default)]
+struct Fresh {
+    tris: Vec<[V3; 3]>,
+    meta: Vec<TriMeta>,
+    split: usize,
 }
 
-impl Emit<'_> {
-    /// Emit old node `n`'s subtree (not empty); returns its new index.
-    fn node(&self, n: u32, out: &mut Out) -> usize {
-        let t = self.tree;
-        let node = t.nodes[n as usize];
-        if !self.after.contains_key(&n) {
-            return self.copy(n, out);
-        }
-        if node.count > 0 {
-            return self.leaf(n, out);
-        }
-        let (a, b) = (n + 1, node.first);
-        let empty = |c: u32| self.after.get(&c) == Some(&0);
-        if empty(a) {
-            return self.node(b, out);
-        }
-        if empty(b) {
-            return self.node(a, out);
-        }
-        let me = out.nodes.len();
-        out.nodes.push(node);
-        out.dipoles.push(Dipole::default());
-        let na = self.node(a, out);
-        let nb = self.node(b, out);
-        let (ca, cb) = (out.nodes[na], out.nodes[nb]);
-        let (lo, hi) = (build::min3(ca.lo(), cb.lo()), build::max3(ca.hi(), cb.hi()));
-        out.nodes[me] = Node::new(lo, hi, nb as u32, 0);
-        let d = winding::merge_dipoles(out.dipoles[na], out.dipoles[nb]);
-        out.dipoles[me] = winding::with_radius(d, lo, hi);
-        me
+/// A bit per face slot: the faces the change set names and the faces now
+/// around its modified vertices. A face whose corner moved is around that
+/// vertex now (had its corners changed, the change set would name it), and
+/// a face with a removed corner was removed or modified, so this holds
+/// every face whose fan triangles in the tree are out of date.
+fn dirty_marks(mesh: &Mesh, changes: &Changes) -> Vec<bool> {
+    let mut dmark = Vec::new();
+    let f = &changes.faces;
+    for &k in f.created.iter().chain(&f.removed).chain(&f.modified) {
+        set(&mut dmark, k.index());
     }
-
-    /// Copy untouched subtree `n` as a block.
-    fn copy(&self, n: u32, out: &mut Out) -> usize {
-        let t = self.tree;
-        let (mut first, mut last) = (n as usize, n as usize);
-        while t.nodes[first].count == 0 {
-            first += 1;
-        }
-        while t.nodes[last].count == 0 {
-            last = t.nodes[last].first as usize;
-        }
-        let tri0 = t.nodes[first].first as usize;
-        let tri1 = (t.nodes[last].first + t.nodes[last].count) as usize;
-        let me = out.nodes.len();
-        let (dn, dt) = (me as i64 - n as i64, out.tris.len() as i64 - tri0 as i64);
-        for node in &t.nodes[n as usize..=last] {
-            let mut node = *node;
-            let d = if node.count == 0 { dn } else { dt };
-            node.first = (node.first as i64 + d) as u32;
-            out.nodes.push(node);
-        }
-        out.dipoles.extend_from_slice(&t.dipoles[n as usize..=last]);
-        out.tris.extend_from_slice(&t.tris[tri0..tri1]);
-        out.meta.extend_from_slice(&t.meta[tri0..tri1]);
-        me
-    }
-
-    /// Emit touched leaf `n`: its live triangles and the inserted ones, as
-    /// a leaf or (when over [`SPLIT_LEAF`]) a subtree.
-    fn leaf(&self, n: u32, out: &mut Out) -> usize {
-        let t = self.tree;
-        let node = t.nodes[n as usize];
-        let mut tris = Vec::new();
-        let mut meta = Vec::new();
-        for i in node.first as usize..(node.first + node.count) as usize {
-            if !self.dead[i] {
-                tris.push(t.tris[i]);
-                meta.push(t.meta[i]);
+    for &v in &changes.vertices.modified {
+        if let Ok(view) = mesh.vertex(v) {
+            for k in view.faces() {
+                set(&mut dmark, k.index());
             }
         }
-        for &i in self.inserts.get(&n).map_or(&[][..], Vec::as_slice) {
-            tris.push(self.new_tris[i as usize]);
-            meta.push(self.new_meta[i as usize]);
-        }
-        let me = out.nodes.len();
-        let base = out.tris.len() as u32;
-        if tris.len() > SPLIT_LEAF {
-            out.split += 1;
-            let (nodes, order) = build::build(&tris);
-            for mut node in nodes {
-                node.first += if node.count == 0 { me as u32 } else { base };
-                out.nodes.push(node);
-            }
-            out.tris.extend(order.iter().map(|&i| tris[i as usize]));
-            out.meta.extend(order.iter().map(|&i| meta[i as usize]));
-        } else {
-            let (lo, hi) = build::bounds(&tris);
-            out.nodes.push(Node::new(lo, hi, base, tris.len() as u32));
-            out.tris.extend_from_slice(&tris);
-            out.meta.extend_from_slice(&meta);
-        }
-        out.dipoles.resize(out.nodes.len(), Dipole::default());
-        for i in (me..out.nodes.len()).rev() {
-            let k = out.nodes[i];
-            let d = if k.count > 0 {
-                winding::leaf_dipole(&out.tris[k.first as usize..(k.first + k.count) as usize])
-            } else {
-                winding::merge_dipoles(out.dipoles[i + 1], out.dipoles[k.first as usize])
-            };
-            out.dipoles[i] = winding::with_radius(d, k.lo(), k.hi());
-        }
-        me
     }
+    dmark
 }
 
-/// The dirty faces that are faces now, with their corners: the change
-/// set's faces, the dirty faces the tree held and the faces around changed
-/// vertices, if live, not holes and at a marked slot.
-fn readd(
+/// The fan triangles of the dirty faces that are faces now (live, not
+/// holes), with their face records and corners.
+fn fresh_fans(
     mesh: &Mesh,
     changes: &Changes,
     dmark: &[bool],
-    dirty: Vec<FaceKey>,
-) -> Vec<(FaceKey, Vec<VertexKey>)> {
+    pos: &[V3],
+) -> (Fresh, Vec<(FaceKey, u32, u32)>, Vec<VertexKey>) {
     let f = &changes.faces;
-    let mut cands: Vec<FaceKey> = dirty;
-    cands.extend(f.created.iter().chain(&f.modified));
+    let mut cands: Vec<FaceKey> = f.created.iter().chain(&f.modified).copied().collect();
     for &v in &changes.vertices.modified {
         if let Ok(view) = mesh.vertex(v) {
             cands.extend(view.faces());
         }
     }
     let mut seen = HashSet::new();
-    let mut out = Vec::new();
+    let mut fresh = Fresh::default();
+    let (mut faces, mut corners) = (Vec::new(), Vec::new());
     for k in cands {
         if !marked(dmark, k) || !seen.insert(k) {
             continue;
         }
-        if let Ok(view) = mesh.face(k) {
-            if !view.is_hole() {
-                out.push((k, view.vertices().collect()));
-            }
+        let Ok(view) = mesh.face(k) else { continue };
+        if view.is_hole() {
+            continue;
         }
+        let start = corners.len();
+        corners.extend(view.vertices());
+        faces.push((k, start as u32, (corners.len() - start) as u32));
+        fan(k, &corners[start..], pos, &mut fresh.tris, &mut fresh.meta);
     }
-    out
+    (fresh, faces, corners)
 }
 
 /// Append face `f`'s fan triangles (corners `cs`).

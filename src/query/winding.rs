@@ -192,7 +192,13 @@ impl FaceTree {
     fn winding(&self, q: V3, mode: WindingMode, stack: &mut Vec<u32>) -> f64 {
         let beta = match mode {
             WindingMode::Exact => {
-                let sum: f64 = self.tris.iter().map(|t| solid_angle(q, t)).sum();
+                let mut sum = 0.0;
+                self.for_each_leaf(|_, range| {
+                    sum += self.tris[range]
+                        .iter()
+                        .map(|t| solid_angle(q, t))
+                        .sum::<f64>();
+                });
                 return sum / (4.0 * std::f64::consts::PI);
             }
             WindingMode::Approximate { accuracy } => accuracy.max(1.0),
@@ -213,14 +219,15 @@ impl FaceTree {
                 continue;
             }
             let n = &self.nodes[i];
-            if n.count > 0 {
+            if n.is_leaf() {
                 let first = n.first as usize;
                 for t in &self.tris[first..first + n.count as usize] {
                     sum += solid_angle(q, t);
                 }
             } else {
-                stack.push(n.first);
-                stack.push(i as u32 + 1);
+                let (a, b) = n.children(i);
+                stack.push(b as u32);
+                stack.push(a as u32);
             }
         }
         sum / (4.0 * std::f64::consts::PI)
