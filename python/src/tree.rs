@@ -2,11 +2,16 @@
 //! casts, closest points, inside tests, winding numbers and radius queries,
 //! answering whole numpy batches through the Rust batch calls.
 //!
+//! `update()` applies the mesh's tracked changes (the tree turns tracking
+//! on), `pick` finds the vertex or edge under a cursor.
+//!
 //! Face and vertex indices in arrays are slot indices, as in
 //! `to_triangle_buffers`'s `triangle_faces`; -1 marks "none". Calls that
 //! answer for one point return key objects.
 
-use meshloom::query::{Closest, FaceTree, Hit, QueryError, Ray, WindingMode};
+use meshloom::query::{
+    Closest, Cone, FaceTree, Hit, Occlusion, Pick, QueryError, Ray, UpdateReport, WindingMode,
+};
 use meshloom::{AnyKey, Mesh};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
@@ -121,10 +126,16 @@ fn closest_dict<'py>(py: Python<'py>, found: &[Option<Closest>]) -> PyResult<Bou
     Ok(d)
 }
 
+/// `nearest_edge`'s answer: the edge, its distance, its nearest point.
+type EdgeNear = (Py<PyAny>, f64, [f64; 3]);
+
+/// `pick`'s answer: the key, the point, its depth `t`, its offset.
+type Picked = (Py<PyAny>, [f64; 3], f64, f64);
+
 /// A bounding-volume hierarchy over a mesh's faces (polygons as fans of
 /// triangles), made by `Mesh.tree()`. It answers for the mesh as it was
 /// when built or last refitted: after an edit, queries raise
-/// `StaleTreeError` until `refit()` (positions moved) or a new `tree()`.
+/// `StaleTreeError` until `update()` (any edit), `refit()` (positions moved) or a new `tree()`.
 #[pyclass(module = "meshloom", name = "FaceTree")]
 pub struct PyFaceTree {
     mesh: Py<PyMesh>,
@@ -134,7 +145,10 @@ pub struct PyFaceTree {
 impl PyFaceTree {
     /// A tree over `mesh`'s faces.
     pub fn build(mesh: &Bound<'_, PyMesh>) -> PyResult<PyFaceTree> {
-        let this = mesh.try_borrow().map_err(busy)?;
+        let mut this = mesh.try_borrow_mut().map_err(busy)?;
+        // Changes from here on are what `update` applies.
+        this.mesh.history_mut().track_changes(true);
+        this.mesh.history_mut().take_changes();
         let tree = FaceTree::build(&this.mesh).map_err(|e| query_err(mesh.py(), e))?;
         Ok(PyFaceTree {
             mesh: mesh.clone().unbind(),
@@ -232,8 +246,8 @@ impl PyFaceTree {
         Ok(PyArray1::from_vec(py, w).into_any())
     }
 
-    /// The faces (`kind` "face") or vertices ("vertex") within `radius` of
-    /// `point`, as key objects.
+    /// The faces (`kind` "face"), vertices ("vertex") or edges ("edge")
+    /// within `radius` of `point`, as key objects.
     #[pyo3(signature = (point, radius, kind = "face"))]
     fn within(
         &self,
@@ -254,9 +268,14 @@ impl PyFaceTree {
                 .into_iter()
                 .map(AnyKey::from)
                 .collect(),
+            "edge" => self
+                .with(py, |t, m| t.edges_within(m, p, radius))?
+                .into_iter()
+                .map(AnyKey::from)
+                .collect(),
             other => {
                 return Err(PyValueError::new_err(format!(
-                    "kind: unknown {other:?}, face or vertex"
+                    "kind: unknown {other:?}, face, vertex or edge"
                 )))
             }
         };
@@ -276,6 +295,118 @@ impl PyFaceTree {
         let p = one_point(point)?;
         let n = self.with(py, |t, m| t.nearest_vertex(m, p))?;
         Ok(n.map(|n| (key_object(py, &self.mesh, n.vertex.into()), n.distance)))
+    }
+
+    /// The edge nearest to `point`, its distance and its nearest point, or
+    /// None for a mesh without faces.
+    fn nearest_edge(&self, py: Python<'_>, point: &Bound<'_, PyAny>) -> PyResult<Option<EdgeNear>> {
+        let p = one_point(point)?;
+        let n = self.with(py, |t, m| t.nearest_edge(m, p))?;
+        Ok(n.map(|n| {
+            (
+                key_object(py, &self.mesh, n.edge.into()),
+                n.distance,
+                n.point,
+            )
+        }))
+    }
+
+    /// The vertex (`kind` "vertex") or edge ("edge") under a cursor: the one
+    /// nearest the axis of the cone around the ray `origin` + t·`direction`
+    /// as the screen shows it. The cone: `angle` (radians) its half-angle,
+    /// for a perspective view; `radius` its width at the origin, for an
+    /// orthographic view (a cylinder); both for a cone with a rounded
+    /// apex. `occlusion` "visible" passes over elements the surface hides,
+    /// "xray" sees through. Returns `(key, point, t, offset)` (`offset`
+    /// 0..1, the distance from the axis over the cone's width there) or
+    /// None.
+    #[pyo3(signature = (origin, direction, *, angle = None, radius = None, kind = "vertex", occlusion = "visible"))]
+    #[allow(clippy::too_many_arguments)]
+    fn pick(
+        &self,
+        py: Python<'_>,
+        origin: &Bound<'_, PyAny>,
+        direction: &Bound<'_, PyAny>,
+        angle: Option<f64>,
+        radius: Option<f64>,
+        kind: &str,
+        occlusion: &str,
+    ) -> PyResult<Option<Picked>> {
+        let ray = Ray::new(one_point(origin)?, one_point(direction)?);
+        let cone = match (angle, radius) {
+            (None, None) => {
+                return Err(PyValueError::new_err(
+                    "give the cone's angle (perspective) or radius (orthographic)",
+                ))
+            }
+            (a, r) => Cone {
+                ray,
+                radius: r.unwrap_or(0.0),
+                spread: a.map_or(0.0, f64::tan),
+            },
+        };
+        let occlusion = match occlusion {
+            "visible" => Occlusion::Visible,
+            "xray" => Occlusion::XRay,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "occlusion: unknown {other:?}, visible or xray"
+                )))
+            }
+        };
+        fn out<K: Into<AnyKey>>(
+            py: Python<'_>,
+            mesh: &Py<PyMesh>,
+            p: Option<Pick<K>>,
+        ) -> Option<Picked> {
+            p.map(|p| (key_object(py, mesh, p.key.into()), p.point, p.t, p.offset))
+        }
+        match kind {
+            "vertex" => Ok(out(
+                py,
+                &self.mesh,
+                self.with(py, |t, m| t.pick_vertex(m, cone, occlusion))?,
+            )),
+            "edge" => Ok(out(
+                py,
+                &self.mesh,
+                self.with(py, |t, m| t.pick_edge(m, cone, occlusion))?,
+            )),
+            other => Err(PyValueError::new_err(format!(
+                "kind: unknown {other:?}, vertex or edge"
+            ))),
+        }
+    }
+
+    /// Bring the tree up to date with the mesh's edits since it was built
+    /// or last updated (the mesh tracks its changes from `Mesh.tree()` on),
+    /// paying for what changed; a full rebuild when the edits are too many
+    /// or another tree of the same mesh took the changes. Returns a dict:
+    /// `removed_triangles`, `inserted_triangles`, `split_leaves`,
+    /// `full_rebuild`.
+    fn update<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let mesh = self.mesh.bind(py).clone();
+        let mut this = mesh.try_borrow_mut().map_err(busy)?;
+        this.mesh.history_mut().track_changes(true);
+        let changes = this.mesh.history_mut().take_changes();
+        let report = match self.tree.update(&this.mesh, &changes) {
+            Ok(r) => r,
+            Err(QueryError::ChangesMismatch { .. } | QueryError::StaleTree { .. }) => {
+                self.tree = FaceTree::build(&this.mesh).map_err(|e| query_err(py, e))?;
+                UpdateReport {
+                    inserted_triangles: self.tree.triangle_count(),
+                    full_rebuild: true,
+                    ..UpdateReport::default()
+                }
+            }
+            Err(e) => return Err(query_err(py, e)),
+        };
+        let d = PyDict::new(py);
+        d.set_item("removed_triangles", report.removed_triangles)?;
+        d.set_item("inserted_triangles", report.inserted_triangles)?;
+        d.set_item("split_leaves", report.split_leaves)?;
+        d.set_item("full_rebuild", report.full_rebuild)?;
+        Ok(d)
     }
 
     /// Recompute the boxes after the mesh's positions moved (the faces

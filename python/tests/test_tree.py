@@ -143,8 +143,8 @@ def test_within_and_nearest_vertex():
     assert near == [0]
     faces = tree.within([2.0, 0.0, 0.0], 1.0 + 1e-9, kind="face")
     assert sorted(x.index for x in faces) == [0, 3, 4, 7]
-    with pytest.raises(ValueError, match="face or vertex"):
-        tree.within([0, 0, 0], 1.0, kind="edge")
+    with pytest.raises(ValueError, match="face, vertex or edge"):
+        tree.within([0, 0, 0], 1.0, kind="corner")
 
 
 def test_a_stale_tree_raises_until_refit():
@@ -171,3 +171,79 @@ def test_bad_input_raises_query_error():
         tree.ray_cast([[0.0, 0.0, 0.0]], [[0.0, 0.0, 0.0]])
     with pytest.raises(ValueError, match="origins"):
         tree.ray_cast(np.zeros((2, 3)), np.ones((3, 3)))
+
+
+def test_within_edges_and_nearest_edge():
+    mesh = meshloom.Mesh.from_arrays(OCTA_P, OCTA_F)
+    tree = mesh.tree()
+    edges = tree.within([1.0, 1.0, 0.0], 0.75, kind="edge")
+    assert len(edges) == 1
+    assert sorted(v.index for v in edges[0].vertices) == [0, 2]
+    e, dist, point = tree.nearest_edge([1.0, 1.0, 0.0])
+    assert dist == pytest.approx(np.sqrt(0.5))
+    np.testing.assert_allclose(point, [0.5, 0.5, 0.0], atol=1e-12)
+    with pytest.raises(ValueError, match="face, vertex or edge"):
+        tree.within([0, 0, 0], 1.0, kind="corner")
+
+
+def test_pick_sees_the_near_vertex_and_through_with_xray():
+    mesh = meshloom.Mesh.from_arrays(OCTA_P, OCTA_F)
+    tree = mesh.tree()
+    # Looking down -z at the top vertex (0, 0, 1); the bottom one (0, 0, -1)
+    # lies on the same axis behind the surface.
+    key, point, t, offset = tree.pick([0.05, 0.0, 5.0], [0.0, 0.0, -1.0], angle=0.05)
+    assert tuple(point) == (0.0, 0.0, 1.0) and t == pytest.approx(4.0)
+    assert 0.0 < offset < 1.0
+    key, point, t, offset = tree.pick([0.05, 0.0, 5.0], [0.0, 0.0, -1.0], angle=0.05, occlusion="xray")
+    assert tuple(point) == (0.0, 0.0, -1.0)  # farther, so nearer the axis on screen
+    edge = tree.pick([0.5, 0.52, 5.0], [0.0, 0.0, -1.0], radius=0.1, kind="edge")
+    # The equator's edge between (1, 0, 0) and (0, 1, 0), the top faces' rim.
+    assert sorted(v.index for v in edge[0].vertices) == [0, 2]
+    assert edge[1][2] == pytest.approx(0.0) and edge[3] < 0.2
+    assert tree.pick([9.0, 9.0, 5.0], [0.0, 0.0, -1.0], radius=0.1) is None
+    with pytest.raises(ValueError, match="angle"):
+        tree.pick([0, 0, 5], [0, 0, -1])
+    with pytest.raises(meshloom.QueryError, match="cone"):
+        tree.pick([0, 0, 5], [0, 0, -1], radius=-1.0)
+
+
+def sphere_arrays(cols=16, rows=10):
+    """A latitude-longitude unit sphere of triangles."""
+    p = [[0.0, 0.0, 1.0], [0.0, 0.0, -1.0]]
+    for j in range(1, rows):
+        th = np.pi * j / rows
+        for i in range(cols):
+            ph = 2 * np.pi * i / cols
+            p.append([np.sin(th) * np.cos(ph), np.sin(th) * np.sin(ph), np.cos(th)])
+    ring = lambda j, i: 2 + (j - 1) * cols + i % cols
+    f = []
+    for i in range(cols):
+        f.append([0, ring(1, i), ring(1, i + 1)])
+        f.append([1, ring(rows - 1, i + 1), ring(rows - 1, i)])
+        for j in range(1, rows - 1):
+            a, b, c, d = ring(j, i), ring(j + 1, i), ring(j + 1, i + 1), ring(j, i + 1)
+            f += [[a, b, c], [a, c, d]]
+    return np.array(p), np.array(f)
+
+
+def test_update_after_edits_answers_as_a_fresh_tree():
+    mesh = meshloom.Mesh.from_arrays(*sphere_arrays())
+    tree = mesh.tree()
+    rng = np.random.default_rng(7)
+    faces = list(mesh.faces)
+    for f in faces[:5]:
+        mesh.poke_face(f)
+    assert not tree.is_current()
+    report = tree.update()
+    assert tree.is_current() and not report["full_rebuild"]
+    assert report["removed_triangles"] >= 5 and report["inserted_triangles"] >= 15
+    origins = rng.normal(size=(200, 3)) * 3.0
+    directions = -origins + rng.normal(size=(200, 3)) * 0.2
+    fresh = mesh.tree()
+    a = tree.ray_cast(origins, directions)
+    b = fresh.ray_cast(origins, directions)
+    np.testing.assert_array_equal(a["t"], b["t"])
+    # The fresh tree took the mesh's changes: the first tree rebuilds.
+    mesh.poke_face(list(mesh.faces)[0])
+    fresh.update()
+    assert tree.update()["full_rebuild"] and tree.is_current()

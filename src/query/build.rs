@@ -99,7 +99,7 @@ pub(super) fn build(tris: &[[V3; 3]]) -> (Vec<Node>, Vec<u32>) {
         }
         match split(slice, lo, hi, clo, chi) {
             Some(mid) => {
-                nodes.push(Node::new(lo, hi, 0, 0));
+                nodes.push(Node::new(lo, hi, 0, Node::inner(me, me + 1)));
                 stack.push((start + mid, end, Some(me)));
                 stack.push((start, start + mid, None));
             }

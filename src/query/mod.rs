@@ -124,11 +124,10 @@ pub struct FaceTree {
 const GONE: u32 = u32::MAX;
 
 /// A node: a box, then either a leaf's triangles `first .. first + count`
-/// (`0 < count < DETACHED`), or an inner node whose children are the next
-/// node and node `first` (`count == 0`, as a build lays them out), or an
-/// inner node whose children are node `count − DETACHED` and node `first`
-/// (`count ≥ DETACHED`, as [`FaceTree::update`] rewires them). A child's
-/// index is always above its parent's.
+/// (`0 < count < INNER`), or an inner node (`count ≥ INNER`) whose children
+/// are the node `count − INNER` places after it (the next node, as a build
+/// lays them out; farther where [`FaceTree::update`] rewired it) and node
+/// `first`. A child's index is always above its parent's.
 ///
 /// The box is kept in `f32`, rounded outwards (so it still holds every
 /// `f64` point it was made from): 32 bytes a node instead of 56, which is
@@ -141,8 +140,8 @@ struct Node {
     count: u32,
 }
 
-/// The flag of an inner node whose first child is not the next node.
-const DETACHED: u32 = 1 << 31;
+/// The flag of an inner node, above the offset of its first child.
+const INNER: u32 = 1 << 31;
 
 impl Node {
     /// Whether the node is a leaf.
@@ -154,19 +153,19 @@ impl Node {
     /// An inner node's children, the node being at index `at`.
     #[inline(always)]
     fn children(&self, at: usize) -> (usize, usize) {
-        let a = if self.count == 0 {
-            at + 1
-        } else {
-            (self.count - DETACHED) as usize
-        };
-        (a, self.first as usize)
+        (at + (self.count - INNER) as usize, self.first as usize)
     }
 
-    /// The node moved from index `from`: an inner node whose first child
-    /// was the next node now names it.
-    fn moved(mut self, from: usize) -> Node {
-        if self.count == 0 {
-            self.count = DETACHED | (from as u32 + 1);
+    /// The count of an inner node at `at` whose first child is `a`.
+    fn inner(at: usize, a: usize) -> u32 {
+        INNER | (a - at) as u32
+    }
+
+    /// The node at `from` moved to `to` (below it): an inner node keeps
+    /// its first child.
+    fn moved(mut self, from: usize, to: usize) -> Node {
+        if !self.is_leaf() {
+            self.count = Node::inner(to, from + (self.count - INNER) as usize);
         }
         self
     }

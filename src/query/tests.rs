@@ -19,7 +19,7 @@ fn every_triangle_sits_in_one_leaf_inside_every_box_on_its_path() {
                 "node {i} outside its parent"
             );
         }
-        if n.count > 0 {
+        if n.is_leaf() {
             for t in n.first..n.first + n.count {
                 seen[t as usize] += 1;
                 for p in tree.tris[t as usize] {
@@ -29,6 +29,8 @@ fn every_triangle_sits_in_one_leaf_inside_every_box_on_its_path() {
                 }
             }
         } else {
+            // A build lays the first child next.
+            assert_eq!(n.children(i).0, i + 1);
             assert!(n.first as usize > i + 1);
             stack.push((i + 1, n.lo(), n.hi()));
             stack.push((n.first as usize, n.lo(), n.hi()));

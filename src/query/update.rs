@@ -30,7 +30,7 @@
 
 use std::collections::{BTreeMap, HashSet};
 
-use super::{build, winding, Dipole, FaceTree, Node, QueryError, TriMeta, DETACHED, GONE};
+use super::{build, winding, Dipole, FaceTree, Node, QueryError, TriMeta, GONE};
 use crate::journal::Changes;
 use crate::keys::{FaceKey, VertexKey};
 use crate::mesh::Mesh;
@@ -104,9 +104,9 @@ impl FaceTree {
         if changes.rebuilt || self.nodes.is_empty() {
             return self.rebuild(mesh);
         }
-        let dmark = dirty_marks(mesh, changes);
+        let (named, suspect) = dirty_marks(mesh, changes);
+        let (parent, lost, dmark) = self.dirty_leaves(named, &suspect, pos);
         let (mut fresh, new_faces, new_corners) = fresh_fans(mesh, changes, &dmark, pos);
-        let (parent, lost) = self.dirty_leaves(&dmark);
         let removed: usize = lost.iter().map(|l| l.1).sum();
         let live = self.triangle_count();
         let churn = removed + fresh.tris.len();
@@ -151,22 +151,40 @@ impl FaceTree {
     }
 
     /// Every reachable node's parent (`u32::MAX` for the root and
-    /// unreachable nodes), and the leaves holding dirty triangles with how
-    /// many they hold.
-    fn dirty_leaves(&self, dmark: &[bool]) -> (Vec<u32>, Vec<(u32, usize)>) {
+    /// unreachable nodes), the leaves holding dirty triangles with how many
+    /// they hold, and the dirty faces: the `named` ones, and the `suspect`
+    /// ones (around a modified vertex) whose triangles in the tree are not
+    /// where their corners are now (a vertex counts as modified when only
+    /// its links changed, too: those faces stay).
+    fn dirty_leaves(
+        &self,
+        named: Vec<bool>,
+        suspect: &[bool],
+        pos: &[V3],
+    ) -> (Vec<u32>, Vec<(u32, usize)>, Vec<bool>) {
         let mut parent = vec![u32::MAX; self.nodes.len()];
-        let mut lost = Vec::new();
+        let mut dmark = named;
+        let mut seen = Vec::new();
         let mut stack = vec![0usize];
         while let Some(i) = stack.pop() {
             let n = self.nodes[i];
             if n.is_leaf() {
                 let range = n.first as usize..(n.first + n.count) as usize;
-                let dead = self.meta[range]
-                    .iter()
-                    .filter(|m| marked(dmark, m.face))
-                    .count();
-                if dead > 0 {
-                    lost.push((i as u32, dead));
+                let mut any = false;
+                for t in range {
+                    let m = &self.meta[t];
+                    if marked(&dmark, m.face) {
+                        any = true;
+                    } else if marked(suspect, m.face) {
+                        any = true;
+                        let now = m.v.map(|v| pos.get(v.index()).copied());
+                        if now.iter().zip(&self.tris[t]).any(|(a, b)| *a != Some(*b)) {
+                            set(&mut dmark, m.face.index());
+                        }
+                    }
+                }
+                if any {
+                    seen.push(i as u32);
                 }
             } else {
                 let (a, b) = n.children(i);
@@ -176,7 +194,21 @@ impl FaceTree {
                 stack.push(a);
             }
         }
-        (parent, lost)
+        // A face found moved late in the walk may have triangles in
+        // leaves seen before: count again with the marks complete.
+        let lost = seen
+            .into_iter()
+            .filter_map(|i| {
+                let n = self.nodes[i as usize];
+                let range = n.first as usize..(n.first + n.count) as usize;
+                let dead = self.meta[range]
+                    .iter()
+                    .filter(|m| marked(&dmark, m.face))
+                    .count();
+                (dead > 0).then_some((i, dead))
+            })
+            .collect();
+        (parent, lost, dmark)
     }
 
     /// For each new triangle, the leaf it goes into: down from the root,
@@ -245,9 +277,6 @@ impl FaceTree {
                 node.first += base;
             } else {
                 node.first += at as u32;
-                if node.count != 0 {
-                    node.count += at as u32;
-                }
             }
             self.nodes.push(node);
         }
@@ -259,7 +288,7 @@ impl FaceTree {
         }
         // The subtree's root takes the leaf's place (its old slot stays
         // unreached).
-        self.nodes[leaf] = self.nodes[at].moved(at);
+        self.nodes[leaf] = self.nodes[at].moved(at, leaf);
         false
     }
 
@@ -286,7 +315,7 @@ impl FaceTree {
             let g = parent[p];
             if g == u32::MAX {
                 // The parent is the root, which stays at index 0.
-                let s = self.nodes[sibling].moved(sibling);
+                let s = self.nodes[sibling].moved(sibling, 0);
                 self.nodes[0] = s;
                 if !s.is_leaf() {
                     let (x, y) = s.children(0);
@@ -302,7 +331,7 @@ impl FaceTree {
             let g = g as usize;
             let (ga, _) = self.nodes[g].children(g);
             if ga == p {
-                self.nodes[g].count = DETACHED | sibling as u32;
+                self.nodes[g].count = Node::inner(g, sibling);
             } else {
                 self.nodes[g].first = sibling as u32;
             }
@@ -408,25 +437,27 @@ struct Fresh {
     split: usize,
 }
 
-/// A bit per face slot: the faces the change set names and the faces now
-/// around its modified vertices. A face whose corner moved is around that
-/// vertex now (had its corners changed, the change set would name it), and
-/// a face with a removed corner was removed or modified, so this holds
-/// every face whose fan triangles in the tree are out of date.
-fn dirty_marks(mesh: &Mesh, changes: &Changes) -> Vec<bool> {
-    let mut dmark = Vec::new();
+/// Two bits per face slot: the faces the change set names (dirty), and
+/// the faces now around its modified vertices (suspect: dirty if a corner
+/// moved). A face whose corner moved is around that vertex now (had its
+/// corners changed, the change set would name it), and a face with a
+/// removed corner was removed or modified, so the two hold every face
+/// whose fan triangles in the tree are out of date.
+fn dirty_marks(mesh: &Mesh, changes: &Changes) -> (Vec<bool>, Vec<bool>) {
+    let mut named = Vec::new();
     let f = &changes.faces;
     for &k in f.created.iter().chain(&f.removed).chain(&f.modified) {
-        set(&mut dmark, k.index());
+        set(&mut named, k.index());
     }
+    let mut suspect = Vec::new();
     for &v in &changes.vertices.modified {
         if let Ok(view) = mesh.vertex(v) {
             for k in view.faces() {
-                set(&mut dmark, k.index());
+                set(&mut suspect, k.index());
             }
         }
     }
-    dmark
+    (named, suspect)
 }
 
 /// The fan triangles of the dirty faces that are faces now (live, not
