@@ -1,6 +1,8 @@
 //! The binned SAH build: 16 bins of triangle centroids per axis, the split
 //! of least estimated cost `1 + (A_L·N_L + A_R·N_R) / A`, a leaf when that
 //! is no cheaper than testing the triangles (or at most two are left).
+//! With the `parallel` feature, large subtrees build their halves on two
+//! threads; the tree is the same node for node.
 
 use super::Node;
 use crate::vec3::V3;
@@ -58,8 +60,17 @@ struct Prim {
 
 /// The nodes (depth-first) and the triangles' leaf order.
 pub(super) fn build(tris: &[[V3; 3]]) -> (Vec<Node>, Vec<u32>) {
-    let mut prims: Vec<Prim> = tris
-        .iter()
+    let mut prims = prims(tris);
+    if prims.is_empty() {
+        return (Vec::new(), Vec::new());
+    }
+    let nodes = subtree(&mut prims, 0);
+    (nodes, prims.iter().map(|p| p.index).collect())
+}
+
+/// Each triangle's box and centroid.
+fn prims(tris: &[[V3; 3]]) -> Vec<Prim> {
+    tris.iter()
         .enumerate()
         .map(|(i, t)| {
             let (lo, hi) = bounds(std::slice::from_ref(t));
@@ -75,11 +86,58 @@ pub(super) fn build(tris: &[[V3; 3]]) -> (Vec<Node>, Vec<u32>) {
                 index: i as u32,
             }
         })
-        .collect();
-    let mut nodes = Vec::with_capacity((2 * tris.len() / 3).max(1));
-    if prims.is_empty() {
-        return (nodes, Vec::new());
+        .collect()
+}
+
+/// Subtrees over at least this many triangles build their two halves on
+/// two of rayon's threads (with the `parallel` feature).
+#[cfg(feature = "parallel")]
+const PARALLEL_MIN: usize = 1 << 14;
+
+/// The nodes of the subtree over `prims`, which start at triangle `base`
+/// of the whole; the same tree on one thread or several.
+fn subtree(prims: &mut [Prim], base: usize) -> Vec<Node> {
+    #[cfg(feature = "parallel")]
+    if prims.len() >= PARALLEL_MIN {
+        let (lo, hi, clo, chi) = extent(prims);
+        if let Some(mid) = split(prims, lo, hi, clo, chi) {
+            let (l, r) = prims.split_at_mut(mid);
+            let (a, b) = rayon::join(|| subtree(l, base), || subtree(r, base + mid));
+            // Child offsets are relative: only second children move.
+            let shift = |mut n: Node, by: usize| {
+                if !n.is_leaf() {
+                    n.first += by as u32;
+                }
+                n
+            };
+            let mut nodes = Vec::with_capacity(1 + a.len() + b.len());
+            nodes.push(Node::new(lo, hi, (1 + a.len()) as u32, Node::inner(0, 1)));
+            let right = 1 + a.len();
+            nodes.extend(a.into_iter().map(|n| shift(n, 1)));
+            nodes.extend(b.into_iter().map(|n| shift(n, right)));
+            return nodes;
+        }
+        // A leaf after all: the serial path decides the same.
     }
+    serial(prims, base)
+}
+
+/// The box and centroid box of `prims`.
+fn extent(prims: &[Prim]) -> (V3, V3, V3, V3) {
+    let (mut lo, mut hi) = EMPTY;
+    let (mut clo, mut chi) = EMPTY;
+    for p in prims {
+        lo = min3(lo, p.lo);
+        hi = max3(hi, p.hi);
+        clo = min3(clo, p.c);
+        chi = max3(chi, p.c);
+    }
+    (lo, hi, clo, chi)
+}
+
+/// The subtree over `prims` on this thread, with an explicit stack.
+fn serial(prims: &mut [Prim], base: usize) -> Vec<Node> {
+    let mut nodes = Vec::with_capacity((2 * prims.len() / 3).max(1));
     // (start, end, the parent whose second child this is).
     let mut stack: Vec<(usize, usize, Option<usize>)> = vec![(0, prims.len(), None)];
     while let Some((start, end, parent)) = stack.pop() {
@@ -89,24 +147,22 @@ pub(super) fn build(tris: &[[V3; 3]]) -> (Vec<Node>, Vec<u32>) {
             n.first = me as u32;
         }
         let slice = &mut prims[start..end];
-        let (mut lo, mut hi) = EMPTY;
-        let (mut clo, mut chi) = EMPTY;
-        for p in slice.iter() {
-            lo = min3(lo, p.lo);
-            hi = max3(hi, p.hi);
-            clo = min3(clo, p.c);
-            chi = max3(chi, p.c);
-        }
+        let (lo, hi, clo, chi) = extent(slice);
         match split(slice, lo, hi, clo, chi) {
             Some(mid) => {
                 nodes.push(Node::new(lo, hi, 0, Node::inner(me, me + 1)));
                 stack.push((start + mid, end, Some(me)));
                 stack.push((start, start + mid, None));
             }
-            None => nodes.push(Node::new(lo, hi, start as u32, (end - start) as u32)),
+            None => nodes.push(Node::new(
+                lo,
+                hi,
+                (base + start) as u32,
+                (end - start) as u32,
+            )),
         }
     }
-    (nodes, prims.iter().map(|p| p.index).collect())
+    nodes
 }
 
 /// Partition `prims` at the best binned SAH split and return the size of
@@ -197,4 +253,38 @@ fn partition(prims: &mut [Prim], left: impl Fn(&Prim) -> bool) -> usize {
         }
     }
     i
+}
+
+#[cfg(all(test, feature = "parallel"))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_parallel_build_makes_the_serial_tree_node_for_node() {
+        let mesh = crate::shapes::torus(200, 100, 1.0, 0.3).unwrap();
+        let pos = mesh.position_slots().unwrap();
+        let tris: Vec<[V3; 3]> = mesh
+            .faces()
+            .flat_map(|f| {
+                let c: Vec<V3> = mesh
+                    .face(f)
+                    .unwrap()
+                    .vertices()
+                    .map(|v| pos[v.index()])
+                    .collect();
+                (1..c.len() - 1).map(move |i| [c[0], c[i], c[i + 1]])
+            })
+            .collect();
+        assert!(tris.len() >= 2 * PARALLEL_MIN);
+        let (mut a, mut b) = (prims(&tris), prims(&tris));
+        let (na, nb) = (subtree(&mut a, 0), serial(&mut b, 0));
+        assert_eq!(na.len(), nb.len());
+        for (x, y) in na.iter().zip(&nb) {
+            assert_eq!(
+                (x.lo, x.hi, x.first, x.count),
+                (y.lo, y.hi, y.first, y.count)
+            );
+        }
+        assert!(a.iter().zip(&b).all(|(x, y)| x.index == y.index));
+    }
 }
