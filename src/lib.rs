@@ -127,7 +127,7 @@
 // `#[cfg(test)]` code) only the modules named before it here, so imports
 // run one way and never form a cycle; tests/layers.rs checks it.
 //
-// - core: vec3 choice keys layout map slots error store record
+// - core: vec3 predicates choice keys layout map slots error store record
 // - mesh: mesh
 // - access: circulate iter traverse validate view link stats attr geometry serde_impl
 // - editing: journal ops
@@ -157,6 +157,7 @@ pub mod link;
 pub mod map;
 mod mesh;
 pub mod ops;
+mod predicates;
 pub mod query;
 mod record;
 pub mod repair;

@@ -74,6 +74,17 @@ Example:
   meshloom validate data/elephant.off && echo clean
   meshloom validate meshes/ --json        (one object per file and line)")]
     Validate(ValidateArgs),
+    /// Check a mesh's geometry: the pairs of faces that intersect.
+    ///
+    /// Faces sharing a vertex or an edge count only when they meet beyond
+    /// it; faces with nothing in common count when they touch. Decided with
+    /// exact predicates. Prints the count and the first 20 pairs (face
+    /// indices in the file's order); exit code 1 if there are any.
+    #[command(after_help = "\
+Example:
+  meshloom check data/elephant.off --self-intersections
+  meshloom check scan.ply --self-intersections --json")]
+    Check(CheckArgs),
     /// Convert between formats, chosen by the file extensions.
     #[command(after_help = "\
 Example:
@@ -254,6 +265,22 @@ pub struct ComponentsArgs {
     #[arg(value_parser = mesh_path)]
     pub file: PathBuf,
     /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
+/// `meshloom check`.
+#[derive(Args, Debug)]
+pub struct CheckArgs {
+    /// The mesh file.
+    #[arg(value_parser = mesh_path)]
+    pub file: PathBuf,
+    /// Find the pairs of faces that intersect.
+    #[arg(long)]
+    pub self_intersections: bool,
+    /// Print one JSON object instead of text (with every pair).
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]

@@ -21,7 +21,7 @@ use clap::Parser;
 
 use cli::{Cli, Command};
 use commands::{
-    convert, decimate, fair, remesh, render, sample, smooth, stats, subdivide, validate,
+    check, convert, decimate, fair, remesh, render, sample, smooth, stats, subdivide, validate,
 };
 
 /// Why a command failed, and the exit code that says so.
@@ -62,6 +62,7 @@ fn main() -> ExitCode {
         Command::Stats(a) => stats::run(&a),
         Command::Components(a) => stats::components(&a),
         Command::Validate(a) => validate::run(&a),
+        Command::Check(a) => check::run(&a),
         Command::Convert(a) => convert::convert(&a),
         Command::Repair(a) => convert::repair(&a),
         Command::Triangulate(a) => convert::triangulate(&a),

@@ -17,6 +17,7 @@ pub mod buffers;
 pub mod elements;
 pub mod errors;
 pub mod gc;
+pub mod intersect;
 pub mod io;
 pub mod mesh;
 pub mod tree;

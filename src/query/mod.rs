@@ -54,6 +54,7 @@
 mod build;
 mod closest;
 mod error;
+mod intersect;
 mod pick;
 mod ray;
 mod update;
@@ -68,6 +69,7 @@ pub use winding::WindingMode;
 #[doc(hidden)]
 pub use {
     closest::triangle_closest,
+    intersect::{intersect_beyond_shared, triangles_meet},
     pick::{point_in_cone, segment_in_cone},
     ray::triangle_hit,
 };

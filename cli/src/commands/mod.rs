@@ -1,5 +1,6 @@
 //! One module per command family: each prints what the library computes.
 
+pub mod check;
 pub mod constraints;
 pub mod convert;
 pub mod decimate;
