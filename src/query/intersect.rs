@@ -71,7 +71,7 @@ impl FaceTree {
         while let Some((a, b)) = stack.pop() {
             let (na, nb) = (self.nodes[a], self.nodes[b]);
             if a == b {
-                if na.count > 0 {
+                if na.is_leaf() {
                     let r = na.first as usize..(na.first + na.count) as usize;
                     for i in r.clone() {
                         for j in i + 1..r.end {
@@ -79,7 +79,7 @@ impl FaceTree {
                         }
                     }
                 } else {
-                    let (l, r) = (a + 1, na.first as usize);
+                    let (l, r) = na.children(a);
                     stack.extend([(l, l), (r, r), (l, r)]);
                 }
             } else if overlap(&na, &nb) {
@@ -180,7 +180,7 @@ fn descend(
     stack: &mut Vec<(usize, usize)>,
     mut leaf: impl FnMut(usize, usize),
 ) {
-    let split_a = match (na.count > 0, nb.count > 0) {
+    let split_a = match (na.is_leaf(), nb.is_leaf()) {
         (true, true) => {
             for i in na.first..na.first + na.count {
                 for j in nb.first..nb.first + nb.count {
@@ -194,9 +194,11 @@ fn descend(
         (false, false) => extent(na) >= extent(nb),
     };
     if split_a {
-        stack.extend([(a + 1, b), (na.first as usize, b)]);
+        let (x, y) = na.children(a);
+        stack.extend([(x, b), (y, b)]);
     } else {
-        stack.extend([(a, b + 1), (a, nb.first as usize)]);
+        let (x, y) = nb.children(b);
+        stack.extend([(a, x), (a, y)]);
     }
 }
 

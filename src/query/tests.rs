@@ -186,6 +186,11 @@ fn updates_in_place_keep_every_node_whole_through_splits_and_emptied_leaves() {
         splits += report.split_leaves;
         partial += usize::from(!report.full_rebuild);
         check_structure(&tree, &mesh);
+        let fresh = FaceTree::build(&mesh).unwrap();
+        assert_eq!(
+            tree.self_intersections(&mesh).unwrap(),
+            fresh.self_intersections(&mesh).unwrap()
+        );
         faces = mesh.faces().collect();
     }
     assert!(
