@@ -10,27 +10,7 @@
 //! coplanar triangles), so every decision is that of exact arithmetic on the
 //! stored `f64` positions.
 //!
-//! # What counts
-//!
-//! Two faces intersect when their (closed) fan triangles have a common
-//! point that is not explained by the corners they share:
-//!
-//! - faces with no common vertex: any common point counts, touching
-//!   included (a vertex resting on another face, two edges crossing);
-//! - faces sharing one vertex: a common point other than that vertex (a
-//!   face passing through the other, or an edge of one running along the
-//!   other's plane inside its corner);
-//! - faces sharing an edge (two vertices): a common point off that edge,
-//!   which happens only when they are coplanar and on the same side of the
-//!   edge (a fold flat onto itself); a dihedral angle of any size, however
-//!   small, is not an intersection.
-//!
-//! "Common vertex" means the same [`VertexKey`](crate::keys::VertexKey),
-//! not the same position: two distinct vertices at one position are a
-//! touch. An n-gon is tested through its fan triangles, and a face's own
-//! fan triangles are never tested against each other. A degenerate fan
-//! triangle (collinear corners) intersects nothing, as it is never hit by a
-//! ray either.
+//! What counts is on [`FaceTree::self_intersections`].
 
 use super::{FaceTree, Node};
 use crate::keys::{FaceKey, VertexKey};
@@ -41,9 +21,31 @@ use crate::vec3::V3;
 use super::error::QueryError;
 
 impl FaceTree {
-    /// The pairs of faces of `mesh` that intersect (see the
-    /// [module](self) for what counts), each as `(a, b)` with
-    /// `a.index() < b.index()`, once, sorted.
+    /// The pairs of faces of `mesh` that intersect (see below for what
+    /// counts), each as `(a, b)` with `a.index() < b.index()`, once,
+    /// sorted.
+    ///
+    /// # What counts
+    ///
+    /// Two faces intersect when their (closed) fan triangles have a common
+    /// point that is not explained by the corners they share:
+    ///
+    /// - faces with no common vertex: any common point counts, touching
+    ///   included (a vertex resting on another face, two edges crossing);
+    /// - faces sharing one vertex: a common point other than that vertex (a
+    ///   face passing through the other, or an edge of one running along the
+    ///   other's plane inside its corner);
+    /// - faces sharing an edge (two vertices): a common point off that edge,
+    ///   which happens only when they are coplanar and on the same side of the
+    ///   edge (a fold flat onto itself); a dihedral angle of any size, however
+    ///   small, is not an intersection.
+    ///
+    /// "Common vertex" means the same [`VertexKey`],
+    /// not the same position: two distinct vertices at one position are a
+    /// touch. An n-gon is tested through its fan triangles, and a face's own
+    /// fan triangles are never tested against each other. A degenerate fan
+    /// triangle (collinear corners) intersects nothing, as it is never hit by a
+    /// ray either.
     ///
     /// # Errors
     /// [`QueryError::StaleTree`] when `mesh` changed since the build (or is
@@ -104,7 +106,7 @@ impl FaceTree {
     /// let a = meshloom::shapes::cube();
     /// let mut b = meshloom::shapes::cube();
     /// for p in b.position_slots_mut().unwrap() {
-    ///     p[0] += 0.5; // half-way through the first cube
+    ///    p[0] += 0.5; // half-way through the first cube
     /// }
     /// let (ta, tb) = (FaceTree::build(&a)?, FaceTree::build(&b)?);
     /// assert!(!ta.intersecting_pairs(&a, &tb, &b)?.is_empty());
