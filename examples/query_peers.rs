@@ -51,6 +51,9 @@ fn main() {
     if wanted("winding_number_100k") {
         winding(&torus(), &points(), rounds);
     }
+    if wanted("self_intersections_100k") {
+        self_intersections(&torus(), rounds);
+    }
 }
 
 #[repr(C)]
@@ -164,6 +167,20 @@ fn winding(mesh: &Mesh, points: &[[f64; 3]], rounds: usize) {
         t,
         &format!("{} points", points.len()),
         &format!("{rate:.3e} queries/s; {inside} inside (w > 0.5); dipoles, accuracy 2"),
+    );
+}
+
+fn self_intersections(mesh: &Mesh, rounds: usize) {
+    let name = "self_intersections_100k";
+    let tree = build_line(name, mesh, rounds);
+    let (t, pairs) = time(rounds, || {
+        tree.self_intersections(mesh).expect("pairs").len()
+    });
+    line(
+        name,
+        t,
+        &format!("{pairs} pairs"),
+        "FaceTree::self_intersections (exact predicates)",
     );
 }
 
