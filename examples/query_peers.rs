@@ -3,7 +3,7 @@
 //! `closest_point_100k`, `winding_number_100k`, each with `.build`, on the
 //! files of its `gen_inputs.py`, printed in its tab-separated format; and
 //! meshloom's own `tree_update_1k_2m` (no peer: an update against a
-//! rebuild).
+//! rebuild) and `self_intersections_100k` (no peer in the kit).
 //!
 //! ```text
 //! cargo run --release --example query_peers -- target/peers/inputs [ROUNDS]
@@ -52,6 +52,9 @@ fn main() {
     }
     if wanted("winding_number_100k") {
         winding(&torus(), &points(), rounds);
+    }
+    if wanted("self_intersections_100k") {
+        self_intersections(&torus(), rounds);
     }
     if wanted("tree_update_1k_2m") {
         let mesh = meshloom::io::read(dir.join("torus_2m.off")).expect("mesh");
@@ -170,6 +173,20 @@ fn winding(mesh: &Mesh, points: &[[f64; 3]], rounds: usize) {
         t,
         &format!("{} points", points.len()),
         &format!("{rate:.3e} queries/s; {inside} inside (w > 0.5); dipoles, accuracy 2"),
+    );
+}
+
+fn self_intersections(mesh: &Mesh, rounds: usize) {
+    let name = "self_intersections_100k";
+    let tree = build_line(name, mesh, rounds);
+    let (t, pairs) = time(rounds, || {
+        tree.self_intersections(mesh).expect("pairs").len()
+    });
+    line(
+        name,
+        t,
+        &format!("{pairs} pairs"),
+        "FaceTree::self_intersections (exact predicates)",
     );
 }
 
