@@ -4,7 +4,7 @@
 //! With the `parallel` feature, large subtrees build their halves on two
 //! threads; the tree is the same node for node.
 
-use super::Node;
+use super::{round_down, round_up, Node};
 use crate::vec3::V3;
 
 const BINS: usize = 16;
@@ -49,13 +49,50 @@ fn half_area(lo: V3, hi: V3) -> f64 {
     d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
 }
 
-/// One triangle's box and centroid.
+/// A box in `f32`, rounded outwards from the triangle's `f64` corners.
+type B3 = [f32; 3];
+
+/// One triangle's box (outwards in `f32`: the union of such boxes is the
+/// outward rounding of the union, so node boxes come out as `f64` boxes
+/// rounded would). Its centroid is `lo + hi`, twice the true one: bins and
+/// splits only compare centroids.
 #[derive(Clone, Copy)]
 struct Prim {
-    lo: V3,
-    hi: V3,
-    c: V3,
+    lo: B3,
+    hi: B3,
     index: u32,
+}
+
+impl Prim {
+    /// Twice the centroid's coordinate on `axis`.
+    #[inline(always)]
+    fn c(&self, axis: usize) -> f32 {
+        self.lo[axis] + self.hi[axis]
+    }
+}
+
+/// The componentwise minimum in `f32`, where a NaN in `b` (never in `a`,
+/// which starts empty) is passed over as `f32::min` would, in one
+/// instruction a lane instead of `f32::min`'s several.
+#[inline(always)]
+fn min3f(a: B3, b: B3) -> B3 {
+    let m = |x: f32, y: f32| if y < x { y } else { x };
+    [m(a[0], b[0]), m(a[1], b[1]), m(a[2], b[2])]
+}
+
+/// The componentwise maximum in `f32`, as [`min3f`].
+#[inline(always)]
+fn max3f(a: B3, b: B3) -> B3 {
+    let m = |x: f32, y: f32| if y > x { y } else { x };
+    [m(a[0], b[0]), m(a[1], b[1]), m(a[2], b[2])]
+}
+
+/// An empty `f32` box.
+const EMPTY_F: (B3, B3) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+
+/// A node over the box `lo`–`hi`.
+fn node(lo: B3, hi: B3, first: u32, count: u32) -> Node {
+    Node::new(lo.map(f64::from), hi.map(f64::from), first, count)
 }
 
 /// The nodes (depth-first) and the triangles' leaf order.
@@ -68,21 +105,15 @@ pub(super) fn build(tris: &[[V3; 3]]) -> (Vec<Node>, Vec<u32>) {
     (nodes, prims.iter().map(|p| p.index).collect())
 }
 
-/// Each triangle's box and centroid.
+/// Each triangle's box.
 fn prims(tris: &[[V3; 3]]) -> Vec<Prim> {
     tris.iter()
         .enumerate()
         .map(|(i, t)| {
             let (lo, hi) = bounds(std::slice::from_ref(t));
-            let c = [
-                (lo[0] + hi[0]) * 0.5,
-                (lo[1] + hi[1]) * 0.5,
-                (lo[2] + hi[2]) * 0.5,
-            ];
             Prim {
-                lo,
-                hi,
-                c,
+                lo: lo.map(round_down),
+                hi: hi.map(round_up),
                 index: i as u32,
             }
         })
@@ -111,7 +142,7 @@ fn subtree(prims: &mut [Prim], base: usize) -> Vec<Node> {
                 n
             };
             let mut nodes = Vec::with_capacity(1 + a.len() + b.len());
-            nodes.push(Node::new(lo, hi, (1 + a.len()) as u32, Node::inner(0, 1)));
+            nodes.push(node(lo, hi, (1 + a.len()) as u32, Node::inner(0, 1)));
             let right = 1 + a.len();
             nodes.extend(a.into_iter().map(|n| shift(n, 1)));
             nodes.extend(b.into_iter().map(|n| shift(n, right)));
@@ -122,15 +153,16 @@ fn subtree(prims: &mut [Prim], base: usize) -> Vec<Node> {
     serial(prims, base)
 }
 
-/// The box and centroid box of `prims`.
-fn extent(prims: &[Prim]) -> (V3, V3, V3, V3) {
-    let (mut lo, mut hi) = EMPTY;
-    let (mut clo, mut chi) = EMPTY;
+/// The box and (doubled) centroid box of `prims`.
+fn extent(prims: &[Prim]) -> (B3, B3, B3, B3) {
+    let (mut lo, mut hi) = EMPTY_F;
+    let (mut clo, mut chi) = EMPTY_F;
     for p in prims {
-        lo = min3(lo, p.lo);
-        hi = max3(hi, p.hi);
-        clo = min3(clo, p.c);
-        chi = max3(chi, p.c);
+        lo = min3f(lo, p.lo);
+        hi = max3f(hi, p.hi);
+        let c = [p.c(0), p.c(1), p.c(2)];
+        clo = min3f(clo, c);
+        chi = max3f(chi, c);
     }
     (lo, hi, clo, chi)
 }
@@ -150,69 +182,56 @@ fn serial(prims: &mut [Prim], base: usize) -> Vec<Node> {
         let (lo, hi, clo, chi) = extent(slice);
         match split(slice, lo, hi, clo, chi) {
             Some(mid) => {
-                nodes.push(Node::new(lo, hi, 0, Node::inner(me, me + 1)));
+                nodes.push(node(lo, hi, 0, Node::inner(me, me + 1)));
                 stack.push((start + mid, end, Some(me)));
                 stack.push((start, start + mid, None));
             }
-            None => nodes.push(Node::new(
-                lo,
-                hi,
-                (base + start) as u32,
-                (end - start) as u32,
-            )),
+            None => nodes.push(node(lo, hi, (base + start) as u32, (end - start) as u32)),
         }
     }
     nodes
 }
 
+/// One bin: the box and count of the triangles whose centroids fall in it.
+#[derive(Clone, Copy)]
+struct Bin {
+    lo: B3,
+    hi: B3,
+    n: u32,
+}
+
+const EMPTY_BIN: Bin = Bin {
+    lo: EMPTY_F.0,
+    hi: EMPTY_F.1,
+    n: 0,
+};
+
 /// Partition `prims` at the best binned SAH split and return the size of
 /// the first part, or `None` for a leaf.
-fn split(prims: &mut [Prim], lo: V3, hi: V3, clo: V3, chi: V3) -> Option<usize> {
+fn split(prims: &mut [Prim], lo: B3, hi: B3, clo: B3, chi: B3) -> Option<usize> {
     let n = prims.len();
     if n <= 2 {
         return None;
     }
-    let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins left)
-    for axis in 0..3 {
+    // Per axis: the scale to bins, or 0 for a flat (or NaN) extent.
+    let scale = [0, 1, 2].map(|axis| {
         let extent = chi[axis] - clo[axis];
-        // Skips flat axes and NaN extents alike.
-        if extent.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-            continue;
+        if extent > 0.0 {
+            BINS as f32 / extent
+        } else {
+            0.0
         }
-        let scale = BINS as f64 / extent;
-        let mut bins = [(EMPTY.0, EMPTY.1, 0usize); BINS];
-        for p in prims.iter() {
-            let b = bin_of(p.c[axis], clo[axis], scale);
-            let e = &mut bins[b];
-            e.0 = min3(e.0, p.lo);
-            e.1 = max3(e.1, p.hi);
-            e.2 += 1;
-        }
-        // Sweep from the right: the area and count of bins k.. for each k.
-        let mut right = [(0.0f64, 0usize); BINS];
-        let (mut rlo, mut rhi, mut rn) = (EMPTY.0, EMPTY.1, 0);
-        for k in (1..BINS).rev() {
-            rlo = min3(rlo, bins[k].0);
-            rhi = max3(rhi, bins[k].1);
-            rn += bins[k].2;
-            right[k] = (half_area(rlo, rhi), rn);
-        }
-        let (mut llo, mut lhi, mut ln) = (EMPTY.0, EMPTY.1, 0);
-        for k in 1..BINS {
-            llo = min3(llo, bins[k - 1].0);
-            lhi = max3(lhi, bins[k - 1].1);
-            ln += bins[k - 1].2;
-            let (ra, rn) = right[k];
-            if ln == 0 || rn == 0 {
-                continue;
-            }
-            let cost = half_area(llo, lhi) * ln as f64 + ra * rn as f64;
+    });
+    let bins = fill_bins(prims, clo, scale);
+    let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins left)
+    for axis in (0..3).filter(|&a| scale[a] > 0.0) {
+        if let Some((cost, k)) = best_cut(&bins[axis]) {
             if best.is_none_or(|b| cost < b.0) {
                 best = Some((cost, axis, k));
             }
         }
     }
-    let area = half_area(lo, hi);
+    let area = half_area(lo.map(f64::from), hi.map(f64::from));
     match best {
         Some((cost, axis, k)) => {
             // Relative to one triangle test: traversal 1, leaf cost n.
@@ -220,10 +239,8 @@ fn split(prims: &mut [Prim], lo: V3, hi: V3, clo: V3, chi: V3) -> Option<usize> 
             if split_cost >= n as f64 && n <= MAX_LEAF {
                 return None;
             }
-            let extent = chi[axis] - clo[axis];
-            let scale = BINS as f64 / extent;
-            let mid = partition(prims, |p| bin_of(p.c[axis], clo[axis], scale) < k);
-            Some(mid)
+            let (c0, s) = (clo[axis], scale[axis]);
+            Some(partition(prims, |p| bin_of(p.c(axis), c0, s) < k))
         }
         None if n > MAX_LEAF => {
             // Every centroid coincides: split by halves.
@@ -233,9 +250,67 @@ fn split(prims: &mut [Prim], lo: V3, hi: V3, clo: V3, chi: V3) -> Option<usize> 
     }
 }
 
-/// The bin of centroid coordinate `c`.
+/// The bins of all three axes in one pass over `prims` (an axis of scale
+/// 0 is skipped).
+fn fill_bins(prims: &[Prim], clo: B3, scale: [f32; 3]) -> [[Bin; BINS]; 3] {
+    let mut bins = [[EMPTY_BIN; BINS]; 3];
+    for p in prims {
+        for axis in 0..3 {
+            if scale[axis] > 0.0 {
+                let e = &mut bins[axis][bin_of(p.c(axis), clo[axis], scale[axis])];
+                e.lo = min3f(e.lo, p.lo);
+                e.hi = max3f(e.hi, p.hi);
+                e.n += 1;
+            }
+        }
+    }
+    bins
+}
+
+/// The cut between bins of least SAH cost `A_L·N_L + A_R·N_R` and the
+/// number of bins left of it, if any cut leaves triangles on both sides.
+fn best_cut(bins: &[Bin; BINS]) -> Option<(f64, usize)> {
+    // Sweep from the right: the area and count of bins k.. for each k.
+    // Empty bins change nothing, so they cost nothing (a small node fills
+    // few of its bins).
+    let mut right = [(0.0f64, 0u32); BINS];
+    let (mut rlo, mut rhi, mut rn, mut ra) = (EMPTY_F.0, EMPTY_F.1, 0, 0.0);
+    for k in (1..BINS).rev() {
+        if bins[k].n > 0 {
+            rlo = min3f(rlo, bins[k].lo);
+            rhi = max3f(rhi, bins[k].hi);
+            rn += bins[k].n;
+            ra = half_area(rlo.map(f64::from), rhi.map(f64::from));
+        }
+        right[k] = (ra, rn);
+    }
+    let (mut llo, mut lhi, mut ln) = (EMPTY_F.0, EMPTY_F.1, 0);
+    let mut best: Option<(f64, usize)> = None;
+    for k in 1..BINS {
+        // A cut just right of an empty bin costs what the cut left of it
+        // did: the first of them is kept, as a strict `<` would.
+        if bins[k - 1].n == 0 {
+            continue;
+        }
+        llo = min3f(llo, bins[k - 1].lo);
+        lhi = max3f(lhi, bins[k - 1].hi);
+        ln += bins[k - 1].n;
+        let (ra, rn) = right[k];
+        if rn == 0 {
+            break;
+        }
+        let l_area = half_area(llo.map(f64::from), lhi.map(f64::from));
+        let cost = l_area * f64::from(ln) + ra * f64::from(rn);
+        if best.is_none_or(|b| cost < b.0) {
+            best = Some((cost, k));
+        }
+    }
+    best
+}
+
+/// The bin of (doubled) centroid coordinate `c`.
 #[inline(always)]
-fn bin_of(c: f64, lo: f64, scale: f64) -> usize {
+fn bin_of(c: f32, lo: f32, scale: f32) -> usize {
     // NaN or negative casts to 0; the top edge goes to the last bin.
     (((c - lo) * scale) as usize).min(BINS - 1)
 }
