@@ -21,10 +21,10 @@
 //!    (default 5) towards the area-weighted centroid of its triangles,
 //!    moved in its tangent plane only;
 //! 5. *project* every vertex that moved back onto the input surface: the
-//!    closest point on the input triangles, found through a bounding-volume
-//!    hierarchy built once from a copy of the input taken before any edit
-//!    (our own, `remesh/bvh.rs`: median split, warm-started with the
-//!    triangle each vertex was last projected onto).
+//!    closest point on the input triangles, found through the shared
+//!    [`FaceTree`](crate::query::FaceTree) built once over the input (the
+//!    working copy is edited, the input is not), warm-started with the
+//!    triangle each vertex was last projected onto.
 //!
 //! After the rounds, [`RemeshOptions::remove_caps`] (default on) flips
 //! each edge opposite an angle over 170° where that lowers the largest
@@ -92,8 +92,7 @@
 //! `remesh/setup.rs` the checks and classification before any change;
 //! `remesh/reference.rs` the input surface; `remesh/engine.rs` the working
 //! state and the split, collapse, flip and cap passes; `remesh/relax.rs`
-//! relaxation and projection; `remesh/resample.rs` the columns' resampling;
-//! `remesh/bvh.rs` the closest-point hierarchies.
+//! relaxation and projection; `remesh/resample.rs` the columns' resampling.
 //! `BENCHMARKS.md` times it beside pmp-library and CGAL
 //! (`uniform_remeshing`).
 //!
@@ -116,7 +115,6 @@
 //! # Ok::<(), meshloom::Error>(())
 //! ```
 
-mod bvh;
 mod engine;
 mod reference;
 mod relax;
@@ -375,7 +373,7 @@ fn remesh_run(
         return Ok(report);
     }
     let mut work = mesh.clone();
-    let mut engine = Engine::new(mesh, &work, setup);
+    let mut engine = Engine::new(mesh, &work, setup)?;
     for i in 0..options.iterations {
         progress.report(ALGORITHM, "iterations", i as u64, options.iterations as u64)?;
         report.splits += engine.split_long_edges(&mut work);

@@ -3,7 +3,7 @@
 
 use super::error::{check_bound, check_point, QueryError};
 use super::ray::batch;
-use super::{FaceCoords, FaceTree};
+use super::{FaceCoords, FaceTree, Node};
 use crate::keys::{FaceKey, VertexKey};
 use crate::mesh::Mesh;
 use crate::vec3::{self, V3};
@@ -36,7 +36,7 @@ pub struct Nearest {
 /// The closest point of triangle `p` to `q` and its barycentric weights
 /// (Ericson, Real-Time Collision Detection, 5.1.5).
 #[inline]
-fn closest_on_triangle(q: V3, p: &[V3; 3]) -> (V3, [f64; 3]) {
+pub(super) fn closest_on_triangle(q: V3, p: &[V3; 3]) -> (V3, [f64; 3]) {
     let [a, b, c] = *p;
     let ab = vec3::sub(b, a);
     let ac = vec3::sub(c, a);
@@ -123,7 +123,7 @@ fn within(c: &Closest, max_distance: Option<f64>) -> bool {
 
 /// The squared distance from `q` to the box, shrunk by [`SLACK`].
 #[inline(always)]
-fn box_dist2(q: V3, lo: V3, hi: V3) -> f64 {
+pub(super) fn box_dist2(q: V3, lo: V3, hi: V3) -> f64 {
     let mut s = 0.0;
     for k in 0..3 {
         let d = (lo[k] - q[k]).max(q[k] - hi[k]).max(0.0);
@@ -361,43 +361,56 @@ impl FaceTree {
         stack: &mut Vec<u32>,
         mut visit: impl FnMut(&FaceTree, usize) -> f64,
     ) {
-        if self.nodes.is_empty() {
-            return;
-        }
-        let mut bound = bound;
-        stack.clear();
-        let mut node = 0usize;
-        loop {
-            let n = &self.nodes[node];
-            if n.is_leaf() {
-                let first = n.first as usize;
-                for tri in first..first + n.count as usize {
-                    bound = visit(self, tri);
-                }
-            } else {
-                let (a, b) = n.children(node);
-                let da = key(self.nodes[a].lo(), self.nodes[a].hi());
-                let db = key(self.nodes[b].lo(), self.nodes[b].hi());
-                let (near, dn, far, df) = if da <= db {
-                    (a, da, b, db)
-                } else {
-                    (b, db, a, da)
-                };
-                if dn <= bound {
-                    if df <= bound {
-                        stack.push(far as u32);
-                    }
-                    node = near;
-                    continue;
-                }
+        walk_nodes(&self.nodes, key, bound, stack, |tri| visit(self, tri));
+    }
+}
+
+/// [`FaceTree::walk_nearest`] over any hierarchy of [`Node`]s (the
+/// segment tree's too): `visit(item)` gets each item of a leaf in reach.
+#[inline]
+pub(super) fn walk_nodes(
+    nodes: &[Node],
+    key: impl Fn(V3, V3) -> f64,
+    bound: f64,
+    stack: &mut Vec<u32>,
+    mut visit: impl FnMut(usize) -> f64,
+) {
+    if nodes.is_empty() {
+        return;
+    }
+    let mut bound = bound;
+    stack.clear();
+    let mut node = 0usize;
+    loop {
+        let n = &nodes[node];
+        if n.is_leaf() {
+            let first = n.first as usize;
+            for item in first..first + n.count as usize {
+                bound = visit(item);
             }
-            loop {
-                let Some(next) = stack.pop() else { return };
-                let m = &self.nodes[next as usize];
-                if key(m.lo(), m.hi()) <= bound {
-                    node = next as usize;
-                    break;
+        } else {
+            let (a, b) = n.children(node);
+            let da = key(nodes[a].lo(), nodes[a].hi());
+            let db = key(nodes[b].lo(), nodes[b].hi());
+            let (near, dn, far, df) = if da <= db {
+                (a, da, b, db)
+            } else {
+                (b, db, a, da)
+            };
+            if dn <= bound {
+                if df <= bound {
+                    stack.push(far as u32);
                 }
+                node = near;
+                continue;
+            }
+        }
+        loop {
+            let Some(next) = stack.pop() else { return };
+            let m = &nodes[next as usize];
+            if key(m.lo(), m.hi()) <= bound {
+                node = next as usize;
+                break;
             }
         }
     }

@@ -54,9 +54,11 @@
 mod build;
 mod closest;
 mod error;
+mod hinted;
 mod intersect;
 mod pick;
 mod ray;
+mod segments;
 mod update;
 mod winding;
 
@@ -66,6 +68,8 @@ pub use pick::{Cone, NearestEdge, Occlusion, Pick};
 pub use ray::{Hit, Ray};
 pub use update::UpdateReport;
 pub use winding::WindingMode;
+
+pub(crate) use segments::SegmentTree;
 #[doc(hidden)]
 pub use {
     closest::triangle_closest,

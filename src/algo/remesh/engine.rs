@@ -2,11 +2,11 @@
 //! passes: split long edges, collapse short ones, flip towards valence 6,
 //! remove caps.
 
-use super::bvh::Bvh;
 use super::reference::Reference;
 use super::setup::{same_apex, ResampleColumn, Setup, E_LINE, E_LOCKED};
 use super::EdgeLengthStats;
 use crate::algo::constraints::{FIXED, FREE, LINE};
+use crate::error::Result;
 use crate::journal::Unrecorded;
 use crate::layout::{Eid, Hid, Vid};
 use crate::mesh::Mesh;
@@ -15,6 +15,8 @@ use crate::vec3::{cross, dist2, dot, sub, V3};
 /// The remesher's state over the working copy.
 pub(super) struct Engine {
     pub(super) reference: Reference,
+    /// Scratch space for the tree walks.
+    pub(super) stack: Vec<u32>,
     pub(super) uniform: Option<f64>,
     /// Per vertex slot.
     pub(super) kind: Vec<u8>,
@@ -30,25 +32,8 @@ pub(super) struct Engine {
 }
 
 impl Engine {
-    pub(super) fn new(input: &Mesh, work: &Mesh, setup: Setup) -> Engine {
+    pub(super) fn new(input: &Mesh, work: &Mesh, setup: Setup) -> Result<Engine> {
         let pos = input.position_slots().unwrap_or(&[]);
-        let nf = input.slot_counts()[3];
-        let mut tri_of_face = vec![u32::MAX; nf];
-        let mut tris = Vec::with_capacity(input.face_count());
-        let mut corners = Vec::with_capacity(input.face_count());
-        let mut tri_vertices = Vec::with_capacity(input.face_count());
-        for f in input.fids() {
-            if input.is_hole(f) {
-                continue;
-            }
-            let h0 = input.face_halfedge(f);
-            let h1 = input.next(h0);
-            let h2 = input.next(h1);
-            tri_of_face[f.index()] = tris.len() as u32;
-            tris.push([h0, h1, h2].map(|h| pos[input.origin(h).index()]));
-            corners.push([h0, h1, h2]);
-            tri_vertices.push([h0, h1, h2].map(|h| input.origin(h).raw()));
-        }
         let mut segs = Vec::new();
         for e in input.eids() {
             if setup.edges[e.index()] & E_LINE != 0 {
@@ -56,6 +41,7 @@ impl Engine {
                 segs.push([pos[input.origin(h).index()], pos[input.origin(t).index()]]);
             }
         }
+        let reference = Reference::new(input, &segs, setup.sizing.clone())?;
         let nv = work.slot_counts()[0];
         let mut hint = vec![0u32; nv];
         for v in input.vids() {
@@ -67,19 +53,13 @@ impl Engine {
             } else {
                 h
             };
-            let t = tri_of_face[input.face_of(h).index()];
+            let t = reference.tri_of_face[input.face_of(h).index()];
             hint[v.index()] = if t == u32::MAX { 0 } else { t };
         }
         let uniform = setup.uniform.then_some(setup.target_length);
-        Engine {
-            reference: Reference {
-                tris: Bvh::new(tris),
-                corners,
-                tri_vertices,
-                tri_of_face,
-                lines: Bvh::new(segs),
-                sizing: setup.sizing.clone(),
-            },
+        Ok(Engine {
+            reference,
+            stack: Vec::new(),
             uniform,
             kind: setup.kinds,
             sizing: setup.sizing,
@@ -89,7 +69,7 @@ impl Engine {
             update: Vec::new(),
             valence: Vec::new(),
             resample: setup.resample,
-        }
+        })
     }
 
     /// Grow the per-slot arrays to the mesh's slot counts.

@@ -163,6 +163,7 @@ impl Engine {
         let nv = mesh.slot_counts()[0];
         let adaptive = self.uniform.is_none();
         let reference = &self.reference;
+        let stack = &mut self.stack;
         let (live, attrs) = mesh.vertex_arena_and_attrs_mut();
         let Some(pos) = attrs.positions_mut().map(|c| c.raw_mut()) else {
             return;
@@ -173,18 +174,19 @@ impl Engine {
             }
             match self.kind[i] {
                 FREE => {
-                    if let Some(hit) = reference.tris.closest(*p, Some(self.hint[i])) {
-                        *p = hit.point;
-                        self.hint[i] = hit.prim;
+                    if let Some(near) = reference.tree.closest_near(*p, Some(self.hint[i]), stack) {
+                        *p = near.point;
+                        self.hint[i] = near.tri;
                         if adaptive {
-                            self.sizing[i] = reference.interpolate_sizing(hit.prim, hit.bary);
+                            self.sizing[i] = reference.interpolate_sizing(near.tri, near.weights);
                         }
                     }
                 }
                 LINE => {
-                    if let Some(hit) = reference.lines.closest(*p, Some(self.line_hint[i])) {
-                        *p = hit.point;
-                        self.line_hint[i] = hit.prim;
+                    if let Some(near) = reference.lines.closest(*p, Some(self.line_hint[i]), stack)
+                    {
+                        *p = near.point;
+                        self.line_hint[i] = near.seg;
                     }
                 }
                 _ => {}

@@ -10,7 +10,7 @@ impl Engine {
     /// Resample the chosen vertex and corner columns of `work` from
     /// `input` (see the module docs).
     pub(super) fn resample(&mut self, input: &Mesh, work: &mut Mesh) {
-        if self.resample.is_empty() || self.reference.tris.is_empty() {
+        if self.resample.is_empty() || self.reference.tree.triangle_count() == 0 {
             return;
         }
         self.fit(work);
@@ -20,8 +20,13 @@ impl Engine {
         let mut at: Vec<(u32, [f64; 3])> = vec![(u32::MAX, [0.0; 3]); nv];
         for v in work.vids() {
             let i = v.index();
-            if let Some(hit) = self.reference.tris.closest(pos[i], Some(self.hint[i])) {
-                at[i] = (hit.prim, hit.bary);
+            let hint = Some(self.hint[i]);
+            if let Some(near) = self
+                .reference
+                .tree
+                .closest_near(pos[i], hint, &mut self.stack)
+            {
+                at[i] = (near.tri, near.weights);
             }
         }
         self.resample_vertex_columns(input, work, &at);
@@ -73,7 +78,7 @@ impl Engine {
     /// input triangle under its vertex, on its own face's side of the
     /// column's seams.
     pub(super) fn resample_corner_columns(
-        &self,
+        &mut self,
         input: &Mesh,
         work: &mut Mesh,
         pos: &[V3],
@@ -81,6 +86,7 @@ impl Engine {
         cols: &[usize],
     ) {
         let reference = &self.reference;
+        let stack = &mut self.stack;
         // Per face of the result: the triangle under its centroid.
         let faces: Vec<(Fid, [Hid; 3])> = work
             .fids()
@@ -98,9 +104,9 @@ impl Engine {
                 let c = [0, 1, 2].map(|k| (ps[0][k] + ps[1][k] + ps[2][k]) / 3.0);
                 let hint = at[work.origin(hs[0]).index()].0;
                 reference
-                    .tris
-                    .closest(c, (hint != u32::MAX).then_some(hint))
-                    .map_or(u32::MAX, |hit| hit.prim)
+                    .tree
+                    .closest_near(c, (hint != u32::MAX).then_some(hint), stack)
+                    .map_or(u32::MAX, |near| near.tri)
             })
             .collect();
         for &ci in cols {
@@ -118,11 +124,13 @@ impl Engine {
                         (tv, bv)
                     } else {
                         let keep = |t: u32| islands[t as usize] == island;
-                        match reference
-                            .tris
-                            .closest_filtered(pos[v.index()], Some(tf), &keep)
-                        {
-                            Some(hit) => (hit.prim, hit.bary),
+                        match reference.tree.closest_near_where(
+                            pos[v.index()],
+                            Some(tf),
+                            keep,
+                            stack,
+                        ) {
+                            Some(near) => (near.tri, near.weights),
                             None => continue,
                         }
                     };
