@@ -51,7 +51,7 @@ struct MallInfo2 {
     fordblks: usize,
     keepcost: usize,
 }
-extern "C" {
+unsafe extern "C" {
     fn clock_gettime(clk: i32, ts: *mut Timespec) -> i32;
     fn mallinfo2() -> MallInfo2;
 }

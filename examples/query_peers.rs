@@ -67,7 +67,7 @@ struct Timespec {
     tv_sec: i64,
     tv_nsec: i64,
 }
-extern "C" {
+unsafe extern "C" {
     fn clock_gettime(clk: i32, ts: *mut Timespec) -> i32;
 }
 

@@ -432,7 +432,7 @@ impl<I: Id, T> IdVec<I, T> {
 
     /// The ids of every entry, in order.
     #[inline]
-    pub(crate) fn ids(&self) -> impl Iterator<Item = I> {
+    pub(crate) fn ids(&self) -> impl Iterator<Item = I> + use<I, T> {
         (0..self.raw.len()).map(I::from_index)
     }
 }

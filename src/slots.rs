@@ -473,7 +473,7 @@ impl Slots {
         if let Some((i, g)) = generations
             .iter()
             .enumerate()
-            .find(|(_, &g)| g < base || (g & 1 == 1 && g > MAX_LIVE_GENERATION))
+            .find(|&(_, &g)| g < base || (g & 1 == 1 && g > MAX_LIVE_GENERATION))
         {
             return Err(if *g < base {
                 format!("slot {i} has generation {g}, below the base generation {base}")

@@ -378,7 +378,7 @@ impl<K: Element, T: Attribute> AttrViewMut<'_, K, T> {
     }
 
     /// Every live element that has a value, with it mutably, in slot order.
-    pub fn iter_mut(&mut self) -> impl Iterator<Item = (K, &mut T)> + '_ {
+    pub fn iter_mut(&mut self) -> impl Iterator<Item = (K, &mut T)> + use<'_, K, T> {
         let (slots, shift, present) = (self.slots, self.shift, self.present.as_deref());
         self.values
             .iter_mut()

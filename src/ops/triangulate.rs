@@ -363,7 +363,7 @@ fn fan(n: u32, joined: impl Fn(u32, u32) -> bool, ears: &mut Vec<Ear>) -> bool {
 
 /// A map from 3D points to the plane of their Newell normal, keeping the
 /// polygon's orientation counter-clockwise.
-fn projector(pts: &[[f64; 3]]) -> impl Fn([f64; 3]) -> [f64; 2] {
+fn projector(pts: &[[f64; 3]]) -> impl Fn([f64; 3]) -> [f64; 2] + use<> {
     let n = newell(pts);
     let k = if n[0].abs() >= n[1].abs() && n[0].abs() >= n[2].abs() {
         0

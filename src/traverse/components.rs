@@ -119,7 +119,7 @@ impl Components {
         self.vertex
             .iter()
             .enumerate()
-            .filter(move |(_, &(_, id))| id as usize == c && id != NONE)
+            .filter(move |&(_, &(_, id))| id as usize == c && id != NONE)
             .map(|(i, &(g, _))| VertexKey::new(i as u32, g))
     }
 }

@@ -163,7 +163,7 @@ impl Gather {
     /// their corner values and materials.
     fn add_triangles(&mut self, inst: &Instance, w: &Welded) {
         let base = (self.soup.polygons.positions.len() - w.positions.len()) as u32;
-        let kept = inst.triangles.iter().zip(&w.keep).filter(|(_, &k)| k);
+        let kept = inst.triangles.iter().zip(&w.keep).filter(|&(_, &k)| k);
         for ((c, at, material), _) in kept {
             let mut c = *c;
             if inst.mirrored {

@@ -102,7 +102,7 @@ fn by_position(inst: &Instance) -> Result<Welded, Error> {
         offsets: vec![0],
         indices: Vec::new(),
     };
-    for ((c, _, _), _) in inst.triangles.iter().zip(&keep).filter(|(_, &k)| k) {
+    for ((c, _, _), _) in inst.triangles.iter().zip(&keep).filter(|&(_, &k)| k) {
         p.indices.extend_from_slice(c);
         p.offsets.push(p.indices.len() as u32);
     }
@@ -115,7 +115,7 @@ fn by_position(inst: &Instance) -> Result<Welded, Error> {
     // Corners keep their order (welding rebuilds no face): each names the
     // welded vertex of the instance vertex it named.
     let mut rep = vec![u32::MAX; n];
-    let kept = inst.triangles.iter().zip(&keep).filter(|(_, &k)| k);
+    let kept = inst.triangles.iter().zip(&keep).filter(|&(_, &k)| k);
     for (((c, _, _), _), w) in kept.zip(p.indices.chunks_exact(3)) {
         for k in 0..3 {
             rep[c[k] as usize] = w[k];
