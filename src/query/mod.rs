@@ -13,10 +13,11 @@
 //! triangles' corner positions are copied into the tree in leaf order (72
 //! bytes a triangle), so a query reads the tree's memory only. The tree is
 //! a binned surface-area-heuristic (SAH) hierarchy with 16 bins per axis,
-//! stored as a flat array of nodes in depth-first order (an inner node's
-//! first child is the next node), built in one pass with an explicit stack.
-//! Node boxes are `f32`, rounded outwards: a ray cast is bound by loading
-//! nodes, and 32-byte nodes load faster than 56-byte ones.
+//! stored as a flat array of nodes, children after their parent and side
+//! by side (a walk tests both, and loads them together), built in one pass
+//! with an explicit stack. Node boxes are `f32`, rounded outwards: a ray
+//! cast is bound by loading nodes, and 32-byte nodes load faster than
+//! 56-byte ones.
 //!
 //! # Kept honest under edits
 //!

@@ -1,7 +1,7 @@
 //! Rays against the tree: the first hit, every hit, any hit.
 
 use super::error::{check_bound, QueryError};
-use super::{FaceCoords, FaceTree};
+use super::{FaceCoords, FaceTree, Node};
 use crate::keys::FaceKey;
 use crate::mesh::Mesh;
 use crate::vec3::{self, V3};
@@ -65,27 +65,75 @@ struct Prepared {
     o: V3,
     d: V3,
     inv: V3,
+    /// Whether a component of `1 / d` is infinite (`d` has a zero): then
+    /// `0 · ∞ = NaN` can arise and the box test takes the careful path.
+    flat: bool,
+}
+
+/// The smaller, in one instruction (NaN is never passed on the fast path).
+#[inline(always)]
+fn fmin(a: f64, b: f64) -> f64 {
+    if a < b {
+        a
+    } else {
+        b
+    }
+}
+
+/// The larger, as [`fmin`].
+#[inline(always)]
+fn fmax(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
 }
 
 impl Prepared {
     fn new(r: &Ray) -> Prepared {
         let d = r.direction;
+        let inv = [1.0 / d[0], 1.0 / d[1], 1.0 / d[2]];
         Prepared {
             o: r.origin,
             d,
-            inv: [1.0 / d[0], 1.0 / d[1], 1.0 / d[2]],
+            inv,
+            flat: !inv.iter().all(|x| x.is_finite()),
         }
     }
 
     /// The entry parameter of the box if the ray meets it within
-    /// `[0, t_max]` (widened by [`SLACK`]), else `None`.
+    /// `[0, t_max]` (widened by [`SLACK`]), else `+∞`.
     #[inline(always)]
-    fn enter(&self, lo: V3, hi: V3, t_max: f64) -> Option<f64> {
+    fn enter(&self, n: &Node, t_max: f64) -> f64 {
+        if self.flat {
+            return self.enter_flat(n, t_max);
+        }
+        // `inv` is finite: no product is NaN, and the one-instruction
+        // min and max are exact.
         let mut near = 0.0f64;
         let mut far = t_max;
         for k in 0..3 {
-            let a = (lo[k] - self.o[k]) * self.inv[k];
-            let b = (hi[k] - self.o[k]) * self.inv[k];
+            let a = (f64::from(n.lo[k]) - self.o[k]) * self.inv[k];
+            let b = (f64::from(n.hi[k]) - self.o[k]) * self.inv[k];
+            near = fmax(near, fmin(a, b));
+            far = fmin(far, fmax(a, b));
+        }
+        if near <= far + SLACK * fmax(far.abs(), near) {
+            near
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// [`enter`](Prepared::enter) for a ray parallel to an axis.
+    #[cold]
+    fn enter_flat(&self, n: &Node, t_max: f64) -> f64 {
+        let mut near = 0.0f64;
+        let mut far = t_max;
+        for k in 0..3 {
+            let a = (f64::from(n.lo[k]) - self.o[k]) * self.inv[k];
+            let b = (f64::from(n.hi[k]) - self.o[k]) * self.inv[k];
             if a.is_nan() || b.is_nan() {
                 // 0 · ∞: the ray runs in a plane of the slab, so inside
                 // it; the axis does not restrict.
@@ -94,7 +142,11 @@ impl Prepared {
             near = near.max(a.min(b));
             far = far.min(a.max(b));
         }
-        (near <= far + SLACK * far.abs().max(near.abs())).then_some(near)
+        if near <= far + SLACK * far.abs().max(near.abs()) {
+            near
+        } else {
+            f64::INFINITY
+        }
     }
 }
 
@@ -306,31 +358,28 @@ impl FaceTree {
                 }
             } else {
                 let (a, b) = n.children(node);
-                let ta = r.enter(self.nodes[a].lo(), self.nodes[a].hi(), t_max);
-                let tb = r.enter(self.nodes[b].lo(), self.nodes[b].hi(), t_max);
-                match (ta, tb) {
-                    (Some(x), Some(y)) => {
-                        let (near, far) = if x <= y { (a, b) } else { (b, a) };
+                let ta = r.enter(&self.nodes[a], t_max);
+                let tb = r.enter(&self.nodes[b], t_max);
+                if ta < f64::INFINITY {
+                    if tb < f64::INFINITY {
+                        let (near, far) = if ta <= tb { (a, b) } else { (b, a) };
                         stack.push(far as u32);
                         node = near;
-                        continue;
-                    }
-                    (Some(_), None) => {
+                    } else {
                         node = a;
-                        continue;
                     }
-                    (None, Some(_)) => {
-                        node = b;
-                        continue;
-                    }
-                    (None, None) => {}
+                    continue;
+                }
+                if tb < f64::INFINITY {
+                    node = b;
+                    continue;
                 }
             }
             // Pop, skipping nodes the shrunk `t_max` rules out.
             loop {
                 let Some(next) = stack.pop() else { return };
                 let m = &self.nodes[next as usize];
-                if r.enter(m.lo(), m.hi(), t_max).is_some() {
+                if r.enter(m, t_max) < f64::INFINITY {
                     node = next as usize;
                     break;
                 }
@@ -341,11 +390,9 @@ impl FaceTree {
     /// Whether the root box meets the ray (an empty tree: no).
     #[cfg(test)]
     pub(super) fn root_met(&self, ray: &Ray) -> bool {
-        self.nodes.first().is_some_and(|n| {
-            Prepared::new(ray)
-                .enter(n.lo(), n.hi(), f64::INFINITY)
-                .is_some()
-        })
+        self.nodes
+            .first()
+            .is_some_and(|n| Prepared::new(ray).enter(n, f64::INFINITY) < f64::INFINITY)
     }
 }
 

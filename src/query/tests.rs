@@ -29,11 +29,11 @@ fn every_triangle_sits_in_one_leaf_inside_every_box_on_its_path() {
                 }
             }
         } else {
-            // A build lays the first child next.
-            assert_eq!(n.children(i).0, i + 1);
-            assert!(n.first as usize > i + 1);
-            stack.push((i + 1, n.lo(), n.hi()));
-            stack.push((n.first as usize, n.lo(), n.hi()));
+            // A build lays the children side by side, after their parent.
+            let (a, b) = n.children(i);
+            assert!(a > i && b == a + 1);
+            stack.push((a, n.lo(), n.hi()));
+            stack.push((b, n.lo(), n.hi()));
         }
     }
     assert!(seen.iter().all(|&c| c == 1));
