@@ -74,7 +74,10 @@ fn time<R>(rounds: usize, mut f: impl FnMut() -> R) -> ([f64; 4], R) {
     cpus.sort_by(f64::total_cmp);
     walls.sort_by(f64::total_cmp);
     let n = cpus.len();
-    ([cpus[n / 2], cpus[0], cpus[n - 1], walls[n / 2]], out.unwrap())
+    (
+        [cpus[n / 2], cpus[0], cpus[n - 1], walls[n / 2]],
+        out.unwrap(),
+    )
 }
 
 fn line(name: &str, t: [f64; 4], counts: &str, note: &str) {
@@ -207,7 +210,10 @@ fn main() {
     let dir = Path::new(args.get(1).map_or("target/peers/inputs", String::as_str));
     let rounds: usize = args.get(2).and_then(|r| r.parse().ok()).unwrap_or(3);
     let only = std::env::var("BENCH_ONLY").ok();
-    let wanted = |name: &str| only.as_deref().is_none_or(|o| o.split(',').any(|w| w == name));
+    let wanted = |name: &str| {
+        only.as_deref()
+            .is_none_or(|o| o.split(',').any(|w| w == name))
+    };
     println!("# parry3d-f64 0.31 bench: rounds {rounds}, clock process CPU, one thread");
     for (kind, file) in [("random", "rays_1m.obj"), ("camera", "rays_camera_1m.obj")] {
         let mut rays = None;
@@ -224,7 +230,10 @@ fn main() {
             let rays = rays.get_or_insert_with(|| {
                 let o = read_tagged(&path, "v");
                 let d = read_tagged(&path, "vn");
-                o.into_iter().zip(d).map(|(o, d)| Ray::new(o, d)).collect::<Vec<_>>()
+                o.into_iter()
+                    .zip(d)
+                    .map(|(o, d)| Ray::new(o, d))
+                    .collect::<Vec<_>>()
             });
             let mesh = read_off(&dir.join(format!("torus_{tag}.off")));
             ray_cast(&name, &mesh, rays, rounds);
