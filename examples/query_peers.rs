@@ -1,5 +1,6 @@
 //! meshloom's side of the pypeers spatial-query workloads
 //! (`../shared/peers/pypeers/README.md`): `ray_cast_random_{100k,2m}`,
+//! `ray_cast_camera_{100k,2m}` (coherent rays from `bench/camera_rays.py`),
 //! `closest_point_100k`, `winding_number_100k`, each with `.build`, on the
 //! files of its `gen_inputs.py`, printed in its tab-separated format; and
 //! meshloom's own `tree_update_1k_2m` (no peer: an update against a
@@ -42,6 +43,26 @@ fn main() {
             continue;
         }
         let rays = rays.get_or_insert_with(|| read_rays(&dir.join("rays_1m.obj")));
+        let mesh = meshloom::io::read(dir.join(file)).expect("mesh");
+        ray_cast(name, &mesh, rays, rounds);
+    }
+    let camera = dir.join("rays_camera_1m.obj");
+    let mut camera_rays = None;
+    for (name, file) in [
+        ("ray_cast_camera_100k", "torus_100k.off"),
+        ("ray_cast_camera_2m", "torus_2m.off"),
+    ] {
+        if !wanted(name) {
+            continue;
+        }
+        if !camera.exists() {
+            println!(
+                "# {name}: no {} (python3 bench/camera_rays.py writes it)",
+                camera.display()
+            );
+            continue;
+        }
+        let rays = camera_rays.get_or_insert_with(|| read_rays(&camera));
         let mesh = meshloom::io::read(dir.join(file)).expect("mesh");
         ray_cast(name, &mesh, rays, rounds);
     }
