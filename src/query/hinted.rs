@@ -42,64 +42,15 @@ impl FaceTree {
         hint: Option<u32>,
         stack: &mut Vec<u32>,
     ) -> Option<Near> {
-        self.near(q, hint, |_| true, stack)
+        self.closest_near_where(q, hint, |_| true, stack)
     }
 
     /// [`closest_near`](FaceTree::closest_near) over the fan triangles
     /// `keep` accepts (by their place in the tree) only; a hint it refuses
-    /// is not used. `None` when it accepts none.
+    /// is not used. `None` when it accepts none. The hint's distance is
+    /// the walk's first bound, and the hint is not tested twice.
+    #[inline]
     pub(crate) fn closest_near_where(
-        &self,
-        q: V3,
-        hint: Option<u32>,
-        keep: impl Fn(u32) -> bool,
-        stack: &mut Vec<u32>,
-    ) -> Option<Near> {
-        self.near(q, hint, keep, stack)
-    }
-
-    /// The face of fan triangle `tri` (a place in the tree, as
-    /// [`Near::tri`]).
-    #[inline]
-    pub(crate) fn triangle_face(&self, tri: u32) -> FaceKey {
-        self.meta[tri as usize].face
-    }
-
-    /// The corners of fan triangle `tri`, in the order of
-    /// [`Near::weights`].
-    #[inline]
-    pub(crate) fn triangle_vertices(&self, tri: u32) -> [VertexKey; 3] {
-        self.meta[tri as usize].v
-    }
-
-    /// The face corner index of fan triangle `tri`'s second corner: its
-    /// corners are its face's corners `0`, `fan` and `fan + 1`, counted
-    /// from the face's half-edge.
-    #[inline]
-    pub(crate) fn triangle_fan(&self, tri: u32) -> u32 {
-        self.meta[tri as usize].fan
-    }
-
-    /// Per face slot below `slots`, the place of the face's first fan
-    /// triangle (`u32::MAX` for slots without a face in the tree): hints to
-    /// start from a face.
-    pub(crate) fn first_triangles(&self, slots: usize) -> Vec<u32> {
-        let mut out = vec![u32::MAX; slots];
-        self.for_each_leaf(|_, range| {
-            for tri in range {
-                let m = &self.meta[tri];
-                if m.fan == 1 && m.face.index() < slots {
-                    out[m.face.index()] = tri as u32;
-                }
-            }
-        });
-        out
-    }
-
-    /// The walk behind the hinted queries: the hint's distance is the
-    /// first bound, and the hint is not tested twice.
-    #[inline]
-    fn near(
         &self,
         q: V3,
         hint: Option<u32>,
@@ -140,6 +91,44 @@ impl FaceTree {
             bound
         });
         best
+    }
+
+    /// The face of fan triangle `tri` (a place in the tree, as
+    /// [`Near::tri`]).
+    #[inline]
+    pub(crate) fn triangle_face(&self, tri: u32) -> FaceKey {
+        self.meta[tri as usize].face
+    }
+
+    /// The corners of fan triangle `tri`, in the order of
+    /// [`Near::weights`].
+    #[inline]
+    pub(crate) fn triangle_vertices(&self, tri: u32) -> [VertexKey; 3] {
+        self.meta[tri as usize].v
+    }
+
+    /// The face corner index of fan triangle `tri`'s second corner: its
+    /// corners are its face's corners `0`, `fan` and `fan + 1`, counted
+    /// from the face's half-edge.
+    #[inline]
+    pub(crate) fn triangle_fan(&self, tri: u32) -> u32 {
+        self.meta[tri as usize].fan
+    }
+
+    /// Per face slot below `slots`, the place of the face's first fan
+    /// triangle (`u32::MAX` for slots without a face in the tree): hints to
+    /// start from a face.
+    pub(crate) fn first_triangles(&self, slots: usize) -> Vec<u32> {
+        let mut out = vec![u32::MAX; slots];
+        self.for_each_leaf(|_, range| {
+            for tri in range {
+                let m = &self.meta[tri];
+                if m.fan == 1 && m.face.index() < slots {
+                    out[m.face.index()] = tri as u32;
+                }
+            }
+        });
+        out
     }
 }
 
