@@ -20,7 +20,6 @@ fn first_hits_equal_brute_force() {
             [0, 1, 2].map(|k| lo[k] - pad[k]),
             [0, 1, 2].map(|k| hi[k] + pad[k]),
         );
-        let mut hits = 0;
         let mut rays = Vec::new();
         for i in 0..600 {
             let o = rng.in_box(olo, ohi);
@@ -43,40 +42,93 @@ fn first_hits_equal_brute_force() {
                 [-0.3, 0.2, -1.5],
             ));
         }
-        let batch = tree.ray_cast_batch(&mesh, &rays).unwrap();
-        for (ray, got) in rays.iter().zip(batch) {
-            let mut best: Option<(f64, FaceKey)> = None;
-            for (f, t) in &tris {
-                if let Some((tt, _, _)) = triangle_hit(ray, t) {
-                    if best.is_none_or(|b| tt < b.0) {
-                        best = Some((tt, *f));
-                    }
+        let hits = check_rays(name, &mesh, &tree, &rays);
+        assert!(hits > 100, "{name}: only {hits} hits");
+    }
+}
+
+/// Casts `rays` through `tree` and by brute force over `mesh`'s fan
+/// triangles; the first hits agree (the face, or the distance on a tie)
+/// and the hit lists and shadow tests with them. Returns the hits.
+fn check_rays(name: &str, mesh: &Mesh, tree: &FaceTree, rays: &[Ray]) -> usize {
+    let tris = fans(mesh);
+    let mut hits = 0;
+    let batch = tree.ray_cast_batch(mesh, rays).unwrap();
+    for (ray, got) in rays.iter().zip(batch) {
+        let mut best: Option<(f64, FaceKey)> = None;
+        for (f, t) in &tris {
+            if let Some((tt, _, _)) = triangle_hit(ray, t) {
+                if best.is_none_or(|b| tt < b.0) {
+                    best = Some((tt, *f));
                 }
-            }
-            match (best, got) {
-                (None, None) => {}
-                (Some((t, f)), Some(h)) => {
-                    hits += 1;
-                    assert!(
-                        h.face == f || (h.t - t).abs() <= 1e-12 * t.abs().max(1e-300),
-                        "{name}: {ray:?}: tree {h:?}, brute force {t} on {f:?}"
-                    );
-                    assert!(
-                        (h.t - t).abs() <= 1e-12 * t.abs(),
-                        "{name}: t {} vs {t}",
-                        h.t
-                    );
-                    let w = h.coords.weights;
-                    assert!((w[0] + w[1] + w[2] - 1.0).abs() < 1e-9);
-                    // The hit list starts with the first hit.
-                    let all = tree.ray_hits(&mesh, *ray).unwrap();
-                    assert!((all[0].t - t).abs() <= 1e-12 * t.abs(), "{name}");
-                    assert!(tree.any_hit(&mesh, *ray, f64::INFINITY).unwrap());
-                }
-                (b, g) => panic!("{name}: {ray:?}: brute force {b:?}, tree {g:?}"),
             }
         }
-        assert!(hits > 100, "{name}: only {hits} hits");
+        match (best, got) {
+            (None, None) => {}
+            (Some((t, f)), Some(h)) => {
+                hits += 1;
+                assert!(
+                    h.face == f || (h.t - t).abs() <= 1e-12 * t.abs().max(1e-300),
+                    "{name}: {ray:?}: tree {h:?}, brute force {t} on {f:?}"
+                );
+                assert!(
+                    (h.t - t).abs() <= 1e-12 * t.abs(),
+                    "{name}: t {} vs {t}",
+                    h.t
+                );
+                let w = h.coords.weights;
+                assert!((w[0] + w[1] + w[2] - 1.0).abs() < 1e-9);
+                // The hit list starts with the first hit.
+                let all = tree.ray_hits(mesh, *ray).unwrap();
+                assert!((all[0].t - t).abs() <= 1e-12 * t.abs(), "{name}");
+                assert!(tree.any_hit(mesh, *ray, f64::INFINITY).unwrap());
+            }
+            (b, g) => panic!("{name}: {ray:?}: brute force {b:?}, tree {g:?}"),
+        }
+    }
+    hits
+}
+
+/// The box tests run in `f32` where that is safe: far from the origin
+/// (where `f32` cannot hold the origin), at the ends of `f32`'s range and
+/// with direction components too small for an `f32` reciprocal, the tree
+/// still answers as brute force.
+#[test]
+fn first_hits_equal_brute_force_far_away_and_at_extreme_scales() {
+    let mut rng = Rng(0x2545_F491_4F6C_DD1D);
+    for (scale, offset) in [
+        (1.0, 1e6),
+        (1e-3, 3.3e4),
+        (1e-30, 0.0),
+        (1e30, 0.0),
+        (1e36, 1e37),
+    ] {
+        for (name, base) in meshes().into_iter().take(3) {
+            let mut mesh = base;
+            for p in mesh.position_slots_mut().unwrap() {
+                *p = p.map(|c| c * scale + offset);
+            }
+            let tree = FaceTree::build(&mesh).unwrap();
+            let (lo, hi) = bbox(&mesh);
+            let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+            let pad = [size; 3];
+            let (olo, ohi) = (
+                [0, 1, 2].map(|k| lo[k] - pad[k]),
+                [0, 1, 2].map(|k| hi[k] + pad[k]),
+            );
+            let mut rays = Vec::new();
+            for i in 0..300 {
+                let o = rng.in_box(olo, ohi);
+                let target = rng.in_box(lo, hi);
+                let mut d = [0, 1, 2].map(|k| target[k] - o[k]);
+                if i % 4 == 0 {
+                    d[i % 3] *= 1e-300; // no f32 reciprocal
+                }
+                rays.push(Ray::new(o, d));
+            }
+            let hits = check_rays(name, &mesh, &tree, &rays);
+            assert!(hits > 30, "{name} at {scale}, {offset}: only {hits} hits");
+        }
     }
 }
 

@@ -17,7 +17,9 @@
 //! by side (a walk tests both, and loads them together), built in one pass
 //! with an explicit stack. Node boxes are `f32`, rounded outwards: a ray
 //! cast is bound by loading nodes, and 32-byte nodes load faster than
-//! 56-byte ones.
+//! 56-byte ones. Ray casts walk a 4-wide copy of the hierarchy (four
+//! children's boxes side by side, tested together in `f32`), made afresh
+//! after every build, refit and update.
 //!
 //! # Kept honest under edits
 //!
@@ -33,9 +35,11 @@
 //!
 //! # Precision
 //!
-//! Everything is computed in `f64`. Box tests are widened by a relative
-//! 1e-12, so the tree never prunes a triangle that the triangle test would
-//! accept: the first hit and the closest point equal a brute-force loop's
+//! Triangle tests and distances are computed in `f64`. Box tests are
+//! widened (by a relative 1e-12 in `f64`; a ray's `f32` box tests round
+//! its origin outwards and widen by a relative 2⁻²⁰, and fall back to
+//! `f64` for rays beyond `f32`'s range or parallel to an axis plane), so
+//! the tree never prunes a triangle that the triangle test would accept: the first hit and the closest point equal a brute-force loop's
 //! over the same triangles (on ties, the distance is equal and the face may
 //! be either of the tied ones). Rays are tested against both sides of each
 //! triangle (Möller–Trumbore); a degenerate triangle is never hit by a
@@ -61,6 +65,7 @@ mod pick;
 mod ray;
 mod segments;
 mod update;
+mod wide;
 mod winding;
 
 pub use closest::{Closest, Nearest};
@@ -111,6 +116,8 @@ pub struct FaceTree {
     meta: Vec<TriMeta>,
     /// Per node: the far-field data of the winding number.
     dipoles: Vec<Dipole>,
+    /// The ray casts' 4-wide copy of `nodes` (see the `wide` module).
+    wide: Vec<wide::WideNode>,
     /// The faces in build order, with their corners' span in `corners`
     /// (for the refit's check that the faces did not change).
     faces: Vec<(FaceKey, u32, u32)>,
@@ -279,7 +286,9 @@ impl FaceTree {
     ///
     /// # Complexity
     /// O(n log n) time for n fan triangles; about 72 + 40 bytes a triangle,
-    /// 32 a node and 48 a node's winding-number data, plus 8 bytes a corner.
+    /// 32 a node and 64 a node's winding-number data, 128 a node of the
+    /// rays' 4-wide copy (about one for three triangles), plus 8 bytes a
+    /// corner.
     ///
     /// ```
     /// let mesh = meshloom::shapes::torus(24, 12, 1.0, 0.3).unwrap();
@@ -318,6 +327,7 @@ impl FaceTree {
             tris,
             meta,
             dipoles: Vec::new(),
+            wide: Vec::new(),
             faces,
             corners,
             churn: 0,
@@ -326,6 +336,7 @@ impl FaceTree {
         };
         tree.dipoles = vec![Dipole::default(); tree.nodes.len()];
         tree.update_bounds(false);
+        tree.wide = wide::collapse(&tree.nodes);
         Ok(tree)
     }
 
@@ -383,6 +394,7 @@ impl FaceTree {
             }
         });
         self.update_bounds(true);
+        self.wide = wide::collapse(&self.nodes);
         self.stamp = mesh.stamp();
         Ok(())
     }
@@ -409,6 +421,7 @@ impl FaceTree {
             + self.tris.capacity() * size_of::<[V3; 3]>()
             + self.meta.capacity() * size_of::<TriMeta>()
             + self.dipoles.capacity() * size_of::<Dipole>()
+            + self.wide.capacity() * size_of::<wide::WideNode>()
             + self.faces.capacity() * size_of::<(FaceKey, u32, u32)>()
             + self.corners.capacity() * size_of::<VertexKey>()
     }

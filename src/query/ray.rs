@@ -1,7 +1,8 @@
 //! Rays against the tree: the first hit, every hit, any hit.
 
 use super::error::{check_bound, QueryError};
-use super::{FaceCoords, FaceTree, Node};
+use super::wide::{WideNode, LANES};
+use super::{round_down, round_up, FaceCoords, FaceTree};
 use crate::keys::FaceKey;
 use crate::mesh::Mesh;
 use crate::vec3::{self, V3};
@@ -65,89 +66,137 @@ struct Prepared {
     o: V3,
     d: V3,
     inv: V3,
-    /// Whether a component of `1 / d` is infinite (`d` has a zero): then
-    /// `0 · ∞ = NaN` can arise and the box test takes the careful path.
-    flat: bool,
+    /// Per axis, which of a box's corners the ray enters its slab at: 0
+    /// the low one (the direction is not negative), 1 the high one.
+    entry: [usize; 3],
+    /// The origin in `f32`, rounded so that the entry parameters come out
+    /// low (`near`) and the exit parameters high (`far`).
+    o_near: [f32; 3],
+    o_far: [f32; 3],
+    /// `1 / d` in `f32`.
+    inv32: [f32; 3],
+    /// Whether the `f32` test is unsafe: a component of `d` is zero (then
+    /// `0 · ∞ = NaN` can arise), or the ray is beyond `f32`'s range. Box
+    /// tests take the careful path then.
+    careful: bool,
 }
 
-/// The smaller, in one instruction (NaN is never passed on the fast path).
-#[inline(always)]
-fn fmin(a: f64, b: f64) -> f64 {
-    if a < b {
-        a
-    } else {
-        b
-    }
-}
-
-/// The larger, as [`fmin`].
-#[inline(always)]
-fn fmax(a: f64, b: f64) -> f64 {
-    if a > b {
-        a
-    } else {
-        b
-    }
-}
+/// The relative widening of `f32` box tests: a few units in the last place
+/// of every rounding on the way (the origin's, the difference's, the
+/// reciprocal's, the product's), far above [`SLACK`].
+const SLACK32: f32 = 1.0 / (1 << 20) as f32;
 
 impl Prepared {
     fn new(r: &Ray) -> Prepared {
-        let d = r.direction;
+        let (o, d) = (r.origin, r.direction);
         let inv = [1.0 / d[0], 1.0 / d[1], 1.0 / d[2]];
+        let inv32 = inv.map(|x| x as f32);
+        let o32 = o.map(bracket);
+        let positive = d.map(|c| c > 0.0);
         Prepared {
-            o: r.origin,
+            o,
             d,
             inv,
-            flat: !inv.iter().all(|x| x.is_finite()),
+            entry: d.map(|c| usize::from(c.is_sign_negative())),
+            o_near: std::array::from_fn(|k| if positive[k] { o32[k].1 } else { o32[k].0 }),
+            o_far: std::array::from_fn(|k| if positive[k] { o32[k].0 } else { o32[k].1 }),
+            inv32,
+            careful: d.contains(&0.0)
+                || !inv32.iter().all(|x| x.is_normal())
+                || !o32.iter().all(|b| b.0.is_finite() && b.1.is_finite()),
         }
     }
 
-    /// The entry parameter of the box if the ray meets it within
-    /// `[0, t_max]` (widened by [`SLACK`]), else `+∞`.
+    /// Which lanes of `n` the ray meets within `[0, t_max]` (a bit a lane;
+    /// never an unused lane), widened by [`SLACK32`], and where it enters
+    /// each (low by at most the widening). `t_max` is `f32`, rounded up.
     #[inline(always)]
-    fn enter(&self, n: &Node, t_max: f64) -> f64 {
-        if self.flat {
-            return self.enter_flat(n, t_max);
+    fn enter(&self, n: &WideNode, t_max: f32) -> ([f32; LANES], u32) {
+        if self.careful {
+            return self.enter_careful(n, t_max);
         }
-        // `inv` is finite: no product is NaN, and the one-instruction
-        // min and max are exact.
-        let mut near = 0.0f64;
-        let mut far = t_max;
+        // In `f32`, four lanes at once. Each slab is entered at the near
+        // corner (an unused lane's empty box gives `near = +∞`, `far =
+        // −∞`); `inv32` is finite and no difference is NaN.
+        let mut near = [0.0f32; LANES];
+        let mut far = [t_max; LANES];
         for k in 0..3 {
-            let a = (f64::from(n.lo[k]) - self.o[k]) * self.inv[k];
-            let b = (f64::from(n.hi[k]) - self.o[k]) * self.inv[k];
-            near = fmax(near, fmin(a, b));
-            far = fmin(far, fmax(a, b));
+            let lo = &n.bounds[self.entry[k]][k];
+            let hi = &n.bounds[1 - self.entry[k]][k];
+            for l in 0..LANES {
+                near[l] = near[l].max((lo[l] - self.o_near[k]) * self.inv32[k]);
+                far[l] = far[l].min((hi[l] - self.o_far[k]) * self.inv32[k]);
+            }
         }
-        if near <= far + SLACK * fmax(far.abs(), near) {
-            near
-        } else {
-            f64::INFINITY
+        let mut mask = 0;
+        for l in 0..LANES {
+            mask |= u32::from(near[l] <= far[l] + SLACK32 * (near[l] + far[l].abs())) << l;
         }
+        (near, mask)
     }
 
-    /// [`enter`](Prepared::enter) for a ray parallel to an axis.
+    /// [`enter`](Prepared::enter) in `f64`, for a ray parallel to a
+    /// coordinate plane (on an axis it does not move along, it is inside a
+    /// slab or never) or beyond `f32`'s range.
     #[cold]
-    fn enter_flat(&self, n: &Node, t_max: f64) -> f64 {
-        let mut near = 0.0f64;
-        let mut far = t_max;
-        for k in 0..3 {
-            let a = (f64::from(n.lo[k]) - self.o[k]) * self.inv[k];
-            let b = (f64::from(n.hi[k]) - self.o[k]) * self.inv[k];
-            if a.is_nan() || b.is_nan() {
-                // 0 · ∞: the ray runs in a plane of the slab, so inside
-                // it; the axis does not restrict.
-                continue;
+    fn enter_careful(&self, n: &WideNode, t_max: f32) -> ([f32; LANES], u32) {
+        let mut mask = 0;
+        let near = std::array::from_fn(|l| {
+            if n.bounds[0][0][l] > n.bounds[1][0][l] {
+                return f32::INFINITY; // an unused lane
             }
-            near = near.max(a.min(b));
-            far = far.min(a.max(b));
-        }
-        if near <= far + SLACK * far.abs().max(near.abs()) {
-            near
-        } else {
-            f64::INFINITY
-        }
+            let mut near = 0.0f64;
+            let mut far = f64::from(t_max);
+            for k in 0..3 {
+                let (lo, hi) = (f64::from(n.bounds[0][k][l]), f64::from(n.bounds[1][k][l]));
+                if self.d[k] == 0.0 {
+                    if !(lo <= self.o[k] && self.o[k] <= hi) {
+                        return f32::INFINITY;
+                    }
+                    continue;
+                }
+                let a = (lo - self.o[k]) * self.inv[k];
+                let b = (hi - self.o[k]) * self.inv[k];
+                near = near.max(a.min(b));
+                far = far.min(a.max(b));
+            }
+            if near <= far + SLACK * far.abs().max(near.abs()) {
+                mask |= 1 << l;
+            }
+            round_down(near)
+        });
+        (near, mask)
     }
+}
+
+/// The `f32` values next below and above `x` (both `x` when it is one;
+/// an infinity beyond the range).
+pub(super) fn bracket(x: f64) -> (f32, f32) {
+    let y = x as f32;
+    let up = |y: f32| {
+        if y == 0.0 {
+            f32::from_bits(1)
+        } else if y > 0.0 {
+            f32::from_bits(y.to_bits() + 1)
+        } else {
+            f32::from_bits(y.to_bits() - 1)
+        }
+    };
+    match f64::from(y).partial_cmp(&x) {
+        Some(std::cmp::Ordering::Less) if y.is_finite() => (y, up(y)),
+        Some(std::cmp::Ordering::Greater) if y.is_finite() => (-up(-y), y),
+        _ => (y, y),
+    }
+}
+
+/// A child to visit: where the ray enters its box (low, as
+/// [`Prepared::enter`] gives it), and a wide node (`count` 0) or `count`
+/// triangles from `child`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Entry {
+    t: f32,
+    child: u32,
+    count: u32,
 }
 
 /// Möller–Trumbore, both sides: `(t, u, v)` with the hit at
@@ -299,7 +348,7 @@ impl FaceTree {
     }
 
     /// The nearest hit of a checked ray.
-    fn first_hit(&self, ray: &Ray, stack: &mut Vec<u32>) -> Option<Hit> {
+    fn first_hit(&self, ray: &Ray, stack: &mut Vec<Entry>) -> Option<Hit> {
         let r = Prepared::new(ray);
         let mut best: Option<(f64, usize, f64, f64)> = None;
         self.walk_ray(&r, f64::INFINITY, stack, |tri, t, u, v| {
@@ -322,26 +371,31 @@ impl FaceTree {
 
     /// Visit every triangle whose box the ray meets within `[0, t_max]`
     /// and that it hits; `visit(tri, t, u, v)` returns a new `t_max` to
-    /// shrink the search (a negative one stops it), or `None`.
+    /// shrink the search (a negative one stops it), or `None`. Children
+    /// are visited nearest entry first; a child waiting on the stack is
+    /// dropped when the shrunk `t_max` is below its entry.
     #[inline]
     fn walk_ray(
         &self,
         r: &Prepared,
         t_max: f64,
-        stack: &mut Vec<u32>,
+        stack: &mut Vec<Entry>,
         mut visit: impl FnMut(usize, f64, f64, f64) -> Option<f64>,
     ) {
-        if self.nodes.is_empty() {
+        if self.wide.is_empty() {
             return;
         }
-        let mut t_max = t_max;
+        let (mut t_max, mut t_max32) = (t_max, round_up(t_max));
         stack.clear();
-        let mut node = 0usize;
+        let mut at = Entry {
+            t: 0.0,
+            child: 0,
+            count: 0,
+        };
         loop {
-            let n = &self.nodes[node];
-            if n.is_leaf() {
-                let first = n.first as usize;
-                for (i, p) in self.tris[first..first + n.count as usize]
+            if at.count > 0 {
+                let first = at.child as usize;
+                for (i, p) in self.tris[first..first + at.count as usize]
                     .iter()
                     .enumerate()
                 {
@@ -351,36 +405,19 @@ impl FaceTree {
                                 if m < 0.0 {
                                     return;
                                 }
-                                t_max = m;
+                                (t_max, t_max32) = (m, round_up(m));
                             }
                         }
                     }
                 }
-            } else {
-                let (a, b) = n.children(node);
-                let ta = r.enter(&self.nodes[a], t_max);
-                let tb = r.enter(&self.nodes[b], t_max);
-                if ta < f64::INFINITY {
-                    if tb < f64::INFINITY {
-                        let (near, far) = if ta <= tb { (a, b) } else { (b, a) };
-                        stack.push(far as u32);
-                        node = near;
-                    } else {
-                        node = a;
-                    }
-                    continue;
-                }
-                if tb < f64::INFINITY {
-                    node = b;
-                    continue;
-                }
+            } else if let Some(next) = descend(&self.wide[at.child as usize], r, t_max32, stack) {
+                at = next;
+                continue;
             }
-            // Pop, skipping nodes the shrunk `t_max` rules out.
             loop {
                 let Some(next) = stack.pop() else { return };
-                let m = &self.nodes[next as usize];
-                if r.enter(m, t_max) < f64::INFINITY {
-                    node = next as usize;
+                if next.t <= t_max32 + SLACK32 * (next.t + t_max32) {
+                    at = next;
                     break;
                 }
             }
@@ -390,29 +427,60 @@ impl FaceTree {
     /// Whether the root box meets the ray (an empty tree: no).
     #[cfg(test)]
     pub(super) fn root_met(&self, ray: &Ray) -> bool {
-        self.nodes
+        self.wide
             .first()
-            .is_some_and(|n| Prepared::new(ray).enter(n, f64::INFINITY) < f64::INFINITY)
+            .is_some_and(|n| Prepared::new(ray).enter(n, f32::INFINITY).1 != 0)
     }
+}
+
+/// The children of `n` the ray meets, nearest first: the nearest is
+/// returned, the others pushed (farthest first, so the next nearest is
+/// popped next). The lanes are sorted in a loop over all of them, which
+/// branches more predictably than a loop over the met lanes' bits.
+#[inline(always)]
+fn descend(n: &WideNode, r: &Prepared, t_max: f32, stack: &mut Vec<Entry>) -> Option<Entry> {
+    let (t, mask) = r.enter(n, t_max);
+    let entry = |l: usize| Entry {
+        t: t[l],
+        child: n.child[l],
+        count: n.count[l],
+    };
+    let mut met = [0usize; LANES];
+    let mut len = 0;
+    for l in 0..LANES {
+        if mask & (1 << l) != 0 {
+            let mut j = len;
+            while j > 0 && t[met[j - 1]] > t[l] {
+                met[j] = met[j - 1];
+                j -= 1;
+            }
+            met[j] = l;
+            len += 1;
+        }
+    }
+    for &l in met[1..len.max(1)].iter().rev() {
+        stack.push(entry(l));
+    }
+    (len > 0).then(|| entry(met[0]))
 }
 
 /// `f` over `items` with a traversal stack per thread (rayon's with the
 /// `parallel` feature, else one).
-pub(super) fn batch<I: Sync, O: Send>(
+pub(super) fn batch<I: Sync, O: Send, S: Default + Send>(
     items: &[I],
-    f: impl Fn(&I, &mut Vec<u32>) -> O + Sync,
+    f: impl Fn(&I, &mut S) -> O + Sync,
 ) -> Vec<O> {
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
         items
             .par_iter()
-            .map_init(Vec::new, |stack, item| f(item, stack))
+            .map_init(S::default, |stack, item| f(item, stack))
             .collect()
     }
     #[cfg(not(feature = "parallel"))]
     {
-        let mut stack = Vec::new();
+        let mut stack = S::default();
         items.iter().map(|item| f(item, &mut stack)).collect()
     }
 }

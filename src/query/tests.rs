@@ -149,7 +149,49 @@ fn check_structure(tree: &FaceTree, mesh: &Mesh) -> usize {
         .collect();
     assert_eq!(fans, want);
     assert_eq!(tree.face_count(), mesh.face_count());
+    check_wide(tree);
     leaves
+}
+
+/// The ray casts' wide copy reaches the binary tree's triangles, each
+/// once, and every lane's box holds what the lane leads to.
+fn check_wide(tree: &FaceTree) {
+    use super::wide::WideNode;
+    fn holds(n: &WideNode, l: usize, p: crate::vec3::V3) -> bool {
+        (0..3).all(|k| p[k] >= f64::from(n.bounds[0][k][l]) && p[k] <= f64::from(n.bounds[1][k][l]))
+    }
+    let mut binary = Vec::new();
+    tree.for_each_leaf(|_, r| binary.extend(r));
+    let mut wide = Vec::new();
+    let mut stack = Vec::new();
+    if !tree.wide.is_empty() {
+        stack.push(0usize);
+    }
+    while let Some(i) = stack.pop() {
+        let n = &tree.wide[i];
+        for l in 0..super::wide::LANES {
+            let (c, count) = (n.child[l] as usize, n.count[l]);
+            if count > 0 {
+                wide.extend(c..c + count as usize);
+                let tris = &tree.tris[c..c + count as usize];
+                assert!(tris.iter().flatten().all(|p| holds(n, l, *p)), "wide {i}");
+            } else if n.bounds[0][0][l] <= n.bounds[1][0][l] {
+                assert!(c > i, "wide {i}: child {c}");
+                let m = &tree.wide[c];
+                for ml in
+                    (0..super::wide::LANES).filter(|&ml| m.bounds[0][0][ml] <= m.bounds[1][0][ml])
+                {
+                    let lo = std::array::from_fn(|k| f64::from(m.bounds[0][k][ml]));
+                    let hi = std::array::from_fn(|k| f64::from(m.bounds[1][k][ml]));
+                    assert!(holds(n, l, lo) && holds(n, l, hi), "wide {i}");
+                }
+                stack.push(c);
+            }
+        }
+    }
+    binary.sort_unstable();
+    wide.sort_unstable();
+    assert_eq!(wide, binary);
 }
 
 #[test]
@@ -258,4 +300,35 @@ fn an_update_that_empties_a_leaf_under_the_root_keeps_the_rest() {
             "the root's box still holds the far triangle"
         );
     }
+}
+
+#[test]
+fn bracket_gives_the_neighbouring_f32_values() {
+    use super::ray::bracket;
+    let mut seed = 12345u64;
+    for _ in 0..2000 {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let x = (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+        for v in [x, x * 1e-30, x * 1e30, x * 1e6 + 0.5] {
+            let (lo, hi) = bracket(v);
+            assert!(f64::from(lo) <= v && v <= f64::from(hi), "{v}");
+            if f64::from(lo) == v {
+                assert_eq!(lo, hi);
+            } else {
+                assert!(
+                    lo < hi
+                        && f64::from(hi) - f64::from(lo)
+                            <= f64::from(hi).abs().max(f64::from(lo).abs()) * 2.4e-7,
+                    "{v}"
+                );
+            }
+        }
+    }
+    assert_eq!(bracket(0.5), (0.5, 0.5));
+    assert_eq!(bracket(1e300).1, f32::INFINITY);
+    assert_eq!(bracket(-1e300).0, f32::NEG_INFINITY);
+    let (lo, hi) = bracket(1e-50);
+    assert!(lo == 0.0 && hi > 0.0);
 }

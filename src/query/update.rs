@@ -30,7 +30,7 @@
 
 use std::collections::{BTreeMap, HashSet};
 
-use super::{build, winding, Dipole, FaceTree, Node, QueryError, TriMeta, GONE};
+use super::{build, wide, winding, Dipole, FaceTree, Node, QueryError, TriMeta, GONE};
 use crate::journal::Changes;
 use crate::keys::{FaceKey, VertexKey};
 use crate::mesh::Mesh;
@@ -130,6 +130,7 @@ impl FaceTree {
             return self.rebuild(mesh);
         }
         self.recompute(&recompute);
+        self.wide = wide::collapse(&self.nodes);
         self.update_faces(&dmark, new_faces, &new_corners);
         self.stamp = now;
         Ok(UpdateReport {
