@@ -327,7 +327,7 @@ impl FaceTree {
             tris,
             meta,
             dipoles: Vec::new(),
-            wide: Vec::new(),
+            wide: Vec::with_capacity(order.len() / 3 + 1),
             faces,
             corners,
             churn: 0,
@@ -336,7 +336,7 @@ impl FaceTree {
         };
         tree.dipoles = vec![Dipole::default(); tree.nodes.len()];
         tree.update_bounds(false);
-        tree.wide = wide::collapse(&tree.nodes);
+        wide::collapse(&tree.nodes, &mut tree.wide);
         Ok(tree)
     }
 
@@ -394,7 +394,7 @@ impl FaceTree {
             }
         });
         self.update_bounds(true);
-        self.wide = wide::collapse(&self.nodes);
+        wide::collapse(&self.nodes, &mut self.wide);
         self.stamp = mesh.stamp();
         Ok(())
     }

@@ -130,7 +130,7 @@ impl FaceTree {
             return self.rebuild(mesh);
         }
         self.recompute(&recompute);
-        self.wide = wide::collapse(&self.nodes);
+        wide::collapse(&self.nodes, &mut self.wide);
         self.update_faces(&dmark, new_faces, &new_corners);
         self.stamp = now;
         Ok(UpdateReport {

@@ -43,26 +43,28 @@ const UNUSED: WideNode = WideNode {
 /// less than loading a wide node for them.
 const LEAF_TRIANGLES: u32 = 4;
 
-/// The wide copy of the binary tree `nodes` (empty for an empty tree):
-/// the root first, a node's children side by side.
-pub(super) fn collapse(nodes: &[Node]) -> Vec<WideNode> {
-    let mut wide = Vec::with_capacity(nodes.len() / 4 + 1);
+/// Make `wide` the wide copy of the binary tree `nodes` (empty for an
+/// empty tree), reusing its memory: the root first, a node's children
+/// side by side. One pass from the root: nodes
+/// [`FaceTree::update`](super::FaceTree::update) left unreached are not
+/// read.
+pub(super) fn collapse(nodes: &[Node], wide: &mut Vec<WideNode>) {
+    wide.clear();
     if nodes.is_empty() {
-        return wide;
+        return;
     }
-    let spans = spans(nodes);
     wide.push(UNUSED);
     let mut work = vec![(0usize, 0usize)];
     while let Some((b, w)) = work.pop() {
-        let (kids, len) = gather(nodes, &spans, b);
+        let (kids, len) = gather(nodes, b);
         let mut node = UNUSED;
-        for (lane, &c) in kids[..len].iter().enumerate() {
+        for (lane, &(c, leaf)) in kids[..len].iter().enumerate() {
             let n = &nodes[c];
             for k in 0..3 {
                 node.bounds[0][k][lane] = n.lo[k];
                 node.bounds[1][k][lane] = n.hi[k];
             }
-            if let Some((first, count)) = spans[c] {
+            if let Some((first, count)) = leaf {
                 node.child[lane] = first;
                 node.count[lane] = count;
             } else {
@@ -73,68 +75,68 @@ pub(super) fn collapse(nodes: &[Node]) -> Vec<WideNode> {
         }
         wide[w] = node;
     }
-    wide
 }
 
-/// Per binary node reached from the root, its triangles as one lane's
-/// leaf `(first, count)`: a leaf's, or an inner node's when its children's
-/// are side by side and at most [`LEAF_TRIANGLES`] together. (Nodes
-/// [`FaceTree::update`](super::FaceTree::update) left unreached are not
-/// read.)
-fn spans(nodes: &[Node]) -> Vec<Option<(u32, u32)>> {
-    let mut order = Vec::with_capacity(nodes.len());
-    let mut stack = vec![0usize];
-    while let Some(i) = stack.pop() {
-        order.push(i);
-        if !nodes[i].is_leaf() {
-            let (a, b) = nodes[i].children(i);
-            stack.extend([a, b]);
-        }
+/// Node `i`'s triangles as one lane's leaf `(first, count)`: a leaf's, or
+/// an inner node's when they lie side by side and are at most
+/// [`LEAF_TRIANGLES`].
+fn lane_leaf(nodes: &[Node], i: usize) -> Option<(u32, u32)> {
+    let n = &nodes[i];
+    if n.is_leaf() {
+        Some((n.first, n.count))
+    } else {
+        small(nodes, i, LEAF_TRIANGLES)
     }
-    let mut spans = vec![None; nodes.len()];
-    for &i in order.iter().rev() {
-        let n = &nodes[i];
-        spans[i] = if n.is_leaf() {
-            Some((n.first, n.count))
-        } else {
-            let (a, b) = n.children(i);
-            match (spans[a], spans[b]) {
-                (Some((fa, ca)), Some((fb, cb))) if ca + cb <= LEAF_TRIANGLES => {
-                    if fa + ca == fb {
-                        Some((fa, ca + cb))
-                    } else if fb + cb == fa {
-                        Some((fb, ca + cb))
-                    } else {
-                        None
-                    }
-                }
-                _ => None,
-            }
-        };
-    }
-    spans
 }
+
+/// The triangles under node `i` as one span `(first, count)` if they lie
+/// side by side and are at most `budget`; it reads at most `2 · budget`
+/// nodes.
+fn small(nodes: &[Node], i: usize, budget: u32) -> Option<(u32, u32)> {
+    let n = &nodes[i];
+    if n.is_leaf() {
+        return (n.count <= budget).then_some((n.first, n.count));
+    }
+    if budget < 2 {
+        return None;
+    }
+    let (a, b) = n.children(i);
+    let (fa, ca) = small(nodes, a, budget - 1)?;
+    let (fb, cb) = small(nodes, b, budget - ca)?;
+    if fa + ca == fb {
+        Some((fa, ca + cb))
+    } else if fb + cb == fa {
+        Some((fb, ca + cb))
+    } else {
+        None
+    }
+}
+
+/// A binary node, with its span when it is a lane's leaf.
+type Kid = (usize, Option<(u32, u32)>);
 
 /// Up to [`LANES`] nodes under binary node `b` that hold its triangles
-/// between them (`b` itself when it is one lane's leaf): its children, the
-/// one of largest surface area that is not a leaf opened while there is
-/// room.
-fn gather(nodes: &[Node], spans: &[Option<(u32, u32)>], b: usize) -> ([usize; LANES], usize) {
-    let mut kids = [b; LANES];
-    if spans[b].is_some() {
+/// between them (`b` itself when it is one lane's leaf), each with its
+/// span when it is a lane's leaf: its children, the one of largest surface
+/// area that is not a leaf opened while there is room.
+fn gather(nodes: &[Node], b: usize) -> ([Kid; LANES], usize) {
+    let mut kids = [(b, None); LANES];
+    if let Some(span) = lane_leaf(nodes, b) {
+        kids[0].1 = Some(span);
         return (kids, 1);
     }
     let (x, y) = nodes[b].children(b);
-    (kids[0], kids[1]) = (x, y);
+    kids[0] = (x, lane_leaf(nodes, x));
+    kids[1] = (y, lane_leaf(nodes, y));
     let mut len = 2;
     while len < LANES {
         let widest = (0..len)
-            .filter(|&i| spans[kids[i]].is_none())
-            .max_by(|&i, &j| half_area(&nodes[kids[i]]).total_cmp(&half_area(&nodes[kids[j]])));
+            .filter(|&i| kids[i].1.is_none())
+            .max_by(|&i, &j| half_area(&nodes[kids[i].0]).total_cmp(&half_area(&nodes[kids[j].0])));
         let Some(i) = widest else { break };
-        let (x, y) = nodes[kids[i]].children(kids[i]);
-        kids[i] = x;
-        kids[len] = y;
+        let (x, y) = nodes[kids[i].0].children(kids[i].0);
+        kids[i] = (x, lane_leaf(nodes, x));
+        kids[len] = (y, lane_leaf(nodes, y));
         len += 1;
     }
     (kids, len)
