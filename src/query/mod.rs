@@ -260,8 +260,9 @@ struct TriMeta {
 }
 
 /// A node's triangles seen from far away (Barill et al. 2018): their total
-/// area vector, area-weighted centroid and a radius about it that holds
-/// them all.
+/// area vector, area-weighted centroid, a radius about it that holds them
+/// all, and the next two terms of their field's Taylor series about the
+/// centre (`f32`: they only correct the far field).
 #[derive(Clone, Copy, Debug, Default)]
 struct Dipole {
     area: V3,
@@ -269,6 +270,12 @@ struct Dipole {
     /// The triangles' total (unsigned) area, the centre's weight.
     weight: f64,
     radius: f64,
+    /// The symmetric part of `∫ (x - centre) ⊗ n dA`: `xx, yy, zz, xy, yz,
+    /// zx`.
+    moment: [f32; 6],
+    /// The symmetric part of `∫ (x - centre) ⊗ (x - centre) ⊗ n dA`: `xxx,
+    /// yyy, zzz, xxy, xxz, yyx, yyz, zzx, zzy, xyz`.
+    tensor: [f32; 10],
 }
 
 impl FaceTree {
@@ -279,7 +286,7 @@ impl FaceTree {
     ///
     /// # Complexity
     /// O(n log n) time for n fan triangles; about 72 + 40 bytes a triangle,
-    /// 32 a node and 48 a node's winding-number data, plus 8 bytes a corner.
+    /// 32 a node and 128 a node's winding-number data, plus 8 bytes a corner.
     ///
     /// ```
     /// let mesh = meshloom::shapes::torus(24, 12, 1.0, 0.3).unwrap();
