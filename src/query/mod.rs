@@ -267,8 +267,9 @@ struct TriMeta {
 }
 
 /// A node's triangles seen from far away (Barill et al. 2018): their total
-/// area vector, area-weighted centroid and a radius about it that holds
-/// them all.
+/// area vector, area-weighted centroid, a radius about it that holds them
+/// all, and the next two terms of their field's Taylor series about the
+/// centre (`f32`: they only correct the far field).
 #[derive(Clone, Copy, Debug, Default)]
 struct Dipole {
     area: V3,
@@ -276,6 +277,12 @@ struct Dipole {
     /// The triangles' total (unsigned) area, the centre's weight.
     weight: f64,
     radius: f64,
+    /// The symmetric part of `∫ (x - centre) ⊗ n dA`: `xx, yy, zz, xy, yz,
+    /// zx`.
+    moment: [f32; 6],
+    /// The symmetric part of `∫ (x - centre) ⊗ (x - centre) ⊗ n dA`: `xxx,
+    /// yyy, zzz, xxy, xxz, yyx, yyz, zzx, zzy, xyz`.
+    tensor: [f32; 10],
 }
 
 impl FaceTree {
@@ -286,7 +293,7 @@ impl FaceTree {
     ///
     /// # Complexity
     /// O(n log n) time for n fan triangles; about 72 + 40 bytes a triangle,
-    /// 32 a node and 64 a node's winding-number data, 128 a node of the
+    /// 32 a node and 128 a node's winding-number data, 128 a node of the
     /// rays' 4-wide copy (about one for three triangles), plus 8 bytes a
     /// corner.
     ///
