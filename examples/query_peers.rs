@@ -193,7 +193,9 @@ fn winding(mesh: &Mesh, points: &[[f64; 3]], rounds: usize) {
         name,
         t,
         &format!("{} points", points.len()),
-        &format!("{rate:.3e} queries/s; {inside} inside (w > 0.5); dipoles, accuracy 2"),
+        &format!(
+            "{rate:.3e} queries/s; {inside} inside (w > 0.5); three far-field terms, accuracy 2"
+        ),
     );
 }
 

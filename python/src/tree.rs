@@ -221,9 +221,9 @@ impl PyFaceTree {
     }
 
     /// The generalized winding number of the surface at each point: a
-    /// float array (n,). `mode` "fast" sums far nodes as dipoles
-    /// (`accuracy` their far-field factor, at least 1), "exact" every
-    /// triangle.
+    /// float array (n,). `mode` "fast" sums far nodes by their field's
+    /// first three Taylor terms (`accuracy` their far-field factor, at
+    /// least 1), "exact" every triangle.
     #[pyo3(signature = (points, mode = "fast", accuracy = 2.0))]
     fn winding_number<'py>(
         &self,

@@ -114,8 +114,10 @@ pub struct FaceTree {
     tris: Vec<[V3; 3]>,
     /// What each triangle is part of, in leaf order.
     meta: Vec<TriMeta>,
-    /// Per node: the far-field data of the winding number.
-    dipoles: Vec<Dipole>,
+    /// Per node: the far-field data of the winding number, made by the
+    /// first winding-number query (a tree for rays or closest points never
+    /// pays for it), kept by refits and updates once made.
+    dipoles: std::sync::OnceLock<Vec<Dipole>>,
     /// The ray casts' 4-wide copy of `nodes` (see the `wide` module).
     wide: Vec<wide::WideNode>,
     /// The faces in build order, with their corners' span in `corners`
@@ -293,9 +295,9 @@ impl FaceTree {
     ///
     /// # Complexity
     /// O(n log n) time for n fan triangles; about 72 + 40 bytes a triangle,
-    /// 32 a node and 128 a node's winding-number data, 128 a node of the
-    /// rays' 4-wide copy (about one for three triangles), plus 8 bytes a
-    /// corner.
+    /// 32 a node, 128 a node of the rays' 4-wide copy (about one for three
+    /// triangles), plus 8 bytes a corner; the first winding-number query
+    /// adds 128 a node of far-field data (O(n) once).
     ///
     /// ```
     /// let mesh = meshloom::shapes::torus(24, 12, 1.0, 0.3).unwrap();
@@ -333,7 +335,7 @@ impl FaceTree {
             nodes,
             tris,
             meta,
-            dipoles: Vec::new(),
+            dipoles: std::sync::OnceLock::new(),
             wide: Vec::with_capacity(order.len() / 3 + 1),
             faces,
             corners,
@@ -341,8 +343,6 @@ impl FaceTree {
             dead_tris: 0,
             dead_faces: 0,
         };
-        tree.dipoles = vec![Dipole::default(); tree.nodes.len()];
-        tree.update_bounds(false);
         wide::collapse(&tree.nodes, &mut tree.wide);
         Ok(tree)
     }
@@ -400,7 +400,10 @@ impl FaceTree {
                 *t = m.v.map(|v| pos[v.index()]);
             }
         });
-        self.update_bounds(true);
+        self.refit_boxes();
+        if self.dipoles.get().is_some() {
+            self.dipoles = self.far_field_afresh().into();
+        }
         wide::collapse(&self.nodes, &mut self.wide);
         self.stamp = mesh.stamp();
         Ok(())
@@ -427,7 +430,7 @@ impl FaceTree {
         self.nodes.capacity() * size_of::<Node>()
             + self.tris.capacity() * size_of::<[V3; 3]>()
             + self.meta.capacity() * size_of::<TriMeta>()
-            + self.dipoles.capacity() * size_of::<Dipole>()
+            + self.dipoles.get().map_or(0, Vec::capacity) * size_of::<Dipole>()
             + self.wide.capacity() * size_of::<wide::WideNode>()
             + self.faces.capacity() * size_of::<(FaceKey, u32, u32)>()
             + self.corners.capacity() * size_of::<VertexKey>()
@@ -462,31 +465,65 @@ impl FaceTree {
         }
     }
 
-    /// Boxes and far-field data of every node from the triangles, children
-    /// before parents (nodes are in depth-first order, so in reverse).
-    /// `boxes`: recompute the boxes too (a refit); a build made them.
-    fn update_bounds(&mut self, boxes: bool) {
-        for i in (0..self.nodes.len()).rev() {
+    /// The nodes reachable from the root, children before parents.
+    fn bottom_up(&self) -> Vec<u32> {
+        let mut order = Vec::with_capacity(self.nodes.len());
+        if !self.nodes.is_empty() {
+            order.push(0);
+        }
+        let mut at = 0;
+        while at < order.len() {
+            let i = order[at] as usize;
+            if !self.nodes[i].is_leaf() {
+                let (a, b) = self.nodes[i].children(i);
+                order.extend([a as u32, b as u32]);
+            }
+            at += 1;
+        }
+        order.reverse();
+        order
+    }
+
+    /// Every reachable node's box from its triangles or children (a
+    /// refit).
+    fn refit_boxes(&mut self) {
+        for i in self.bottom_up() {
+            let i = i as usize;
+            let n = self.nodes[i];
+            if n.is_leaf() {
+                let range = n.first as usize..(n.first + n.count) as usize;
+                let (lo, hi) = build::bounds(&self.tris[range]);
+                self.nodes[i].set_box(lo, hi);
+            } else {
+                let (na, nb) = (self.nodes[n.children(i).0], self.nodes[n.children(i).1]);
+                self.nodes[i].lo = std::array::from_fn(|k| na.lo[k].min(nb.lo[k]));
+                self.nodes[i].hi = std::array::from_fn(|k| na.hi[k].max(nb.hi[k]));
+            }
+        }
+    }
+
+    /// The winding number's far-field data of every node (made on first
+    /// use).
+    fn far_field(&self) -> &[Dipole] {
+        self.dipoles.get_or_init(|| self.far_field_afresh())
+    }
+
+    /// The far-field data of every reachable node from the triangles,
+    /// children before parents (unreachable slots hold a default).
+    fn far_field_afresh(&self) -> Vec<Dipole> {
+        let mut dipoles = vec![Dipole::default(); self.nodes.len()];
+        for i in self.bottom_up() {
+            let i = i as usize;
             let n = self.nodes[i];
             let d = if n.is_leaf() {
-                let range = n.first as usize..(n.first + n.count) as usize;
-                if boxes {
-                    let (lo, hi) = build::bounds(&self.tris[range.clone()]);
-                    self.nodes[i].set_box(lo, hi);
-                }
-                winding::leaf_dipole(&self.tris[range])
+                winding::leaf_dipole(&self.tris[n.first as usize..(n.first + n.count) as usize])
             } else {
                 let (a, b) = n.children(i);
-                if boxes {
-                    let (na, nb) = (self.nodes[a], self.nodes[b]);
-                    self.nodes[i].lo = std::array::from_fn(|k| na.lo[k].min(nb.lo[k]));
-                    self.nodes[i].hi = std::array::from_fn(|k| na.hi[k].max(nb.hi[k]));
-                }
-                winding::merge_dipoles(self.dipoles[a], self.dipoles[b])
+                winding::merge_dipoles(dipoles[a], dipoles[b])
             };
-            let n = self.nodes[i];
-            self.dipoles[i] = winding::with_radius(d, n.lo(), n.hi());
+            dipoles[i] = winding::with_radius(d, n.lo(), n.hi());
         }
+        dipoles
     }
 
     /// `f(node, triangles)` for every leaf reachable from the root.

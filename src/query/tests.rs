@@ -52,7 +52,7 @@ fn a_refit_of_an_unmoved_mesh_keeps_the_boxes_and_dipoles() {
             (b.lo, b.hi, b.first, b.count)
         );
     }
-    for (a, b) in built.dipoles.iter().zip(&refitted.dipoles) {
+    for (a, b) in built.far_field().iter().zip(refitted.far_field()) {
         assert_eq!((a.area, a.centre, a.radius), (b.area, b.centre, b.radius));
     }
 }
@@ -61,7 +61,7 @@ fn a_refit_of_an_unmoved_mesh_keeps_the_boxes_and_dipoles() {
 fn the_root_dipole_of_a_closed_mesh_has_no_area_and_holds_every_triangle() {
     let mesh = shapes::icosphere(2);
     let tree = FaceTree::build(&mesh).unwrap();
-    let d = tree.dipoles[0];
+    let d = tree.far_field()[0];
     assert!(crate::vec3::norm(d.area) < 1e-12);
     for t in &tree.tris {
         for p in t {
@@ -122,7 +122,7 @@ fn check_structure(tree: &FaceTree, mesh: &Mesh) -> usize {
             let (y, wy) = walk(tree, b, seen, leaves);
             (crate::vec3::add(x, y), wx + wy)
         };
-        let d = tree.dipoles[i];
+        let d = tree.far_field()[i];
         let scale = 1e-9 * weight.max(1e-300);
         assert!(
             (0..3).all(|k| (d.area[k] - area[k]).abs() <= scale),
@@ -296,9 +296,34 @@ fn an_update_that_empties_a_leaf_under_the_root_keeps_the_rest() {
         assert!(!report.full_rebuild);
         check_structure(&tree, &mesh);
         assert!(
-            tree.dipoles[0].radius < 20.0,
+            tree.far_field()[0].radius < 20.0,
             "the root's box still holds the far triangle"
         );
+        // A refit reads only the nodes the update left reachable.
+        tree.refit(&mesh).unwrap();
+        check_structure(&tree, &mesh);
+    }
+}
+
+#[test]
+fn the_far_field_is_made_on_first_use_and_kept_by_refits() {
+    let mut mesh = shapes::icosphere(2);
+    let mut tree = FaceTree::build(&mesh).unwrap();
+    let bare = tree.heap_bytes();
+    assert!(tree.dipoles.get().is_none());
+    tree.refit(&mesh).unwrap();
+    assert!(tree.dipoles.get().is_none(), "a refit does not make it");
+    tree.contains(&mesh, [0.0; 3]).unwrap();
+    assert!(tree.heap_bytes() > bare);
+    for p in mesh.position_slots_mut().unwrap() {
+        p[2] *= 2.0;
+    }
+    let before = tree.dipoles.get().unwrap()[0].radius;
+    tree.refit(&mesh).unwrap();
+    let (kept, made) = (tree.dipoles.get().unwrap(), tree.far_field_afresh());
+    assert!(kept[0].radius > before, "the refit moved it");
+    for (a, b) in kept.iter().zip(&made) {
+        assert_eq!((a.area, a.centre, a.radius), (b.area, b.centre, b.radius));
     }
 }
 

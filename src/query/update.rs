@@ -283,7 +283,9 @@ impl FaceTree {
         }
         self.tris.extend(order.iter().map(|&i| tris[i as usize]));
         self.meta.extend(order.iter().map(|&i| meta[i as usize]));
-        self.dipoles.resize(self.nodes.len(), Dipole::default());
+        if let Some(d) = self.dipoles.get_mut() {
+            d.resize(self.nodes.len(), Dipole::default());
+        }
         for i in (at..self.nodes.len()).rev() {
             self.bound(i);
         }
@@ -376,25 +378,27 @@ impl FaceTree {
         }
     }
 
-    /// Node `i`'s box and far-field data from its triangles or children.
+    /// Node `i`'s box from its triangles or children, and its far-field
+    /// data if the tree has made it.
     fn bound(&mut self, i: usize) {
         let n = self.nodes[i];
-        let (lo, hi, d) = if n.is_leaf() {
-            let range = n.first as usize..(n.first + n.count) as usize;
-            let (lo, hi) = build::bounds(&self.tris[range.clone()]);
-            (lo, hi, winding::leaf_dipole(&self.tris[range]))
+        let range = || n.first as usize..(n.first + n.count) as usize;
+        let (lo, hi) = if n.is_leaf() {
+            build::bounds(&self.tris[range()])
         } else {
-            let (a, b) = n.children(i);
-            let (na, nb) = (self.nodes[a], self.nodes[b]);
-            let (lo, hi) = (build::min3(na.lo(), nb.lo()), build::max3(na.hi(), nb.hi()));
-            (
-                lo,
-                hi,
-                winding::merge_dipoles(self.dipoles[a], self.dipoles[b]),
-            )
+            let (na, nb) = (self.nodes[n.children(i).0], self.nodes[n.children(i).1]);
+            (build::min3(na.lo(), nb.lo()), build::max3(na.hi(), nb.hi()))
         };
         self.nodes[i].set_box(lo, hi);
-        self.dipoles[i] = winding::with_radius(d, lo, hi);
+        if let Some(dipoles) = self.dipoles.get_mut() {
+            let d = if n.is_leaf() {
+                winding::leaf_dipole(&self.tris[range()])
+            } else {
+                let (a, b) = n.children(i);
+                winding::merge_dipoles(dipoles[a], dipoles[b])
+            };
+            dipoles[i] = winding::with_radius(d, lo, hi);
+        }
     }
 
     /// Mark the dirty faces' records gone and append the re-added ones;

@@ -29,9 +29,10 @@ use crate::vec3::{self, V3};
 pub enum WindingMode {
     /// Every triangle's solid angle: O(n) a point.
     Exact,
-    /// Far nodes as dipoles (Barill et al. 2018): a node counts as one
-    /// when the point is farther than `accuracy` times the node's radius
-    /// from its centre (`accuracy` ≥ 1; larger is slower and closer).
+    /// Far nodes by their field's first three Taylor terms (Barill et al.
+    /// 2018): a node counts as them when the point is farther than
+    /// `accuracy` times the node's radius from its centre (`accuracy` ≥ 1;
+    /// larger is slower and closer).
     Approximate {
         /// The far-field factor β.
         accuracy: f64,
@@ -255,7 +256,9 @@ impl FaceTree {
     /// [`QueryError::StaleTree`]; [`QueryError::NonFinitePoint`].
     ///
     /// # Complexity
-    /// [`WindingMode::Exact`]: O(n); approximate: about O(log n).
+    /// [`WindingMode::Exact`]: O(n); approximate: about O(log n), after the
+    /// tree's first approximate query made its far-field data in O(n)
+    /// (refits and updates keep it).
     ///
     /// ```
     /// use meshloom::query::{FaceTree, WindingMode};
@@ -342,12 +345,13 @@ impl FaceTree {
         if self.nodes.is_empty() {
             return 0.0;
         }
+        let dipoles = self.far_field();
         let mut sum = 0.0;
         stack.clear();
         stack.push(0);
         while let Some(i) = stack.pop() {
             let i = i as usize;
-            let d = &self.dipoles[i];
+            let d = &dipoles[i];
             let r = vec3::sub(d.centre, q);
             let dist2 = vec3::norm2(r);
             if dist2 > beta * beta * d.radius * d.radius {
@@ -441,7 +445,7 @@ mod tests {
     /// The moment and tensor of `tree`'s root against those of all its
     /// triangles as one leaf.
     fn check_root(tree: &FaceTree) -> Dipole {
-        let root = tree.dipoles[0];
+        let root = tree.far_field()[0];
         let whole = leaf_dipole(&tree.tris);
         let (m, w) = (widen(root.moment), widen(whole.moment));
         for k in 0..6 {
