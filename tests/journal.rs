@@ -110,12 +110,27 @@ impl meshloom::attr::Rule<Tag> for Joined {
             .iter()
             .map(|(v, w)| format!("{}*{w}", v.map_or("-", |t| t.0.as_str())))
             .collect();
-        Some(Tag(format!("({})", parts.join("+"))))
+        Some(Tag(digest(&format!("({})", parts.join("+")))))
     }
 
     fn split(source: Option<&Tag>, share: f64) -> Option<Tag> {
-        source.map(|t| Tag(format!("{}/{share}", t.0)))
+        source.map(|t| Tag(digest(&format!("{}/{share}", t.0))))
     }
+}
+
+/// A value made from every contributor, of bounded length: a streamed
+/// test runs subdivisions one after another, and a value that held its
+/// inputs' text whole grew by the faces' degree at each level (it ran
+/// the test out of memory).
+fn digest(text: &str) -> String {
+    if text.len() <= 48 {
+        return text.to_string();
+    }
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in text.bytes() {
+        h = (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3);
+    }
+    format!("#{h:016x}")
 }
 
 impl meshloom::attr::Attribute for Tag {
