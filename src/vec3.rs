@@ -33,6 +33,18 @@ pub(crate) fn sub(a: V3, b: V3) -> V3 {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
+/// The componentwise minimum (a NaN component gives way to the other).
+#[inline(always)]
+pub(crate) fn min(a: V3, b: V3) -> V3 {
+    [a[0].min(b[0]), a[1].min(b[1]), a[2].min(b[2])]
+}
+
+/// The componentwise maximum (a NaN component gives way to the other).
+#[inline(always)]
+pub(crate) fn max(a: V3, b: V3) -> V3 {
+    [a[0].max(b[0]), a[1].max(b[1]), a[2].max(b[2])]
+}
+
 /// `a · s`, component by component.
 #[inline(always)]
 pub(crate) fn scale(a: V3, s: f64) -> V3 {

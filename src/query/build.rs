@@ -6,24 +6,12 @@
 //! threads; the tree is the same node for node.
 
 use super::{round_down, round_up, Node};
-use crate::vec3::V3;
+use crate::vec3::{self, V3};
 
 const BINS: usize = 16;
 /// Above this many triangles a node is split even when the SAH would not
 /// (by halves when the centroids coincide), so leaves stay short.
 const MAX_LEAF: usize = 8;
-
-/// The componentwise minimum.
-#[inline(always)]
-pub(super) fn min3(a: V3, b: V3) -> V3 {
-    [a[0].min(b[0]), a[1].min(b[1]), a[2].min(b[2])]
-}
-
-/// The componentwise maximum.
-#[inline(always)]
-pub(super) fn max3(a: V3, b: V3) -> V3 {
-    [a[0].max(b[0]), a[1].max(b[1]), a[2].max(b[2])]
-}
 
 /// An empty box (`lo` above `hi`, so any union replaces it).
 const EMPTY: (V3, V3) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
@@ -33,8 +21,8 @@ pub(super) fn bounds(tris: &[[V3; 3]]) -> (V3, V3) {
     let (mut lo, mut hi) = EMPTY;
     for t in tris {
         for p in t {
-            lo = min3(lo, *p);
-            hi = max3(hi, *p);
+            lo = vec3::min(lo, *p);
+            hi = vec3::max(hi, *p);
         }
     }
     (lo, hi)

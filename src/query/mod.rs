@@ -400,9 +400,14 @@ impl FaceTree {
                 *t = m.v.map(|v| pos[v.index()]);
             }
         });
-        self.refit_boxes();
-        if self.dipoles.get().is_some() {
-            self.dipoles = self.far_field_afresh().into();
+        let order = self.bottom_up();
+        for &i in &order {
+            self.fit_box(i as usize);
+        }
+        if let Some(dipoles) = self.dipoles.get_mut() {
+            for &i in &order {
+                dipoles[i as usize] = node_dipole(&self.nodes, &self.tris, dipoles, i as usize);
+            }
         }
         wide::collapse(&self.nodes, &mut self.wide);
         self.stamp = mesh.stamp();
@@ -484,21 +489,17 @@ impl FaceTree {
         order
     }
 
-    /// Every reachable node's box from its triangles or children (a
-    /// refit).
-    fn refit_boxes(&mut self) {
-        for i in self.bottom_up() {
-            let i = i as usize;
-            let n = self.nodes[i];
-            if n.is_leaf() {
-                let range = n.first as usize..(n.first + n.count) as usize;
-                let (lo, hi) = build::bounds(&self.tris[range]);
-                self.nodes[i].set_box(lo, hi);
-            } else {
-                let (na, nb) = (self.nodes[n.children(i).0], self.nodes[n.children(i).1]);
-                self.nodes[i].lo = std::array::from_fn(|k| na.lo[k].min(nb.lo[k]));
-                self.nodes[i].hi = std::array::from_fn(|k| na.hi[k].max(nb.hi[k]));
-            }
+    /// Node `i`'s box from its triangles or its children's boxes.
+    fn fit_box(&mut self, i: usize) {
+        let n = self.nodes[i];
+        if n.is_leaf() {
+            let (lo, hi) =
+                build::bounds(&self.tris[n.first as usize..(n.first + n.count) as usize]);
+            self.nodes[i].set_box(lo, hi);
+        } else {
+            let (na, nb) = (self.nodes[n.children(i).0], self.nodes[n.children(i).1]);
+            self.nodes[i].lo = std::array::from_fn(|k| na.lo[k].min(nb.lo[k]));
+            self.nodes[i].hi = std::array::from_fn(|k| na.hi[k].max(nb.hi[k]));
         }
     }
 
@@ -513,15 +514,7 @@ impl FaceTree {
     fn far_field_afresh(&self) -> Vec<Dipole> {
         let mut dipoles = vec![Dipole::default(); self.nodes.len()];
         for i in self.bottom_up() {
-            let i = i as usize;
-            let n = self.nodes[i];
-            let d = if n.is_leaf() {
-                winding::leaf_dipole(&self.tris[n.first as usize..(n.first + n.count) as usize])
-            } else {
-                let (a, b) = n.children(i);
-                winding::merge_dipoles(dipoles[a], dipoles[b])
-            };
-            dipoles[i] = winding::with_radius(d, n.lo(), n.hi());
+            dipoles[i as usize] = node_dipole(&self.nodes, &self.tris, &dipoles, i as usize);
         }
         dipoles
     }
@@ -539,6 +532,19 @@ impl FaceTree {
             weights: w,
         }
     }
+}
+
+/// Node `i`'s far-field data from its triangles or its children's (in
+/// `dipoles`), with a radius about its centre that holds its box.
+fn node_dipole(nodes: &[Node], tris: &[[V3; 3]], dipoles: &[Dipole], i: usize) -> Dipole {
+    let n = nodes[i];
+    let d = if n.is_leaf() {
+        winding::leaf_dipole(&tris[n.first as usize..(n.first + n.count) as usize])
+    } else {
+        let (a, b) = n.children(i);
+        winding::merge_dipoles(dipoles[a], dipoles[b])
+    };
+    winding::with_radius(d, n.lo(), n.hi())
 }
 
 /// Where on a face a point lies: weights of three of the face's corners

@@ -455,7 +455,7 @@ impl FaceTree {
         let candidates = |tree: &FaceTree, tri: usize, out: &mut Vec<Candidate<_>>| {
             let (p, v) = (&tree.tris[tri], &tree.meta[tri].v);
             for (i, j) in SIDES {
-                if axis.box_key(min3(p[i], p[j]), max3(p[i], p[j])) > 1.0 {
+                if axis.box_key(vec3::min(p[i], p[j]), vec3::max(p[i], p[j])) > 1.0 {
                     continue;
                 }
                 if let Some((o, t, x)) = axis.segment(p[i], p[j]) {
@@ -574,16 +574,6 @@ impl FaceTree {
         self.any_hit(mesh, Ray::new(eye, d), 1.0 - SIGHT_SLACK)
             .unwrap_or(false)
     }
-}
-
-/// The componentwise minimum.
-fn min3(a: V3, b: V3) -> V3 {
-    std::array::from_fn(|k| a[k].min(b[k]))
-}
-
-/// The componentwise maximum.
-fn max3(a: V3, b: V3) -> V3 {
-    std::array::from_fn(|k| a[k].max(b[k]))
 }
 
 /// The point of least offset from the cone's axis on segment `a`–`b`, its

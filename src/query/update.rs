@@ -30,11 +30,11 @@
 
 use std::collections::{BTreeMap, HashSet};
 
-use super::{build, wide, winding, Dipole, FaceTree, Node, QueryError, TriMeta, GONE};
+use super::{build, wide, Dipole, FaceTree, Node, QueryError, TriMeta, GONE};
 use crate::journal::Changes;
 use crate::keys::{FaceKey, VertexKey};
 use crate::mesh::Mesh;
-use crate::vec3::V3;
+use crate::vec3::{self, V3};
 
 /// A touched leaf with more triangles than this is rebuilt as a subtree.
 pub(super) const SPLIT_LEAF: usize = 16;
@@ -223,7 +223,7 @@ impl FaceTree {
                 let (a, b) = self.nodes[n].children(n);
                 let grow = |c: usize| {
                     let c = self.nodes[c];
-                    let u = half_area(build::min3(c.lo(), lo), build::max3(c.hi(), hi));
+                    let u = half_area(vec3::min(c.lo(), lo), vec3::max(c.hi(), hi));
                     (u - half_area(c.lo(), c.hi()), u)
                 };
                 n = if grow(a) <= grow(b) { a } else { b };
@@ -381,23 +381,9 @@ impl FaceTree {
     /// Node `i`'s box from its triangles or children, and its far-field
     /// data if the tree has made it.
     fn bound(&mut self, i: usize) {
-        let n = self.nodes[i];
-        let range = || n.first as usize..(n.first + n.count) as usize;
-        let (lo, hi) = if n.is_leaf() {
-            build::bounds(&self.tris[range()])
-        } else {
-            let (na, nb) = (self.nodes[n.children(i).0], self.nodes[n.children(i).1]);
-            (build::min3(na.lo(), nb.lo()), build::max3(na.hi(), nb.hi()))
-        };
-        self.nodes[i].set_box(lo, hi);
+        self.fit_box(i);
         if let Some(dipoles) = self.dipoles.get_mut() {
-            let d = if n.is_leaf() {
-                winding::leaf_dipole(&self.tris[range()])
-            } else {
-                let (a, b) = n.children(i);
-                winding::merge_dipoles(dipoles[a], dipoles[b])
-            };
-            dipoles[i] = winding::with_radius(d, lo, hi);
+            dipoles[i] = super::node_dipole(&self.nodes, &self.tris, dipoles, i);
         }
     }
 
