@@ -149,15 +149,15 @@ impl Mesh {
         VertexOutgoing::new(self, v)
     }
 
-    /// The loop of face `f` (crate-internal).
+    /// The half-edges of face `f` (crate-internal).
     #[inline]
-    pub(crate) fn face_loop(&self, f: Fid) -> FaceHalfedges<'_> {
+    pub(crate) fn face_halfedges(&self, f: Fid) -> FaceHalfedges<'_> {
         FaceHalfedges::new(self, f)
     }
 
-    /// The face loop through half-edge `h`, starting at `h` (crate-internal).
+    /// The half-edges of the face of half-edge `h`, starting at `h` (crate-internal).
     #[inline]
-    pub(crate) fn face_loop_from(&self, h: Hid) -> FaceHalfedges<'_> {
+    pub(crate) fn face_halfedges_from(&self, h: Hid) -> FaceHalfedges<'_> {
         FaceHalfedges::from_halfedge(self, h)
     }
 }

@@ -277,7 +277,7 @@ impl Mesh {
     ) -> Result<[f64; 3]> {
         let fs = self.check_face(f)?;
         let mut n = [0.0; 3];
-        for he in self.face_loop(fs) {
+        for he in self.face_halfedges(fs) {
             let a = self.point_in(h, self.origin(he))?;
             let b = self.point_in(h, self.dest(he))?;
             newell_edge(&mut n, a, b);
@@ -340,7 +340,7 @@ impl Mesh {
         let fs = self.check_face(f)?;
         let mut c = [0.0; 3];
         let mut n = 0usize;
-        for he in self.face_loop(fs) {
+        for he in self.face_halfedges(fs) {
             let p = self.point_in(h, self.origin(he))?;
             for k in 0..3 {
                 c[k] += p[k];

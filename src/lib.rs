@@ -49,7 +49,7 @@
 //! | [`iter`] | the named element iterators ([`iter::Vertices`], [`iter::Faces`], ...), in slot order with exact lengths |
 //! | [`link`] | [`link::RawEdit`]: reflecting low-level link setters, for writing your own operators |
 //! | [`map`] | [`map::SecondaryMap`]: scratch values per element beside a mesh, stale-key safe |
-//! | [`traverse`] | breadth- and depth-first orders, connected components, shortest paths |
+//! | [`traverse`] | breadth- and depth-first orders, connected components, shortest paths, edge loops, edge rings and face loops |
 //! | [`validate`] | every structural rule, numbered, as [`Mesh::validate`] checks them |
 //! | [`stats`] | whole-mesh figures: counts, boundary loops, components, Euler characteristic, genus |
 //!

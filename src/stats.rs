@@ -153,7 +153,9 @@ impl Mesh {
         let mut face_degrees = BTreeMap::new();
         for f in self.fids() {
             if !self.is_hole(f) {
-                *face_degrees.entry(self.face_loop(f).count()).or_insert(0) += 1;
+                *face_degrees
+                    .entry(self.face_halfedges(f).count())
+                    .or_insert(0) += 1;
             }
         }
         let boundary_edges = self
@@ -260,7 +262,7 @@ impl Mesh {
             if self.is_hole(f) {
                 continue;
             }
-            for h in self.face_loop(f) {
+            for h in self.face_halfedges(f) {
                 let t = h.twin();
                 if self.in_hole(t) {
                     sides.push((self.origin(t).raw(), self.origin(h).raw()));

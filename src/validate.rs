@@ -245,7 +245,7 @@ impl Mesh {
                     format!("names half-edge {}, which is not its own", h.raw()),
                 ));
             }
-            let len = self.face_loop(f).count();
+            let len = self.face_halfedges(f).count();
             if len != per_face[f] as usize {
                 return Err(broken(
                     6,
@@ -258,7 +258,7 @@ impl Mesh {
                     return Err(broken(7, key, format!("has {len} sides")));
                 }
                 corners.clear();
-                corners.extend(self.face_loop(f).map(|h| self.origin(h)));
+                corners.extend(self.face_halfedges(f).map(|h| self.origin(h)));
                 corners.sort_unstable();
                 if let Some(w) = corners.windows(2).find(|w| w[0] == w[1]) {
                     return Err(broken(

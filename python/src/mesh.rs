@@ -827,6 +827,33 @@ impl PyMesh {
         Self::set_attr_array(slf, "position", values, "vertex")
     }
 
+    // ----- loops and rings -----------------------------------------------------------
+
+    /// The edge loop through edge `e`: on through vertices of degree 4,
+    /// stopping at poles and the boundary (along the boundary for a
+    /// boundary edge). End to end; a closed loop starts with `e`.
+    fn edge_loop(slf: &Bound<'_, Self>, e: &Bound<'_, PyEdge>) -> PyResult<Vec<Py<PyEdge>>> {
+        let e = ekey(slf, e)?;
+        let run = query(slf, |m| m.edge_loop(e))?;
+        elements::edges(slf.py(), &slf.clone().unbind(), run.keys)
+    }
+
+    /// The edge ring through edge `e`: across quads, stopping at other
+    /// faces and holes. End to end; a closed ring starts with `e`.
+    fn edge_ring(slf: &Bound<'_, Self>, e: &Bound<'_, PyEdge>) -> PyResult<Vec<Py<PyEdge>>> {
+        let e = ekey(slf, e)?;
+        let run = query(slf, |m| m.edge_ring(e))?;
+        elements::edges(slf.py(), &slf.clone().unbind(), run.keys)
+    }
+
+    /// The face loop across edge `e`: the quads its edge ring crosses, in
+    /// order.
+    fn face_loop(slf: &Bound<'_, Self>, e: &Bound<'_, PyEdge>) -> PyResult<Vec<Py<PyFace>>> {
+        let e = ekey(slf, e)?;
+        let run = query(slf, |m| m.face_loop(e))?;
+        elements::faces(slf.py(), &slf.clone().unbind(), run.keys)
+    }
+
     // ----- operators ---------------------------------------------------------------
 
     /// Split edge `e` at parameter `t` (0 at side 0's origin); returns the

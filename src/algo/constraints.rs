@@ -427,7 +427,7 @@ impl<'m> Classifier<'m> {
             return cross(sub(b, a), sub(c, a));
         }
         let mut n = [0.0; 3];
-        for x in mesh.face_loop_from(h) {
+        for x in mesh.face_halfedges_from(h) {
             let p = pos[mesh.origin(x).index()];
             let q = pos[mesh.dest(x).index()];
             n[0] += (p[1] - q[1]) * (p[2] + q[2]);

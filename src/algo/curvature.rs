@@ -220,7 +220,7 @@ fn face_sums(mesh: &Mesh, p: &[V3]) -> Sums {
             continue;
         }
         vs.clear();
-        vs.extend(mesh.face_loop_from(h0).map(|h| mesh.origin(h)));
+        vs.extend(mesh.face_halfedges_from(h0).map(|h| mesh.origin(h)));
         ps.clear();
         ps.extend(vs.iter().map(|v| p[v.index()]));
         polygon(&ps, &mut pairs, &mut parea);

@@ -367,7 +367,7 @@ pub fn fill_holes_at(
 fn checked_start(mesh: &Mesh, start: Hid, options: &FillHoleOptions) -> Result<Hid> {
     let hole = mesh.fkey(mesh.face_of(start));
     mesh.check_fill_hole(hole)?;
-    let n = mesh.face_loop_from(start).count();
+    let n = mesh.face_halfedges_from(start).count();
     if options.max_rim.is_some_and(|max| n > max) {
         return Err(unsuitable(
             Some(hole.into()),
@@ -437,7 +437,7 @@ pub fn fill_holes(
         for (i, &hole) in holes.iter().enumerate() {
             progress.report(ALGORITHM_ALL, "holes", i as u64, total)?;
             let h = m.check_face(hole)?;
-            let n = m.face_loop(h).count();
+            let n = m.face_halfedges(h).count();
             if options.max_rim.is_some_and(|max| n > max) || m.check_fill_hole(hole).is_err() {
                 report.skipped.push(hole);
                 continue;
@@ -502,7 +502,7 @@ fn fill_one(
     options: &FillHoleOptions,
     tables: &mut Tables,
 ) -> Result<Patch> {
-    let rim: Vec<Hid> = mesh.face_loop_from(start).collect();
+    let rim: Vec<Hid> = mesh.face_halfedges_from(start).collect();
     let corners: Vec<Vid> = rim.iter().map(|&h| mesh.origin(h)).collect();
     let n = rim.len();
     let p = mesh.position_slots().ok_or(Error::NoPositions)?;
@@ -554,7 +554,7 @@ fn fill_one(
         None => {
             let rim_edges: HashSet<Eid> = rim.iter().map(|h| h.edge()).collect();
             for g in mesh.triangulate(hole)? {
-                for h in mesh.face_loop(g.id()) {
+                for h in mesh.face_halfedges(g.id()) {
                     if !rim_edges.contains(&h.edge()) {
                         work.edges.insert(h.edge());
                     }

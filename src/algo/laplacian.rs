@@ -340,7 +340,7 @@ pub(crate) fn laplacian_at(mesh: &Mesh, p: &[V3], options: &LaplacianOptions) ->
                     continue;
                 }
                 ring.clear();
-                ring.extend(mesh.face_loop_from(h0));
+                ring.extend(mesh.face_halfedges_from(h0));
                 ps.clear();
                 ps.extend(ring.iter().map(|&h| p[mesh.origin(h).index()]));
                 polygon(&ps, &mut pairs, &mut area);
@@ -470,7 +470,7 @@ pub(crate) fn mass_matrix_at(mesh: &Mesh, p: &[V3]) -> Vec<f64> {
             continue;
         }
         vs.clear();
-        vs.extend(mesh.face_loop_from(h0).map(|h| mesh.origin(h)));
+        vs.extend(mesh.face_halfedges_from(h0).map(|h| mesh.origin(h)));
         ps.clear();
         ps.extend(vs.iter().map(|v| p[v.index()]));
         polygon(&ps, &mut pairs, &mut area);

@@ -127,7 +127,7 @@ impl Midpoint {
             MidpointFaces::Auto => {
                 let all_triangles = mesh
                     .fids()
-                    .all(|f| mesh.is_hole(f) || mesh.face_loop(f).count() == 3);
+                    .all(|f| mesh.is_hole(f) || mesh.face_halfedges(f).count() == 3);
                 if all_triangles {
                     CutRule::Triangles
                 } else {

@@ -414,7 +414,7 @@ fn accumulate(
             continue;
         }
         c.clear();
-        c.extend(mesh.face_loop_from(h0).map(|h| mesh.origin(h).index()));
+        c.extend(mesh.face_halfedges_from(h0).map(|h| mesh.origin(h).index()));
         let n = newell(p, &c);
         let u = unit(n);
         if u == [0.0; 3] {

@@ -685,7 +685,10 @@ pub(crate) fn area_and_centroid(mesh: &Mesh, x: &[V3]) -> (f64, V3) {
         if let Some(hs) = as_triangle(mesh, h0) {
             ring.extend(hs.map(|h| x[mesh.origin(h).index()]));
         } else {
-            ring.extend(mesh.face_loop_from(h0).map(|h| x[mesh.origin(h).index()]));
+            ring.extend(
+                mesh.face_halfedges_from(h0)
+                    .map(|h| x[mesh.origin(h).index()]),
+            );
         }
         // Fan from the first corner.
         for k in 1..ring.len() - 1 {

@@ -165,7 +165,7 @@ fn check(mesh: &Mesh) -> Result<()> {
         if mesh.is_hole(f) {
             continue;
         }
-        let n = mesh.face_loop(f).count();
+        let n = mesh.face_halfedges(f).count();
         if n != 3 {
             return Err(unsuitable(
                 ALGORITHM,

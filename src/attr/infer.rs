@@ -66,7 +66,7 @@ impl Mesh {
                 })
                 .collect(),
             ElementKind::Face => self
-                .face_loop(Fid::new(s))
+                .face_halfedges(Fid::new(s))
                 .map(|h| {
                     let f = self.face_of(h.twin());
                     (f.raw(), self.fkey(f).generation)

@@ -403,7 +403,7 @@ assert!(tet.is_closed());
         for f in self.faces() {
             face_slot[f.index()] = faces.len() as u32;
             faces.push(f);
-            for h in self.face_loop(f.id()) {
+            for h in self.face_halfedges(f.id()) {
                 indices.push(vertex_slot[self.origin(h).index()]);
             }
             offsets.push(indices.len() as u32);

@@ -9,8 +9,8 @@
 //! Navigation that already exists is not repeated here: `origin`, `dest`,
 //! `next`, `prev`, `face_of`, `is_hole`, `face_halfedge`, `in_hole`,
 //! `on_boundary` and the live-slot iterators `vids`/`eids`/`hids`/`fids`
-//! are in `mesh.rs`; the circulators (`outgoing`, `face_loop`,
-//! `face_loop_from`) in [`circulate`](crate::circulate). The raw indices
+//! are in `mesh.rs`; the circulators (`outgoing`, `face_halfedges`,
+//! `face_halfedges_from`) in [`circulate`](crate::circulate). The raw indices
 //! are the typed slots of [`layout`](crate::layout).
 //!
 //! Slot counts include vacant slots (arrays indexed by slot are that long);

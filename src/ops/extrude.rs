@@ -90,7 +90,7 @@ impl Mesh {
     ) -> Result<Vec<FaceKey>> {
         let mut w = self.writer::<J>();
         let (f, normal) = w.plan_extrude(fk, distance)?;
-        let ring: Vec<Hid> = w.face_loop(f).collect();
+        let ring: Vec<Hid> = w.face_halfedges(f).collect();
         let n = ring.len();
         let tops: Vec<Vid> = (0..n).map(|_| w.alloc_vertex()).collect();
         let cap: Vec<Eid> = (0..n).map(|_| w.alloc_edge()).collect();

@@ -69,7 +69,7 @@ impl Mesh {
         if !self.is_hole(h) {
             return Err(refuse(OP, hk, Refusal::NotHole));
         }
-        let mut corners: Vec<Vid> = self.face_loop(h).map(|x| self.origin(x)).collect();
+        let mut corners: Vec<Vid> = self.face_halfedges(h).map(|x| self.origin(x)).collect();
         if corners.len() < 3 {
             return Err(refuse(OP, hk, Refusal::Degenerate));
         }
@@ -130,7 +130,7 @@ impl Mesh {
     fn remove_face_with<J: Journaling>(&mut self, fk: FaceKey) -> Result<Vec<FaceKey>> {
         let mut w = self.writer::<J>();
         let f = w.plan_remove_face(fk)?;
-        let sides: Vec<Hid> = w.face_loop(f).collect();
+        let sides: Vec<Hid> = w.face_halfedges(f).collect();
         w.set_hole(f, true);
         w.attrs.face.interpolate(f.index(), &[]);
         // Rule 11: every corner is now on the boundary.
@@ -176,7 +176,7 @@ impl<J: Journaling> Writer<'_, J> {
         self.attrs.face.interpolate(h.index(), &[]);
         // Rule 11: a corner that named a half-edge of the hole names another
         // hole's, if one still touches it.
-        let corners: Vec<Vid> = self.face_loop(h).map(|x| self.origin(x)).collect();
+        let corners: Vec<Vid> = self.face_halfedges(h).map(|x| self.origin(x)).collect();
         for v in corners {
             self.point_at_hole(v);
         }

@@ -158,7 +158,7 @@ impl Mesh {
     /// Number of half-edges in the loop of face `f`.
     #[inline]
     pub(crate) fn face_degree(&self, f: Fid) -> usize {
-        self.face_loop(f).count()
+        self.face_halfedges(f).count()
     }
 
     /// Twice the vector area (Newell) of the `next` cycle through `start`.

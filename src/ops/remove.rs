@@ -18,10 +18,12 @@ impl Mesh {
             (false, false) => {
                 // The merged face must not meet a vertex twice.
                 let (a, b) = (self.origin(h), self.origin(t));
-                let mut corners: Vec<Vid> =
-                    self.face_loop(f_left).map(|x| self.origin(x)).collect();
+                let mut corners: Vec<Vid> = self
+                    .face_halfedges(f_left)
+                    .map(|x| self.origin(x))
+                    .collect();
                 corners.sort_unstable();
-                for x in self.face_loop(f_right) {
+                for x in self.face_halfedges(f_right) {
                     let v = self.origin(x);
                     if v != a && v != b && corners.binary_search(&v).is_ok() {
                         return Err(refuse(OP, ek, Refusal::NonManifold));
@@ -162,7 +164,9 @@ impl Mesh {
         if fi == gi {
             return Err(refuse(OP, f, Refusal::Adjacent));
         }
-        let mut shared = self.face_loop(fi).filter(|&x| self.face_of(x.twin()) == gi);
+        let mut shared = self
+            .face_halfedges(fi)
+            .filter(|&x| self.face_of(x.twin()) == gi);
         let Some(x) = shared.next() else {
             return Err(refuse(OP, f, Refusal::NotAdjacent));
         };

@@ -141,7 +141,7 @@ impl Mesh {
         let (mut ha, mut hb, mut pa, mut pb) = (None, None, None, None);
         let start = self.face_halfedge(f);
         let mut prev = self.prev(start);
-        for h in self.face_loop(f) {
+        for h in self.face_halfedges(f) {
             let o = self.origin(h);
             if o == va {
                 ha = Some(h);
@@ -217,7 +217,7 @@ impl Mesh {
         let vb = self.check_vertex(b)?;
         for o in self.outgoing(va) {
             let f = self.face_of(o);
-            if !self.is_hole(f) && self.face_loop(f).any(|h| self.origin(h) == vb) {
+            if !self.is_hole(f) && self.face_halfedges(f).any(|h| self.origin(h) == vb) {
                 return Ok(self.fkey(f));
             }
         }
@@ -345,7 +345,7 @@ impl Mesh {
             heap.resize(n, Spoke::NONE);
             &mut heap
         };
-        for (slot, h) in buf.iter_mut().zip(w.face_loop(f)) {
+        for (slot, h) in buf.iter_mut().zip(w.face_halfedges(f)) {
             slot.ring = h;
         }
         let c = w.alloc_vertex();

@@ -76,7 +76,7 @@ impl Mesh {
         }
         sides.clear();
         ears.clear();
-        sides.extend(self.face_loop(f));
+        sides.extend(self.face_halfedges(f));
         let n = sides.len();
         if n <= 3 {
             return Ok(());

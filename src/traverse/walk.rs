@@ -73,7 +73,7 @@ impl Node for FaceKey {
     }
     fn neighbors(mesh: &Mesh, i: usize, out: &mut Vec<usize>) {
         out.extend(
-            mesh.face_loop(Fid::new(i as u32))
+            mesh.face_halfedges(Fid::new(i as u32))
                 .map(|h| mesh.face_of(h.twin()))
                 .filter(|&g| !mesh.is_hole(g))
                 .map(|g| g.index()),

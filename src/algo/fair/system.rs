@@ -245,7 +245,7 @@ fn stencil(mesh: &Mesh, v: Vid, weights: LaplaceWeights, out: &mut Vec<Vid>) {
         let far = mesh.next(mesh.next(h));
         if mesh.next(far) != h {
             out.extend(
-                mesh.face_loop_from(h)
+                mesh.face_halfedges_from(h)
                     .map(|g| mesh.origin(g))
                     .filter(|&u| u != v),
             );
@@ -291,7 +291,7 @@ fn laplacian_row(
             continue;
         }
         ring.clear();
-        ring.extend(mesh.face_loop_from(h).map(|g| mesh.origin(g)));
+        ring.extend(mesh.face_halfedges_from(h).map(|g| mesh.origin(g)));
         ps.clear();
         ps.extend(ring.iter().map(|u| p[u.index()]));
         polygon(&ps, &mut pairs, &mut area);

@@ -282,7 +282,7 @@ pub(crate) fn face_column_plan_refine(mesh: &Mesh, r: &Refinement) -> ColumnPlan
         }
     }
     for f in mesh.fids() {
-        if !mesh.is_hole(f) && r.rule.cut(mesh.face_loop(f).count()) == Some(Cut::Triangle) {
+        if !mesh.is_hole(f) && r.rule.cut(mesh.face_halfedges(f).count()) == Some(Cut::Triangle) {
             plan.split(f.raw(), 0.25);
         }
     }

@@ -104,8 +104,8 @@ impl Sink for PlanSink<'_> {
     }
 
     fn face(&mut self, f: Fid, w: f64) {
-        let n = self.mesh.face_loop(f).count().max(1) as f64;
-        for h in self.mesh.face_loop(f) {
+        let n = self.mesh.face_halfedges(f).count().max(1) as f64;
+        for h in self.mesh.face_halfedges(f) {
             self.plan.push_input(self.mesh.origin(h).raw(), w / n);
         }
     }

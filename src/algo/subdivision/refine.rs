@@ -363,7 +363,7 @@ impl Refinement {
         let mut boundary = 0usize;
         for f in mesh.fids() {
             if mesh.is_hole(f) {
-                boundary += mesh.face_loop(f).count();
+                boundary += mesh.face_halfedges(f).count();
             }
         }
         let corners = Eid::halfedge_slots(edges) - boundary;
@@ -581,7 +581,7 @@ pub(crate) fn valence_two_error(
     }
     let both_cut = [h0, h1]
         .iter()
-        .all(|&h| rule.cut(mesh.face_loop(mesh.face_of(h)).count()) == Some(Cut::Triangle));
+        .all(|&h| rule.cut(mesh.face_halfedges(mesh.face_of(h)).count()) == Some(Cut::Triangle));
     both_cut.then(|| {
         unsuitable(
             algorithm,

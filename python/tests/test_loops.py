@@ -1,0 +1,36 @@
+"""Edge loops, edge rings and face loops selected from one edge."""
+
+import pytest
+
+import meshloom
+from conftest import grid_arrays
+
+
+def test_grid_loops_run_side_to_side_and_rings_cross_the_quads():
+    n = 4
+    mesh = meshloom.Mesh.from_arrays(*grid_arrays(n))
+    for e in mesh.edges:
+        run = mesh.edge_loop(e)
+        assert e in run and len(run) == n
+        # End to end: consecutive edges share a vertex.
+        for a, b in zip(run, run[1:]):
+            assert set(a.vertices) & set(b.vertices)
+        ring = mesh.edge_ring(e)
+        assert e in ring and len(ring) == n + 1
+        faces = mesh.face_loop(e)
+        assert len(faces) == n
+        for (a, b), f in zip(zip(ring, ring[1:]), faces):
+            assert a in f.edges and b in f.edges
+
+
+def test_loops_refuse_stale_edges_and_change_nothing():
+    mesh = meshloom.Mesh.from_arrays(*grid_arrays(2))
+    before = mesh.copy()
+    e = mesh.edges[0]
+    assert mesh.edge_loop(e) and mesh == before
+    f = [f for f in e.faces if f is not None][0]
+    mesh.remove_face(f)
+    if e not in mesh.edges:
+        for call in (mesh.edge_loop, mesh.edge_ring, mesh.face_loop):
+            with pytest.raises(meshloom.StaleKeyError):
+                call(e)
