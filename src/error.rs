@@ -183,6 +183,14 @@ pub enum Refusal {
     /// A parameter is out of its range (for example `t` outside 0..=1).
     #[error("parameter out of range: {0}")]
     Parameter(&'static str),
+    /// The operator needs quads where it found none (a loop cut's edge
+    /// with no quad beside it).
+    #[error("no quad beside the edge")]
+    NotQuads,
+    /// The path or ring the operator follows passes through an element
+    /// twice, or comes back reversed.
+    #[error("the path crosses itself or comes back reversed")]
+    Crossing,
     /// The operation would remove every element of the mesh or of a
     /// component that must remain.
     #[error("the operation would leave nothing behind")]

@@ -58,6 +58,7 @@
 //! | module | what it holds |
 //! |---|---|
 //! | [`ops`] | the operators (split, collapse, flip, remove, fill, triangulate, extrude, cut, compact), each with a side-effect-free `check_*` twin, all or nothing |
+//! | [`model`] | modelling tools over regions (loop cut, ...), each one composite edit, all or nothing and one undo step |
 //! | [`build`] | meshes from polygons or flat buffers of any point type, in linear time with typed errors, and polygons back |
 //! | [`repair`] | repair policies for dirty polygon soups (weld, drop degenerate faces, reorient, split non-manifold elements), with a report |
 //! | [`shapes`] | named shapes for docs, tests and benchmarks: tetrahedron, cube, icosphere, grid, torus, ... |
@@ -156,6 +157,7 @@ mod layout;
 pub mod link;
 pub mod map;
 mod mesh;
+pub mod model;
 pub mod ops;
 mod predicates;
 pub mod query;

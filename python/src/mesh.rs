@@ -854,6 +854,36 @@ impl PyMesh {
         elements::faces(slf.py(), &slf.clone().unbind(), run.keys)
     }
 
+    // ----- modelling tools -------------------------------------------------------------
+
+    /// Cut the quads of the edge ring through `e` with `cuts` new edge
+    /// loops at `factor` (in (0, 1); evenly spaced at 0.5), bulging by
+    /// `smoothness` towards the surface; one undo step. Returns a dict:
+    /// "vertices" (ring edge by ring edge, `cuts` each), "edges" (quad by
+    /// quad, `cuts` each), "closed".
+    #[pyo3(signature = (e, *, cuts = 1, factor = 0.5, smoothness = 0.0))]
+    fn loop_cut<'py>(
+        slf: &Bound<'py, Self>,
+        e: &Bound<'py, PyEdge>,
+        cuts: usize,
+        factor: f64,
+        smoothness: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let e = ekey(slf, e)?;
+        let options = meshloom::model::LoopCutOptions {
+            cuts,
+            factor,
+            smoothness,
+        };
+        let cut = edit(slf, |m| m.loop_cut(e, &options))?;
+        let (py, mesh) = (slf.py(), slf.clone().unbind());
+        let out = PyDict::new(py);
+        out.set_item("vertices", elements::vertices(py, &mesh, cut.vertices)?)?;
+        out.set_item("edges", elements::edges(py, &mesh, cut.edges)?)?;
+        out.set_item("closed", cut.closed)?;
+        Ok(out)
+    }
+
     // ----- operators ---------------------------------------------------------------
 
     /// Split edge `e` at parameter `t` (0 at side 0's origin); returns the

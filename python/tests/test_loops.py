@@ -34,3 +34,22 @@ def test_loops_refuse_stale_edges_and_change_nothing():
         for call in (mesh.edge_loop, mesh.edge_ring, mesh.face_loop):
             with pytest.raises(meshloom.StaleKeyError):
                 call(e)
+
+
+def test_loop_cut_adds_the_loops_and_refusals_change_nothing():
+    n, cuts = 4, 3
+    mesh = meshloom.Mesh.from_arrays(*grid_arrays(n))
+    v0, f0 = mesh.vertex_count, mesh.face_count
+    e = [e for e in mesh.edges if None not in e.faces][0]
+    before = mesh.copy()
+    with pytest.raises(meshloom.RefusedError):
+        mesh.loop_cut(e, cuts=0)
+    with pytest.raises(meshloom.RefusedError):
+        mesh.loop_cut(e, factor=1.0)
+    assert mesh == before
+    out = mesh.loop_cut(e, cuts=cuts, factor=0.3)
+    assert len(out["vertices"]) == cuts * (n + 1)
+    assert len(out["edges"]) == cuts * n and not out["closed"]
+    assert mesh.vertex_count == v0 + cuts * (n + 1)
+    assert mesh.face_count == f0 + cuts * n
+    mesh.validate()

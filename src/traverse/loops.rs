@@ -71,8 +71,14 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn edge_ring(&self, e: EdgeKey) -> Result<Chain<EdgeKey>> {
-        let h = self.edge(e)?.halfedge(0);
-        Ok(walk_both_ways(self, h, ring_step).map(|h| h.edge().key()))
+        Ok(self.edge_ring_halfedges(e)?.map(|h| h.edge().key()))
+    }
+
+    /// The edge ring through `e` as half-edges pointing along it, each
+    /// lying in the face after it (the last one of an open ring in the face
+    /// where it stopped), the first at or before `e`'s first half-edge.
+    pub(crate) fn edge_ring_halfedges(&self, e: EdgeKey) -> Result<Chain<HalfedgeView<'_>>> {
+        Ok(walk_both_ways(self, self.edge(e)?.halfedge(0), ring_step))
     }
 
     /// The face loop across edge `e`: the quads its edge ring crosses, in
@@ -88,8 +94,7 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn face_loop(&self, e: EdgeKey) -> Result<Chain<FaceKey>> {
-        let h = self.edge(e)?.halfedge(0);
-        let mut ring = walk_both_ways(self, h, ring_step);
+        let mut ring = self.edge_ring_halfedges(e)?;
         if !ring.closed {
             // The last half-edge's face is where the ring stopped.
             ring.keys.pop();

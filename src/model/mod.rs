@@ -1,0 +1,20 @@
+//! Modelling tools: edits over a region of the mesh (a ring of edges, a
+//! set of faces) made of the [`ops`](crate::ops) operators, each one
+//! composite edit that is all or nothing and one undo step.
+//!
+//! Every tool plans first (checking its selection and options against the
+//! mesh as it is, changing nothing), then runs its operators inside a
+//! [transaction](crate::Mesh::transaction), so a refusal or a failed
+//! attribute rule leaves the mesh, attributes included, as it was. The
+//! attributes follow each operator's rules: a loop cut's new vertices and
+//! corners interpolate along the edges they split, its face pieces split
+//! the quads' values by area, and its new edges get `interpolate` of
+//! nothing, as Blender's BMesh does.
+//!
+//! | tool | what it does |
+//! |---|---|
+//! | [`Mesh::loop_cut`] | cut an edge ring's quads with new edge loops |
+
+mod loop_cut;
+
+pub use loop_cut::{LoopCut, LoopCutOptions};
