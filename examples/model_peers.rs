@@ -12,8 +12,8 @@
 //! selection are outside the clock, as the peer's are); the clock is
 //! process CPU time. `BENCH_ONLY` (comma list) filters the workloads.
 
-use meshloom::model::LoopCutOptions;
-use meshloom::Mesh;
+use meshloom::model::{ExtrudeOptions, LoopCutOptions};
+use meshloom::{FaceKey, Mesh};
 use std::path::Path;
 use std::time::Instant;
 
@@ -31,10 +31,86 @@ fn main() {
             .is_none_or(|o| o.split(',').any(|w| w == name))
     };
     println!("# meshloom model_peers: rounds {rounds}, clock process CPU, one thread");
-    if wanted("loop_cut_10") {
+    let grid_tools = [
+        "loop_cut_10",
+        "extrude_region_half",
+        "extrude_individual_all",
+    ];
+    if grid_tools.iter().any(|w| wanted(w)) {
         let grid = meshloom::io::read(dir.join("quadgrid_1000x250.obj")).expect("quad grid");
-        loop_cut_10(&grid, rounds);
+        if wanted("loop_cut_10") {
+            loop_cut_10(&grid, rounds);
+        }
+        if wanted("extrude_region_half") {
+            extrude_region_half(&grid, rounds);
+        }
+        if wanted("extrude_individual_all") {
+            extrude_individual_all(&grid, rounds);
+        }
     }
+}
+
+/// `extrude_region_half`: the faces whose centroid's x is below the
+/// median, extruded together by the mean edge length along +z.
+fn extrude_region_half(mesh: &Mesh, rounds: usize) {
+    let half = half_by_x(mesh);
+    let options = ExtrudeOptions {
+        distance: mean_edge_length(mesh),
+        direction: Some([0.0, 0.0, 1.0]),
+        individual: false,
+    };
+    let (t, m) = time_fresh(rounds, mesh, |m| {
+        m.extrude_faces(&half, &options).expect("extrude");
+    });
+    line(
+        "extrude_region_half",
+        t,
+        &counts(&m),
+        &format!("{} faces", half.len()),
+    );
+}
+
+/// `extrude_individual_all`: every face on its own, not moved.
+fn extrude_individual_all(mesh: &Mesh, rounds: usize) {
+    let all: Vec<FaceKey> = mesh.faces().collect();
+    let options = ExtrudeOptions {
+        individual: true,
+        ..Default::default()
+    };
+    let (t, m) = time_fresh(rounds, mesh, |m| {
+        m.extrude_faces(&all, &options).expect("extrude");
+    });
+    line("extrude_individual_all", t, &counts(&m), "");
+}
+
+/// The faces whose centroid (mean of its corners) has x below the median.
+fn half_by_x(mesh: &Mesh) -> Vec<FaceKey> {
+    let x = |f: FaceKey| {
+        let vs: Vec<f64> = mesh
+            .face(f)
+            .expect("face")
+            .vertices()
+            .map(|v| mesh.position(v).expect("p")[0])
+            .collect();
+        vs.iter().sum::<f64>() / vs.len() as f64
+    };
+    let mut xs: Vec<f64> = mesh.faces().map(x).collect();
+    xs.sort_by(f64::total_cmp);
+    let median = xs[xs.len() / 2];
+    mesh.faces().filter(|&f| x(f) < median).collect()
+}
+
+/// The mean length of the mesh's edges.
+fn mean_edge_length(mesh: &Mesh) -> f64 {
+    let total: f64 = mesh
+        .edges()
+        .map(|e| {
+            let [a, b] = mesh.edge(e).expect("edge").vertices();
+            let (p, q) = (mesh.position(a).expect("p"), mesh.position(b).expect("p"));
+            ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+        })
+        .sum();
+    total / mesh.edge_count() as f64
 }
 
 /// `loop_cut_10`: ten cuts across the ring through face 0's first corner

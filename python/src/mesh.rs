@@ -884,6 +884,37 @@ impl PyMesh {
         Ok(out)
     }
 
+    /// Extrude `faces` by `distance`: faces sharing an edge move together
+    /// with walls along their region's boundary (`individual`: each face on
+    /// its own), along the region's mean normal or `direction`; one undo
+    /// step. Returns a dict: "top" (the faces, on top), "sides" (the
+    /// walls), "vertices" (the new vertices).
+    #[pyo3(signature = (faces, distance = 0.0, *, individual = false, direction = None))]
+    fn extrude_faces<'py>(
+        slf: &Bound<'py, Self>,
+        faces: Vec<Bound<'py, PyFace>>,
+        distance: f64,
+        individual: bool,
+        direction: Option<[f64; 3]>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let faces: Vec<FaceKey> = faces
+            .iter()
+            .map(|f| fkey(slf, f))
+            .collect::<PyResult<_>>()?;
+        let options = meshloom::model::ExtrudeOptions {
+            distance,
+            direction,
+            individual,
+        };
+        let made = edit(slf, |m| m.extrude_faces(&faces, &options))?;
+        let (py, mesh) = (slf.py(), slf.clone().unbind());
+        let out = PyDict::new(py);
+        out.set_item("top", elements::faces(py, &mesh, made.top)?)?;
+        out.set_item("sides", elements::faces(py, &mesh, made.sides)?)?;
+        out.set_item("vertices", elements::vertices(py, &mesh, made.vertices)?)?;
+        Ok(out)
+    }
+
     // ----- operators ---------------------------------------------------------------
 
     /// Split edge `e` at parameter `t` (0 at side 0's origin); returns the

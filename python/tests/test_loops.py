@@ -53,3 +53,23 @@ def test_loop_cut_adds_the_loops_and_refusals_change_nothing():
     assert mesh.vertex_count == v0 + cuts * (n + 1)
     assert mesh.face_count == f0 + cuts * n
     mesh.validate()
+
+
+def test_extrude_faces_region_and_individual():
+    cube_positions = [[x, y, z] for z in (0.0, 1.0) for y in (0.0, 1.0) for x in (0.0, 1.0)]
+    quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [1, 3, 7, 5], [3, 2, 6, 7], [2, 0, 4, 6]]
+    mesh = meshloom.Mesh.from_arrays(cube_positions, quads)
+    before = mesh.copy()
+    with pytest.raises(meshloom.RefusedError):
+        mesh.extrude_faces([], 1.0)
+    with pytest.raises(meshloom.RefusedError):
+        mesh.extrude_faces(mesh.faces[:1], float("nan"))
+    assert mesh == before
+    top = mesh.faces[1]
+    out = mesh.extrude_faces([top], 0.5)
+    assert out["top"] == [top] and len(out["sides"]) == 4 and len(out["vertices"]) == 4
+    assert (mesh.vertex_count, mesh.edge_count, mesh.face_count) == (12, 20, 10)
+    mesh.validate()
+    out = mesh.extrude_faces(mesh.faces, 0.1, individual=True)
+    assert len(out["sides"]) == 4 * 10
+    mesh.validate()

@@ -13,8 +13,11 @@
 //!
 //! | tool | what it does |
 //! |---|---|
+//! | [`Mesh::extrude_faces`] | push faces out as regions (or each on its own) with walls along their boundary |
 //! | [`Mesh::loop_cut`] | cut an edge ring's quads with new edge loops |
 
+mod extrude;
 mod loop_cut;
 
-pub use loop_cut::{LoopCut, LoopCutOptions};
+pub use extrude::{ExtrudeOptions, Extrusion};
+pub use loop_cut::{LoopCut, LoopCutOptions, MAX_CUTS};
