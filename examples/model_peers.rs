@@ -12,7 +12,7 @@
 //! selection are outside the clock, as the peer's are); the clock is
 //! process CPU time. `BENCH_ONLY` (comma list) filters the workloads.
 
-use meshloom::model::{ExtrudeOptions, LoopCutOptions};
+use meshloom::model::{ExtrudeOptions, InsetOptions, LoopCutOptions};
 use meshloom::{FaceKey, Mesh};
 use std::path::Path;
 use std::time::Instant;
@@ -35,6 +35,8 @@ fn main() {
         "loop_cut_10",
         "extrude_region_half",
         "extrude_individual_all",
+        "inset_individual_all",
+        "inset_region_half",
     ];
     if grid_tools.iter().any(|w| wanted(w)) {
         let grid = meshloom::io::read(dir.join("quadgrid_1000x250.obj")).expect("quad grid");
@@ -46,6 +48,18 @@ fn main() {
         }
         if wanted("extrude_individual_all") {
             extrude_individual_all(&grid, rounds);
+        }
+        if wanted("inset_individual_all") {
+            inset(
+                "inset_individual_all",
+                &grid,
+                grid.faces().collect(),
+                true,
+                rounds,
+            );
+        }
+        if wanted("inset_region_half") {
+            inset("inset_region_half", &grid, half_by_x(&grid), false, rounds);
         }
     }
 }
@@ -81,6 +95,20 @@ fn extrude_individual_all(mesh: &Mesh, rounds: usize) {
         m.extrude_faces(&all, &options).expect("extrude");
     });
     line("extrude_individual_all", t, &counts(&m), "");
+}
+
+/// `inset_individual_all` and `inset_region_half`: by 0.2 mean edge
+/// lengths, even offset.
+fn inset(name: &str, mesh: &Mesh, faces: Vec<FaceKey>, individual: bool, rounds: usize) {
+    let options = InsetOptions {
+        thickness: 0.2 * mean_edge_length(mesh),
+        individual,
+        ..Default::default()
+    };
+    let (t, m) = time_fresh(rounds, mesh, |m| {
+        m.inset_faces(&faces, &options).expect("inset");
+    });
+    line(name, t, &counts(&m), &format!("{} faces", faces.len()));
 }
 
 /// The faces whose centroid (mean of its corners) has x below the median.

@@ -915,6 +915,40 @@ impl PyMesh {
         Ok(out)
     }
 
+    /// Inset `faces` by `thickness` (negative: outset): each region of
+    /// faces sharing an edge (`individual`: each face) gets a copy of its
+    /// outline moved inwards and `depth` along its mean normal, joined by
+    /// a rim of quads; `even` keeps the thickness at sharp corners; one
+    /// undo step. Returns a dict: "inner" (the faces), "rim" (the quads),
+    /// "vertices" (the new vertices).
+    #[pyo3(signature = (faces, thickness, *, depth = 0.0, individual = false, even = true))]
+    fn inset_faces<'py>(
+        slf: &Bound<'py, Self>,
+        faces: Vec<Bound<'py, PyFace>>,
+        thickness: f64,
+        depth: f64,
+        individual: bool,
+        even: bool,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let faces: Vec<FaceKey> = faces
+            .iter()
+            .map(|f| fkey(slf, f))
+            .collect::<PyResult<_>>()?;
+        let options = meshloom::model::InsetOptions {
+            thickness,
+            depth,
+            even,
+            individual,
+        };
+        let made = edit(slf, |m| m.inset_faces(&faces, &options))?;
+        let (py, mesh) = (slf.py(), slf.clone().unbind());
+        let out = PyDict::new(py);
+        out.set_item("inner", elements::faces(py, &mesh, made.inner)?)?;
+        out.set_item("rim", elements::faces(py, &mesh, made.rim)?)?;
+        out.set_item("vertices", elements::vertices(py, &mesh, made.vertices)?)?;
+        Ok(out)
+    }
+
     // ----- operators ---------------------------------------------------------------
 
     /// Split edge `e` at parameter `t` (0 at side 0's origin); returns the

@@ -73,3 +73,20 @@ def test_extrude_faces_region_and_individual():
     out = mesh.extrude_faces(mesh.faces, 0.1, individual=True)
     assert len(out["sides"]) == 4 * 10
     mesh.validate()
+
+
+def test_inset_faces_individual_and_region():
+    n = 4
+    mesh = meshloom.Mesh.from_arrays(*grid_arrays(n))
+    before = mesh.copy()
+    with pytest.raises(meshloom.RefusedError):
+        mesh.inset_faces(mesh.faces[:1], float("inf"))
+    assert mesh == before
+    out = mesh.inset_faces(mesh.faces, 0.1, individual=True)
+    assert len(out["inner"]) == n * n and len(out["rim"]) == 4 * n * n
+    mesh.validate()
+    mesh = meshloom.Mesh.from_arrays(*grid_arrays(n))
+    out = mesh.inset_faces(mesh.faces, 0.2, depth=0.1)
+    # The whole grid as one region: its outline of 4n edges.
+    assert len(out["rim"]) == 4 * n and len(out["vertices"]) == 4 * n
+    mesh.validate()

@@ -49,35 +49,53 @@ pub struct Extrusion {
     pub vertices: Vec<VertexKey>,
 }
 
-/// The S faces around a boundary vertex between two boundary half-edges:
-/// `out[0]` leaves `v` along the boundary, `out[1..]` leave it between two
-/// selected faces (they move to the copy), and `prev(out[last])` comes in
-/// along the boundary.
-struct Fan {
-    v: Vid,
-    out: Vec<Hid>,
-    incoming: Hid,
-    region: usize,
+/// A half-edge of a top face that is not on the boundary.
+pub(super) const NOT_BOUNDARY: u32 = u32::MAX;
+
+/// What [`Mesh::commit_extrude`] made, by slot: per fan its copy and its
+/// rail (the vertical edge, half-edge 0 going up), per boundary half-edge
+/// its cap (half-edge 0 in the top face) and its wall.
+pub(super) struct Made {
+    pub(super) tops: Vec<Vid>,
+    pub(super) rails: Vec<Eid>,
+    pub(super) caps: Vec<Eid>,
+    pub(super) sides: Vec<Fid>,
+}
+
+/// The selected faces around a boundary vertex between two boundary
+/// half-edges: `first` leaves `v` along the boundary, `inner` (turning
+/// from it) leave it between two selected faces (they move to the copy),
+/// and `incoming` comes in along the boundary.
+pub(super) struct Fan {
+    pub(super) v: Vid,
+    pub(super) first: Hid,
+    pub(super) inner: Vec<Hid>,
+    pub(super) incoming: Hid,
+    pub(super) region: usize,
 }
 
 /// A checked extrusion.
-struct Plan {
-    faces: Vec<Fid>,
+pub(super) struct Plan {
+    pub(super) faces: Vec<Fid>,
+    /// Each face's region.
+    pub(super) face_region: Vec<usize>,
     /// The region's boundary: half-edges of selected faces whose twin is
     /// not in a selected face.
-    boundary: Vec<Hid>,
+    pub(super) boundary: Vec<Hid>,
     /// Per boundary half-edge: its face, its original next (its face's
     /// corner at its head), and the fans at its origin and its head.
-    face: Vec<Fid>,
-    next: Vec<Hid>,
-    fan_at: Vec<(usize, usize)>,
-    fans: Vec<Fan>,
+    pub(super) face: Vec<Fid>,
+    pub(super) next: Vec<Hid>,
+    pub(super) fan_at: Vec<(usize, usize)>,
+    pub(super) fans: Vec<Fan>,
     /// The selected faces that touch the boundary, with their half-edges.
-    cycles: Vec<(Fid, Vec<Hid>)>,
+    /// Each half-edge with its place in `boundary` (`NOT_BOUNDARY` if it
+    /// is not there).
+    pub(super) cycles: Vec<(Fid, Vec<(Hid, u32)>)>,
     /// Vertices inside the region (moved, not copied), with their region.
-    inner: Vec<(Vid, usize)>,
+    pub(super) inner: Vec<(Vid, usize)>,
     /// Per region, the offset to move by.
-    offsets: Vec<V3>,
+    pub(super) offsets: Vec<V3>,
 }
 
 impl Mesh {
@@ -88,6 +106,7 @@ impl Mesh {
     /// As [`extrude_faces`](Mesh::extrude_faces).
     pub fn check_extrude_faces(&self, faces: &[FaceKey], options: &ExtrudeOptions) -> Result<()> {
         if options.individual {
+            self.selected_faces(faces)?;
             for &f in faces {
                 self.plan_extrude_region(&[f], options)?;
             }
@@ -140,6 +159,7 @@ impl Mesh {
         options: &ExtrudeOptions,
     ) -> Result<Extrusion> {
         if options.individual {
+            self.selected_faces(faces)?;
             return self.transaction(|m| {
                 let mut all = Extrusion {
                     top: Vec::new(),
@@ -148,7 +168,8 @@ impl Mesh {
                 };
                 for &f in faces {
                     let plan = m.plan_extrude_region(&[f], options)?;
-                    let one = journaled!(m.commit_extrude(&plan))?;
+                    let made = journaled!(m.commit_extrude(&plan))?;
+                    let one = m.extrusion(&plan, &made);
                     all.top.extend(one.top);
                     all.sides.extend(one.sides);
                     all.vertices.extend(one.vertices);
@@ -157,42 +178,69 @@ impl Mesh {
             });
         }
         let plan = self.plan_extrude_region(faces, options)?;
-        journaled!(self.commit_extrude(&plan))
+        let made = journaled!(self.commit_extrude(&plan))?;
+        Ok(self.extrusion(&plan, &made))
     }
 
     /// Check the selection and options; find the boundary, the fans and
     /// the regions' offsets.
-    fn plan_extrude_region(&self, faces: &[FaceKey], o: &ExtrudeOptions) -> Result<Plan> {
+    pub(super) fn plan_extrude_region(
+        &self,
+        faces: &[FaceKey],
+        o: &ExtrudeOptions,
+    ) -> Result<Plan> {
         let fs = self.selected_faces(faces)?;
-        let selected: std::collections::HashSet<Fid> = fs.iter().copied().collect();
-        let in_s = |h: Hid| selected.contains(&self.face_of(h));
+        if let [f] = fs[..] {
+            return self.plan_one_face(f, o, faces[0]);
+        }
+        // Per face slot: 0 unselected, else its region + 1 (zeroed memory
+        // is mapped lazily: the cost follows the selection).
+        let [vertex_slots, _, _, face_slots] = self.slot_counts();
+        let mut mark = vec![0u32; face_slots];
+        let regions = self.face_regions(&fs, &mut mark);
+        let in_s = |h: Hid| mark[self.face_of(h).index()] != 0;
+        let region_of = |f: Fid| mark[f.index()] as usize - 1;
         let mut boundary = Vec::new();
         let mut cycles = Vec::new();
         for &f in &fs {
-            let cycle: Vec<Hid> = self.face_halfedges(f).collect();
             let before = boundary.len();
-            boundary.extend(cycle.iter().copied().filter(|h| !in_s(h.twin())));
+            let cycle: Vec<(Hid, u32)> = self
+                .face_halfedges(f)
+                .map(|h| {
+                    if in_s(h.twin()) {
+                        (h, NOT_BOUNDARY)
+                    } else {
+                        boundary.push(h);
+                        (h, boundary.len() as u32 - 1)
+                    }
+                })
+                .collect();
             if boundary.len() > before {
                 cycles.push((f, cycle));
             }
         }
-        let (region, regions) = self.face_regions(&fs, &in_s);
-        let (fans, fan_at) = self.boundary_fans(&boundary, &in_s, &region);
+        let (fans, fan_at) = self.boundary_fans(&boundary, &in_s, &region_of);
         let next = boundary.iter().map(|&h| self.next(h)).collect();
         let face = boundary.iter().map(|&h| self.face_of(h)).collect();
-        let copied: std::collections::HashSet<Vid> = fans.iter().map(|f| f.v).collect();
+        // Per vertex slot: 1 copied, 2 inner and listed.
+        let mut vmark = vec![0u8; vertex_slots];
+        for fan in &fans {
+            vmark[fan.v.index()] = 1;
+        }
         let mut inner = Vec::new();
-        let mut seen = std::collections::HashSet::new();
         for &f in &fs {
             for h in self.face_halfedges(f) {
                 let v = self.origin(h);
-                if !copied.contains(&v) && seen.insert(v) {
-                    inner.push((v, region[&f]));
+                if vmark[v.index()] == 0 {
+                    vmark[v.index()] = 2;
+                    inner.push((v, region_of(f)));
                 }
             }
         }
-        let offsets = self.region_offsets(&fs, &region, regions, o, faces[0])?;
+        let face_region: Vec<usize> = fs.iter().map(|&f| region_of(f)).collect();
+        let offsets = self.region_offsets(&fs, &face_region, regions, o, faces[0])?;
         Ok(Plan {
+            face_region,
             faces: fs,
             boundary,
             face,
@@ -205,8 +253,37 @@ impl Mesh {
         })
     }
 
+    /// [`plan_extrude_region`](Mesh::plan_extrude_region) of one face: its
+    /// every side is boundary, each corner a fan of its own.
+    fn plan_one_face(&self, f: Fid, o: &ExtrudeOptions, name: FaceKey) -> Result<Plan> {
+        let cycle: Vec<Hid> = self.face_halfedges(f).collect();
+        let n = cycle.len();
+        let fans = (0..n)
+            .map(|j| Fan {
+                v: self.origin(cycle[j]),
+                first: cycle[j],
+                inner: Vec::new(),
+                incoming: cycle[(j + n - 1) % n],
+                region: 0,
+            })
+            .collect();
+        let offsets = self.region_offsets(&[f], &[0], 1, o, name)?;
+        Ok(Plan {
+            face_region: vec![0],
+            faces: vec![f],
+            boundary: cycle.clone(),
+            face: vec![f; n],
+            next: (0..n).map(|j| cycle[(j + 1) % n]).collect(),
+            fan_at: (0..n).map(|j| (j, (j + 1) % n)).collect(),
+            fans,
+            cycles: vec![(f, (0..n as u32).map(|j| (cycle[j as usize], j)).collect())],
+            inner: Vec::new(),
+            offsets,
+        })
+    }
+
     /// The selection's face slots, checked, without repeats.
-    fn selected_faces(&self, faces: &[FaceKey]) -> Result<Vec<Fid>> {
+    pub(super) fn selected_faces(&self, faces: &[FaceKey]) -> Result<Vec<Fid>> {
         if faces.is_empty() {
             // Generation 0 is never live: this key names no element.
             return Err(refuse(OP, FaceKey::new(0, 0), Refusal::Empty));
@@ -225,37 +302,34 @@ impl Mesh {
         Ok(fs)
     }
 
-    /// Each selected face's region (faces joined through edges with a
-    /// selected face on both sides), and the number of regions.
-    fn face_regions(
-        &self,
-        fs: &[Fid],
-        in_s: &impl Fn(Hid) -> bool,
-    ) -> (HashMap<Fid, usize>, usize) {
-        let mut region: HashMap<Fid, usize> = HashMap::with_capacity(fs.len());
+    /// Label each selected face's region (faces joined through edges with
+    /// a selected face on both sides) in `mark` (by face slot, region + 1);
+    /// the number of regions.
+    fn face_regions(&self, fs: &[Fid], mark: &mut [u32]) -> usize {
+        const SELECTED: u32 = u32::MAX;
+        for &f in fs {
+            mark[f.index()] = SELECTED;
+        }
         let mut count = 0;
         let mut stack = Vec::new();
         for &f in fs {
-            if region.contains_key(&f) {
+            if mark[f.index()] != SELECTED {
                 continue;
             }
-            region.insert(f, count);
+            count += 1;
+            mark[f.index()] = count as u32;
             stack.push(f);
             while let Some(g) = stack.pop() {
                 for h in self.face_halfedges(g) {
-                    let t = h.twin();
-                    if in_s(t) {
-                        let n = self.face_of(t);
-                        if let std::collections::hash_map::Entry::Vacant(e) = region.entry(n) {
-                            e.insert(count);
-                            stack.push(n);
-                        }
+                    let n = self.face_of(h.twin());
+                    if mark[n.index()] == SELECTED {
+                        mark[n.index()] = count as u32;
+                        stack.push(n);
                     }
                 }
             }
-            count += 1;
         }
-        (region, count)
+        count
     }
 
     /// The fans of selected faces at the boundary's vertices, one per
@@ -265,7 +339,7 @@ impl Mesh {
         &self,
         boundary: &[Hid],
         in_s: &impl Fn(Hid) -> bool,
-        region: &HashMap<Fid, usize>,
+        region_of: &impl Fn(Fid) -> usize,
     ) -> (Vec<Fan>, Vec<(usize, usize)>) {
         let index: HashMap<Hid, usize> =
             boundary.iter().enumerate().map(|(i, &h)| (h, i)).collect();
@@ -274,7 +348,7 @@ impl Mesh {
         for (i, &h) in boundary.iter().enumerate() {
             // Turn from `h` across its predecessors' edges while the face
             // beyond is selected.
-            let mut out = vec![h];
+            let mut inner = Vec::new();
             let mut o = h;
             loop {
                 let p = self.prev(o);
@@ -284,14 +358,15 @@ impl Mesh {
                     fan_at[index[&incoming]].1 = fans.len();
                     fans.push(Fan {
                         v: self.origin(h),
-                        out,
+                        first: h,
+                        inner,
                         incoming,
-                        region: region[&self.face_of(h)],
+                        region: region_of(self.face_of(h)),
                     });
                     break;
                 }
                 o = p.twin();
-                out.push(o);
+                inner.push(o);
             }
         }
         (fans, fan_at)
@@ -302,7 +377,7 @@ impl Mesh {
     fn region_offsets(
         &self,
         fs: &[Fid],
-        region: &HashMap<Fid, usize>,
+        face_region: &[usize],
         regions: usize,
         o: &ExtrudeOptions,
         name: FaceKey,
@@ -335,9 +410,9 @@ impl Mesh {
         if !self.has_positions() {
             return Ok(vec![[0.0; 3]; regions]);
         }
-        for &f in fs {
+        for (&f, &r) in fs.iter().zip(face_region) {
             if let Some(n) = self.loop_normal(self.face_halfedge(f)) {
-                let s = &mut sums[region[&f]];
+                let s = &mut sums[r];
                 *s = (vec3::add(s.0, n), s.1 + vec3::norm(n));
             }
         }
@@ -356,7 +431,7 @@ impl Mesh {
 impl Mesh {
     /// Make the walls, re-home the fans, move the region (the plan's body,
     /// in journaling mode `J`).
-    fn commit_extrude<J: Journaling>(&mut self, plan: &Plan) -> Result<Extrusion> {
+    pub(super) fn commit_extrude<J: Journaling>(&mut self, plan: &Plan) -> Result<Made> {
         let mut w = self.writer::<J>();
         let tops: Vec<Vid> = plan.fans.iter().map(|_| w.alloc_vertex()).collect();
         let rails: Vec<Eid> = plan.fans.iter().map(|_| w.alloc_edge()).collect();
@@ -364,19 +439,20 @@ impl Mesh {
         let sides: Vec<Fid> = plan.boundary.iter().map(|_| w.alloc_face(false)).collect();
         // The fans' inner half-edges leave the copies.
         for (fan, &top) in plan.fans.iter().zip(&tops) {
-            for &o in &fan.out[1..] {
+            for &o in &fan.inner {
                 w.he_mut(o).origin = top;
             }
         }
         // The top faces: each boundary half-edge replaced by its cap.
-        let cap_of: HashMap<Hid, Hid> = plan
-            .boundary
-            .iter()
-            .zip(&caps)
-            .map(|(&h, c)| (h, c.halfedge(0)))
-            .collect();
         for (f, cycle) in &plan.cycles {
-            let now: Vec<Hid> = cycle.iter().map(|h| *cap_of.get(h).unwrap_or(h)).collect();
+            let cap = |&(h, j): &(Hid, u32)| {
+                if j == NOT_BOUNDARY {
+                    h
+                } else {
+                    caps[j as usize].halfedge(0)
+                }
+            };
+            let now: Vec<Hid> = cycle.iter().map(cap).collect();
             for (i, &h) in now.iter().enumerate() {
                 w.he_mut(h).next = now[(i + 1) % now.len()];
                 w.he_mut(h).face = *f;
@@ -422,11 +498,21 @@ impl Mesh {
         extrusion_attributes(&mut w, plan, &tops, &rails, &caps, &sides);
         move_region(&mut w, plan, &tops);
         w.end_op();
-        Ok(Extrusion {
-            top: plan.faces.iter().map(|&f| w.fkey(f)).collect(),
-            sides: sides.iter().map(|&s| w.fkey(s)).collect(),
-            vertices: tops.iter().map(|&v| w.vkey(v)).collect(),
+        Ok(Made {
+            tops,
+            rails,
+            caps,
+            sides,
         })
+    }
+
+    /// The public account of an extrusion.
+    pub(super) fn extrusion(&self, plan: &Plan, made: &Made) -> Extrusion {
+        Extrusion {
+            top: plan.faces.iter().map(|&f| self.fkey(f)).collect(),
+            sides: made.sides.iter().map(|&s| self.fkey(s)).collect(),
+            vertices: made.tops.iter().map(|&v| self.vkey(v)).collect(),
+        }
     }
 }
 
@@ -443,7 +529,7 @@ fn extrusion_attributes<J: Journaling>(
         w.attrs
             .vertex
             .interpolate(tops[i].index(), &[(fan.v.index(), 1.0)]);
-        let (a, b) = (fan.out[0].edge().index(), fan.incoming.edge().index());
+        let (a, b) = (fan.first.edge().index(), fan.incoming.edge().index());
         w.attrs
             .edge
             .interpolate(rails[i].index(), &[(a, 0.5), (b, 0.5)]);

@@ -14,10 +14,14 @@
 //! | tool | what it does |
 //! |---|---|
 //! | [`Mesh::extrude_faces`] | push faces out as regions (or each on its own) with walls along their boundary |
+//! | [`Mesh::inset_faces`] | a smaller copy of regions (or of each face) inside them, joined by a rim of quads |
 //! | [`Mesh::loop_cut`] | cut an edge ring's quads with new edge loops |
 
 mod extrude;
+mod inset;
+mod interp;
 mod loop_cut;
 
 pub use extrude::{ExtrudeOptions, Extrusion};
+pub use inset::{Inset, InsetOptions};
 pub use loop_cut::{LoopCut, LoopCutOptions, MAX_CUTS};

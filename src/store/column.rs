@@ -431,6 +431,10 @@ pub(crate) trait ErasedColumn: Any + Send + Sync {
     fn merge_saving(&mut self, dst: usize, inputs: &[(usize, f64)]) -> bool;
     /// Run the rule's interpolate: `dst` is made from `inputs`.
     fn interpolate(&mut self, dst: usize, inputs: &[(usize, f64)]);
+    /// Run the rule's interpolate for every `(dst, start, end)` job, of
+    /// `inputs[start..end]`, all read before any is written (a job may read
+    /// another's destination).
+    fn interpolate_all(&mut self, jobs: &[(usize, u32, u32)], inputs: &[(usize, f64)]);
     /// Run the rule's split: each `(slot, share)` piece from `src`. `src`
     /// may be among the pieces; its old value is read first.
     fn split(&mut self, src: usize, pieces: &[(usize, f64)]);
@@ -612,6 +616,23 @@ where
             self.with_inputs(inputs, R::interpolate)
         };
         self.set(dst, result);
+    }
+
+    fn interpolate_all(&mut self, jobs: &[(usize, u32, u32)], all: &[(usize, f64)]) {
+        let results: Vec<Option<T>> = jobs
+            .iter()
+            .map(|&(_, start, end)| {
+                let inputs = &all[start as usize..end as usize];
+                if R::FALLIBLE {
+                    self.tried(|c| c.with_inputs(inputs, R::try_interpolate))
+                } else {
+                    self.with_inputs(inputs, R::interpolate)
+                }
+            })
+            .collect();
+        for (&(dst, _, _), r) in jobs.iter().zip(results) {
+            self.set(dst, r);
+        }
     }
 
     fn split(&mut self, src: usize, pieces: &[(usize, f64)]) {

@@ -270,6 +270,20 @@ impl Columns {
         }
     }
 
+    /// Interpolate rule on every column for every `(dst, start, end)` job
+    /// (of `inputs[start..end]`), all read before any is written.
+    pub(crate) fn interpolate_all(&mut self, jobs: &[(usize, u32, u32)], inputs: &[(usize, f64)]) {
+        if self.cols.is_empty() {
+            return;
+        }
+        for &(dst, _, _) in jobs {
+            self.save(dst);
+        }
+        for (_, c) in &mut self.cols {
+            c.interpolate_all(jobs, inputs);
+        }
+    }
+
     /// Split rule on every column.
     #[inline]
     pub(crate) fn split(&mut self, src: usize, pieces: &[(usize, f64)]) {
