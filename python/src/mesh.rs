@@ -148,6 +148,17 @@ fn any_key(slf: &Bound<'_, PyMesh>, ob: &Bound<'_, PyAny>) -> PyResult<AnyKey> {
     ))
 }
 
+/// The keys of `faces`, or every face of the mesh.
+fn face_list(
+    slf: &Bound<'_, PyMesh>,
+    faces: Option<Vec<Bound<'_, PyFace>>>,
+) -> PyResult<Vec<FaceKey>> {
+    match faces {
+        Some(fs) => fs.iter().map(|f| fkey(slf, f)).collect(),
+        None => Ok(slf.try_borrow().map_err(busy)?.mesh.faces().collect()),
+    }
+}
+
 fn kind_of(key: AnyKey) -> ElementKind {
     match key {
         AnyKey::Vertex(_) => ElementKind::Vertex,
@@ -947,6 +958,129 @@ impl PyMesh {
         out.set_item("rim", elements::faces(py, &mesh, made.rim)?)?;
         out.set_item("vertices", elements::vertices(py, &mesh, made.vertices)?)?;
         Ok(out)
+    }
+
+    /// Scale, rotate and translate `elements` (vertices, edges, faces: their
+    /// vertices) about `pivot` ("centroid", "origin" or a point), as one
+    /// undo step: `p -> pivot + rotate @ (scale * (p - pivot)) + translate`.
+    /// `rotate` is a 3x3 matrix or `(axis, angle)`; `scale` a number or
+    /// three. `individual` (faces only): each region of faces sharing an
+    /// edge about its own centroid.
+    #[pyo3(signature = (elements, *, translate = None, rotate = None, scale = None, pivot = None, individual = false))]
+    fn transform(
+        slf: &Bound<'_, Self>,
+        elements: Vec<Bound<'_, PyAny>>,
+        translate: Option<[f64; 3]>,
+        rotate: Option<Bound<'_, PyAny>>,
+        scale: Option<Bound<'_, PyAny>>,
+        pivot: Option<Bound<'_, PyAny>>,
+        individual: bool,
+    ) -> PyResult<()> {
+        use meshloom::model::{Pivot, Transform};
+        let mut t = Transform {
+            individual,
+            ..Default::default()
+        };
+        if let Some(v) = translate {
+            t.translate = v;
+        }
+        if let Some(r) = rotate {
+            t.rotate = if let Ok(m) = r.extract::<[[f64; 3]; 3]>() {
+                m
+            } else {
+                let (axis, angle): ([f64; 3], f64) = r.extract().map_err(|_| {
+                    PyTypeError::new_err("rotate must be a 3x3 matrix or (axis, angle)")
+                })?;
+                Transform::rotation(axis, angle).ok_or_else(|| {
+                    PyValueError::new_err("rotate: the axis must be finite and not zero")
+                })?
+            };
+        }
+        if let Some(sc) = scale {
+            t.scale = match sc.extract::<f64>() {
+                Ok(x) => [x; 3],
+                Err(_) => sc
+                    .extract::<[f64; 3]>()
+                    .map_err(|_| PyTypeError::new_err("scale must be a number or three"))?,
+            };
+        }
+        if let Some(pv) = pivot {
+            t.pivot = match pv.extract::<String>() {
+                Ok(w) if w == "centroid" => Pivot::Centroid,
+                Ok(w) if w == "origin" => Pivot::Point([0.0; 3]),
+                Ok(w) => {
+                    return Err(PyValueError::new_err(format!(
+                        "unknown pivot {w:?}: centroid, origin or a point"
+                    )))
+                }
+                Err(_) => Pivot::Point(pv.extract::<[f64; 3]>().map_err(|_| {
+                    PyTypeError::new_err("pivot must be \"centroid\", \"origin\" or a point")
+                })?),
+            };
+        }
+        let keys: Vec<AnyKey> = elements
+            .iter()
+            .map(|e| any_key(slf, e))
+            .collect::<PyResult<_>>()?;
+        let faces: Vec<FaceKey> = keys
+            .iter()
+            .filter_map(|k| {
+                if let AnyKey::Face(f) = k {
+                    Some(*f)
+                } else {
+                    None
+                }
+            })
+            .collect();
+        if !keys.is_empty() && faces.len() == keys.len() {
+            return edit(slf, |m| m.transform_faces(&faces, &t));
+        }
+        edit(slf, |m| {
+            let mut vs = Vec::new();
+            for k in &keys {
+                match *k {
+                    AnyKey::Vertex(v) => vs.push(v),
+                    AnyKey::Edge(e) => vs.extend(m.edge(e)?.vertices()),
+                    AnyKey::Halfedge(h) => vs.push(m.halfedge(h)?.origin().key()),
+                    AnyKey::Face(f) => vs.extend(m.face(f)?.vertices()),
+                }
+            }
+            m.transform_vertices(&vs, &t)
+        })
+    }
+
+    /// The centroids (mean of the corners) of `faces` (default: every
+    /// face, in `faces` order), as an (n, 3) array.
+    #[pyo3(signature = (faces = None))]
+    fn face_centroids<'py>(
+        slf: &Bound<'py, Self>,
+        faces: Option<Vec<Bound<'py, PyFace>>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let keys = face_list(slf, faces)?;
+        let rows = query(slf, |m| {
+            keys.iter()
+                .map(|&f| m.face_centroid(f))
+                .collect::<meshloom::Result<Vec<_>>>()
+        })?;
+        let n = rows.len();
+        Ok(PyArray1::from_slice(slf.py(), rows.as_flattened())
+            .reshape([n, 3])?
+            .into_any())
+    }
+
+    /// The areas of `faces` (default: every face, in `faces` order).
+    #[pyo3(signature = (faces = None))]
+    fn face_areas<'py>(
+        slf: &Bound<'py, Self>,
+        faces: Option<Vec<Bound<'py, PyFace>>>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let keys = face_list(slf, faces)?;
+        let areas = query(slf, |m| {
+            keys.iter()
+                .map(|&f| m.face_area(f))
+                .collect::<meshloom::Result<Vec<_>>>()
+        })?;
+        Ok(PyArray1::from_vec(slf.py(), areas))
     }
 
     // ----- operators ---------------------------------------------------------------

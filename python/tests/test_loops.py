@@ -90,3 +90,25 @@ def test_inset_faces_individual_and_region():
     # The whole grid as one region: its outline of 4n edges.
     assert len(out["rim"]) == 4 * n and len(out["vertices"]) == 4 * n
     mesh.validate()
+
+
+def test_transform_and_face_measures():
+    import numpy as np
+
+    mesh = meshloom.Mesh.from_arrays(*grid_arrays(2))
+    areas = mesh.face_areas()
+    assert np.allclose(areas, 1.0) and mesh.face_centroids().shape == (4, 3)
+    f = mesh.faces[0]
+    mesh.transform([f], scale=0.5)
+    assert np.isclose(mesh.face_areas([f])[0], 0.25)
+    before = mesh.copy()
+    with pytest.raises(ValueError):
+        mesh.transform([f], pivot="middle")
+    with pytest.raises(meshloom.RefusedError):
+        mesh.transform([f], translate=[float("nan"), 0, 0])
+    assert mesh == before
+    c = mesh.face_centroids([f])[0]
+    mesh.transform(mesh.vertices, rotate=([0, 0, 1], np.pi / 2), pivot="origin")
+    c2 = mesh.face_centroids([f])[0]
+    assert np.allclose(c2, [-c[1], c[0], c[2]])
+    mesh.validate()

@@ -16,12 +16,15 @@
 //! | [`Mesh::extrude_faces`] | push faces out as regions (or each on its own) with walls along their boundary |
 //! | [`Mesh::inset_faces`] | a smaller copy of regions (or of each face) inside them, joined by a rim of quads |
 //! | [`Mesh::loop_cut`] | cut an edge ring's quads with new edge loops |
+//! | [`Mesh::transform_vertices`], [`Mesh::transform_faces`] | scale, rotate and move a selection about a pivot (each region about its own, for faces) |
 
 mod extrude;
 mod inset;
 mod interp;
 mod loop_cut;
+mod transform;
 
 pub use extrude::{ExtrudeOptions, Extrusion};
 pub use inset::{Inset, InsetOptions};
 pub use loop_cut::{LoopCut, LoopCutOptions, MAX_CUTS};
+pub use transform::{Pivot, Transform};
