@@ -13,10 +13,10 @@
 //!
 //! | tool | what it does |
 //! |---|---|
-//! | [`Mesh::extrude_faces`] | push faces out as regions (or each on its own) with walls along their boundary |
-//! | [`Mesh::inset_faces`] | a smaller copy of regions (or of each face) inside them, joined by a rim of quads |
-//! | [`Mesh::loop_cut`] | cut an edge ring's quads with new edge loops |
-//! | [`Mesh::transform_vertices`], [`Mesh::transform_faces`] | scale, rotate and move a selection about a pivot (each region about its own, for faces) |
+//! | [`Mesh::extrude_faces`](crate::Mesh::extrude_faces) | push faces out as regions (or each on its own) with walls along their boundary |
+//! | [`Mesh::inset_faces`](crate::Mesh::inset_faces) | a smaller copy of regions (or of each face) inside them, joined by a rim of quads |
+//! | [`Mesh::loop_cut`](crate::Mesh::loop_cut) | cut an edge ring's quads with new edge loops |
+//! | [`Mesh::transform_vertices`](crate::Mesh::transform_vertices), [`Mesh::transform_faces`](crate::Mesh::transform_faces) | scale, rotate and move a selection about a pivot (each region about its own, for faces) |
 
 mod extrude;
 mod inset;
