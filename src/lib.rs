@@ -130,8 +130,8 @@
 //
 // - core: vec3 predicates choice keys layout map slots error store record
 // - mesh: mesh
-// - access: circulate iter traverse validate view link stats attr geometry serde_impl
-// - editing: journal ops
+// - access: circulate iter view traverse validate link stats attr geometry serde_impl
+// - editing: journal ops model
 // - building: build shapes repair arbitrary
 // - spatial: query
 // - algorithms: algo

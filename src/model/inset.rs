@@ -14,9 +14,10 @@ use super::interp::FaceSnapshot;
 use crate::error::{Refusal, Result};
 use crate::journal::journaled;
 use crate::keys::FaceKey;
-use crate::layout::Fid;
+use crate::layout::{Fid, Vid};
 use crate::mesh::Mesh;
 use crate::ops::refuse;
+use crate::record::Recorded;
 use crate::vec3::{self, V3};
 
 const OP: &str = "inset_faces";
@@ -175,14 +176,20 @@ impl Mesh {
         let targets = self.inset_targets(&plan, o, &lift);
         let made = journaled!(self.commit_extrude(&plan))?;
         self.inset_values(&plan, &made, &targets, &snapshots);
+        let lifted: Vec<(Vid, V3)> = match self.position_slots() {
+            Some(pos) if o.depth != 0.0 => plan
+                .inner
+                .iter()
+                .map(|&(v, region)| (v, vec3::add(pos[v.index()], lift[region])))
+                .collect(),
+            _ => Vec::new(),
+        };
+        let mut w = self.writer::<Recorded>();
         for (&v, p) in made.tops.iter().zip(&targets) {
-            self.attrs.set_position_saved(v.index(), *p);
+            w.attrs.set_position_saved(v.index(), *p);
         }
-        for &(v, region) in &plan.inner {
-            if let Some(p) = self.position_slots().map(|s| s[v.index()]) {
-                self.attrs
-                    .set_position_saved(v.index(), vec3::add(p, lift[region]));
-            }
+        for (v, p) in lifted {
+            w.attrs.set_position_saved(v.index(), p);
         }
         self.split_by_area(&plan, &made);
         self.end_edit();
@@ -299,10 +306,9 @@ impl Mesh {
                 }
             }
         }
-        self.attrs
-            .halfedge
-            .interpolate_all(&corners, &corner_inputs);
-        self.attrs.vertex.interpolate_all(&vertices, &vertex_inputs);
+        let mut w = self.writer::<Recorded>();
+        w.attrs.halfedge.interpolate_all(&corners, &corner_inputs);
+        w.attrs.vertex.interpolate_all(&vertices, &vertex_inputs);
     }
 
     /// Split each face with walls among itself and its walls, by area.
@@ -323,7 +329,10 @@ impl Mesh {
                 let n = parts.len() as f64;
                 parts.iter_mut().for_each(|p| p.1 = 1.0 / n);
             }
-            self.attrs.face.split(f.index(), &parts);
+            self.writer::<Recorded>()
+                .attrs
+                .face
+                .split(f.index(), &parts);
         }
     }
 

@@ -254,8 +254,9 @@ impl Mesh {
                 moved.push((v, p));
             }
         }
+        let mut w = self.writer::<crate::record::Recorded>();
         for (v, p) in moved {
-            self.attrs.set_position_saved(v.index(), p);
+            w.attrs.set_position_saved(v.index(), p);
         }
         self.end_edit();
         Ok(())
