@@ -22,6 +22,8 @@ mod extrude;
 mod inset;
 mod interp;
 mod loop_cut;
+#[cfg(test)]
+mod testing;
 mod transform;
 
 pub use extrude::{ExtrudeOptions, Extrusion};

@@ -1,32 +1,15 @@
 use super::*;
 use crate::attr::{FaceAttr, HalfedgeAttr};
 use crate::journal::HistoryLimits;
+use crate::model::testing::{fingerprint, mixed_meshes, random_faces};
 use crate::shapes::{self, GridFaces};
-use crate::{Error, HalfedgeKey};
+use crate::Error;
 
 fn opts(distance: f64) -> ExtrudeOptions {
     ExtrudeOptions {
         distance,
         ..Default::default()
     }
-}
-
-/// Keys, links, positions, `uv` and `material`: everything an extrusion
-/// may touch.
-fn fingerprint(mesh: &Mesh) -> String {
-    let mut out = String::new();
-    for f in mesh.faces_and_holes() {
-        let hs: Vec<HalfedgeKey> = mesh.face(f).unwrap().halfedges().collect();
-        let vs: Vec<VertexKey> = mesh.face(f).unwrap().vertices().collect();
-        out += &format!("{f:?}{hs:?}{vs:?}{:?}", mesh.attr_value("material", f).ok());
-    }
-    for v in mesh.vertices() {
-        out += &format!("{v:?}{:?}", mesh.position(v).unwrap().map(f64::to_bits));
-    }
-    for h in mesh.halfedges() {
-        out += &format!("{h:?}{:?}", mesh.attr_value("uv", h).ok());
-    }
-    out
 }
 
 /// A grid with corner UVs `(x, y)` and a material per column of quads.
@@ -266,24 +249,11 @@ fn refusals_change_nothing_and_an_extrusion_is_one_undo_step() {
 
 #[test]
 fn random_selections_on_mixed_meshes_extrude_and_validate() {
-    let meshes = [
-        shapes::uv_sphere(8, 5),
-        shapes::grid(5, 4, GridFaces::Triangles),
-        shapes::torus(7, 4, 1.0, 0.3).unwrap(),
-        shapes::icosphere(1),
-    ];
+    let meshes = mixed_meshes();
     let mut seed = 0x2545_f491_4f6c_dd1du64;
     for mesh in meshes {
         for round in 0..40 {
-            let faces: Vec<FaceKey> = mesh
-                .faces()
-                .filter(|_| {
-                    seed ^= seed << 13;
-                    seed ^= seed >> 7;
-                    seed ^= seed << 17;
-                    seed % 3 == 0
-                })
-                .collect();
+            let faces = random_faces(&mesh, &mut seed);
             if faces.is_empty() {
                 continue;
             }

@@ -1,8 +1,9 @@
 use super::*;
 use crate::attr::{Conserved, FaceAttr, HalfedgeAttr};
 use crate::journal::HistoryLimits;
+use crate::model::testing::{field, fingerprint, mixed_meshes, random_faces};
 use crate::shapes::{self, GridFaces};
-use crate::{Error, HalfedgeKey, VertexKey};
+use crate::Error;
 
 fn opts(thickness: f64, individual: bool) -> InsetOptions {
     InsetOptions {
@@ -10,31 +11,6 @@ fn opts(thickness: f64, individual: bool) -> InsetOptions {
         individual,
         ..Default::default()
     }
-}
-
-/// Keys, links, positions and the test columns.
-fn fingerprint(mesh: &Mesh) -> String {
-    let mut out = String::new();
-    for f in mesh.faces_and_holes() {
-        let hs: Vec<HalfedgeKey> = mesh.face(f).unwrap().halfedges().collect();
-        out += &format!(
-            "{f:?}{hs:?}{:?}{:?}",
-            mesh.attr_value("material", f).ok(),
-            mesh.attr_value("mass", f).ok()
-        );
-    }
-    for v in mesh.vertices() {
-        out += &format!("{v:?}{:?}", mesh.position(v).unwrap().map(f64::to_bits));
-    }
-    for h in mesh.halfedges() {
-        let o: VertexKey = mesh.halfedge(h).unwrap().origin().key();
-        out += &format!("{h:?}{o:?}{:?}", mesh.attr_value("uv", h).ok());
-    }
-    out
-}
-
-fn field(p: V3) -> [f64; 2] {
-    [0.25 * p[0] + 0.5 * p[1] + 1.0, -0.5 * p[0] + 0.125 * p[1]]
 }
 
 /// A planar grid: corner UVs from a linear field, a material per column
@@ -249,24 +225,11 @@ fn refusals_change_nothing_and_an_inset_is_one_undo_step() {
 
 #[test]
 fn random_selections_on_mixed_meshes_inset_and_validate() {
-    let meshes = [
-        shapes::uv_sphere(8, 5),
-        shapes::grid(5, 4, GridFaces::Triangles),
-        shapes::torus(7, 4, 1.0, 0.3).unwrap(),
-        shapes::icosphere(1),
-    ];
+    let meshes = mixed_meshes();
     let mut seed = 0x9e37_79b9_7f4a_7c15u64;
     for mesh in meshes {
         for round in 0..40 {
-            let faces: Vec<FaceKey> = mesh
-                .faces()
-                .filter(|_| {
-                    seed ^= seed << 13;
-                    seed ^= seed >> 7;
-                    seed ^= seed << 17;
-                    seed % 3 == 0
-                })
-                .collect();
+            let faces = random_faces(&mesh, &mut seed);
             if faces.is_empty() {
                 continue;
             }

@@ -1,28 +1,9 @@
 use super::*;
 use crate::attr::{FaceAttr, HalfedgeAttr};
 use crate::journal::HistoryLimits;
+use crate::model::testing::{field, fingerprint};
 use crate::shapes::{self, GridFaces};
 use crate::{Error, HalfedgeKey};
-
-/// Everything a loop cut may touch: keys, links, positions, the `uv` and
-/// `material` columns.
-fn fingerprint(mesh: &Mesh) -> String {
-    let mut out = String::new();
-    for f in mesh.faces_and_holes() {
-        let vs: Vec<VertexKey> = mesh.face(f).unwrap().vertices().collect();
-        out += &format!("{f:?}{vs:?}");
-    }
-    for v in mesh.vertices() {
-        out += &format!("{v:?}{:?}", mesh.position(v).unwrap().map(f64::to_bits));
-    }
-    for h in mesh.halfedges() {
-        out += &format!("{h:?}{:?}", mesh.attr_value("uv", h).ok());
-    }
-    for f in mesh.faces() {
-        out += &format!("{f:?}{:?}", mesh.attr_value("material", f).ok());
-    }
-    out
-}
 
 /// A planar `n × n` quad grid with corner UVs from the linear field
 /// `uv(x, y) = (0.25 x + 0.5 y + 1, −0.5 x + 0.125 y)` and a material per
@@ -46,10 +27,6 @@ fn textured_grid(n: usize) -> (Mesh, HalfedgeAttr<[f64; 2]>, FaceAttr<u32>) {
         mesh.set_attr(&material, f, (c[1] * 10.0) as u32).unwrap();
     }
     (mesh, uv, material)
-}
-
-fn field(p: V3) -> [f64; 2] {
-    [0.25 * p[0] + 0.5 * p[1] + 1.0, -0.5 * p[0] + 0.125 * p[1]]
 }
 
 fn face_centre(mesh: &Mesh, f: FaceKey) -> V3 {
