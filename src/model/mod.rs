@@ -18,6 +18,7 @@
 //! | [`Mesh::loop_cut`](crate::Mesh::loop_cut) | cut an edge ring's quads with new edge loops |
 //! | [`Mesh::transform_vertices`](crate::Mesh::transform_vertices), [`Mesh::transform_faces`](crate::Mesh::transform_faces) | scale, rotate and move a selection about a pivot (each region about its own, for faces) |
 
+mod delimit;
 mod extrude;
 mod inset;
 mod interp;
@@ -26,6 +27,9 @@ mod loop_cut;
 mod testing;
 mod transform;
 
+pub use delimit::Delimit;
+#[allow(unused_imports)] // the merging tools use it
+pub(crate) use delimit::Delimiters;
 pub use extrude::{ExtrudeOptions, Extrusion};
 pub use inset::{Inset, InsetOptions};
 pub use loop_cut::{LoopCut, LoopCutOptions, MAX_CUTS};
