@@ -36,8 +36,31 @@ pub struct Delimit {
     pub sharp: Option<EdgeAttr<bool>>,
 }
 
-// Until the merging tools land, only the tests call these.
-#[allow(dead_code)]
+impl Delimit {
+    /// The edges of `mesh` that `self` keeps: the boundary, the borders
+    /// of the material column, the seams of the corner column, the sharp
+    /// edges. With [`Mesh::split_edges`] it rips a mesh along its UV seams.
+    ///
+    /// # Errors
+    /// [`Error::AttributeMissing`] for a named column the mesh lacks; the
+    /// errors of [`Mesh::attr_view`] for a stale `sharp` handle.
+    ///
+    /// ```
+    /// use meshloom::model::Delimit;
+    /// let cube = meshloom::shapes::cube();
+    /// assert!(Delimit::default().edges(&cube)?.is_empty());
+    /// # Ok::<(), meshloom::Error>(())
+    /// ```
+    pub fn edges(&self, mesh: &Mesh) -> Result<Vec<EdgeKey>> {
+        let d = Delimiters::new(mesh, self)?;
+        Ok(mesh
+            .eids()
+            .filter(|&e| d.delimits(e))
+            .map(|e| mesh.ekey(e))
+            .collect())
+    }
+}
+
 /// [`Delimit`] resolved against one mesh: the columns found, ready to ask
 /// edge by edge.
 pub(crate) struct Delimiters<'m> {
@@ -47,7 +70,6 @@ pub(crate) struct Delimiters<'m> {
     sharp: Option<AttrView<'m, EdgeKey, bool>>,
 }
 
-#[allow(dead_code)]
 impl<'m> Delimiters<'m> {
     /// Find `d`'s columns in `mesh`.
     ///
@@ -92,7 +114,6 @@ impl<'m> Delimiters<'m> {
     }
 }
 
-#[allow(dead_code)]
 /// The column of arena `kind` named `name`, if a name is given.
 fn column<'m>(
     mesh: &'m Mesh,

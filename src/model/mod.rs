@@ -13,16 +13,20 @@
 //!
 //! | tool | what it does |
 //! |---|---|
+//! | [`Mesh::duplicate_faces`](crate::Mesh::duplicate_faces), [`Mesh::separate`](crate::Mesh::separate) | copies of faces beside their sources, or moved into a mesh of their own |
 //! | [`Mesh::extrude_faces`](crate::Mesh::extrude_faces) | push faces out as regions (or each on its own) with walls along their boundary |
 //! | [`Mesh::inset_faces`](crate::Mesh::inset_faces) | a smaller copy of regions (or of each face) inside them, joined by a rim of quads |
 //! | [`Mesh::loop_cut`](crate::Mesh::loop_cut) | cut an edge ring's quads with new edge loops |
+//! | [`Mesh::split_edges`](crate::Mesh::split_edges) | rip: disconnect the faces along chosen edges (seams from [`Delimit::edges`]) |
 //! | [`Mesh::transform_vertices`](crate::Mesh::transform_vertices), [`Mesh::transform_faces`](crate::Mesh::transform_faces) | scale, rotate and move a selection about a pivot (each region about its own, for faces) |
 
 mod delimit;
+mod duplicate;
 mod extrude;
 mod inset;
 mod interp;
 mod loop_cut;
+mod split_edges;
 #[cfg(test)]
 mod testing;
 mod transform;
@@ -30,7 +34,9 @@ mod transform;
 pub use delimit::Delimit;
 #[allow(unused_imports)] // the merging tools use it
 pub(crate) use delimit::Delimiters;
+pub use duplicate::Duplicate;
 pub use extrude::{ExtrudeOptions, Extrusion};
 pub use inset::{Inset, InsetOptions};
 pub use loop_cut::{LoopCut, LoopCutOptions, MAX_CUTS};
+pub use split_edges::SplitEdges;
 pub use transform::{Pivot, Transform};

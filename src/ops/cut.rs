@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use super::refuse;
 use crate::error::{Refusal, Result};
 use crate::journal::{journaled, Journaling};
-use crate::keys::{FaceKey, VertexKey};
+use crate::keys::{EdgeKey, FaceKey, VertexKey};
 use crate::layout::{Eid, Fid, HalfedgeRecord, Hid, Vid};
 use crate::mesh::{Mesh, Writer};
 
@@ -190,6 +190,11 @@ impl Mesh {
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn cut_path(&mut self, path: &[VertexKey]) -> Result<Vec<FaceKey>> {
+        journaled!(self.cut_path_with(path)).map(|made| made.holes)
+    }
+
+    /// [`cut_path`](Mesh::cut_path), returning everything it made.
+    pub(crate) fn cut_path_made(&mut self, path: &[VertexKey]) -> Result<CutMade> {
         journaled!(self.cut_path_with(path))
     }
 
@@ -257,6 +262,14 @@ impl Mesh {
     }
 }
 
+/// What a cut made: the holes along it (left side first), the vertex
+/// copies (right side) and the edge copies (right side, in path order).
+pub(crate) struct CutMade {
+    pub(crate) holes: Vec<FaceKey>,
+    pub(crate) vertices: Vec<VertexKey>,
+    pub(crate) edges: Vec<EdgeKey>,
+}
+
 /// A planned cut with what it read before editing and the elements it adds.
 struct Cut {
     plan: CutPlan,
@@ -297,7 +310,7 @@ impl Cut {
 
 impl Mesh {
     /// [`cut_path`](Mesh::cut_path)'s body, in journaling mode `J`.
-    fn cut_path_with<J: Journaling>(&mut self, path: &[VertexKey]) -> Result<Vec<FaceKey>> {
+    fn cut_path_with<J: Journaling>(&mut self, path: &[VertexKey]) -> Result<CutMade> {
         let mut w = self.writer::<J>();
         let plan = w.plan_cut(path)?;
         let mut cut = w.read_cut(plan);
@@ -316,7 +329,16 @@ impl Mesh {
         let (made, spare) = w.label_cut_holes(&cut);
         w.cut_attributes(&cut, &made, &spare);
         w.end_op();
-        Ok(made.into_iter().map(|h| w.fkey(h)).collect())
+        Ok(CutMade {
+            holes: made.into_iter().map(|h| w.fkey(h)).collect(),
+            vertices: cut
+                .plan
+                .wedges
+                .iter()
+                .map(|(i, _)| w.vkey(cut.copy[*i]))
+                .collect(),
+            edges: cut.new_edges.iter().map(|&e| w.ekey(e)).collect(),
+        })
     }
 }
 
