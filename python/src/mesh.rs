@@ -105,14 +105,17 @@ pub(crate) fn edit<T>(
 }
 
 /// A read-only query that may fail with a meshloom error.
-fn query<T>(slf: &Bound<'_, PyMesh>, op: impl FnOnce(&Mesh) -> meshloom::Result<T>) -> PyResult<T> {
+pub(crate) fn query<T>(
+    slf: &Bound<'_, PyMesh>,
+    op: impl FnOnce(&Mesh) -> meshloom::Result<T>,
+) -> PyResult<T> {
     let this = slf.try_borrow().map_err(busy)?;
     op(&this.mesh).map_err(|e| mesh_err(slf.py(), &slf.clone().unbind(), e))
 }
 
 macro_rules! own_key {
     ($fn:ident, $class:ty, $key:ty) => {
-        fn $fn(slf: &Bound<'_, PyMesh>, k: &Bound<'_, $class>) -> PyResult<$key> {
+        pub(crate) fn $fn(slf: &Bound<'_, PyMesh>, k: &Bound<'_, $class>) -> PyResult<$key> {
             let k = k.get();
             if !k.mesh.is(slf) {
                 return Err(PyValueError::new_err(format!(
