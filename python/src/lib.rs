@@ -20,6 +20,7 @@ pub mod gc;
 pub mod intersect;
 pub mod io;
 pub mod mesh;
+pub mod model_shapes;
 pub mod tree;
 
 /// The native module.
@@ -34,6 +35,7 @@ fn _meshloom(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(io::read, m)?)?;
     m.add_function(wrap_pyfunction!(io::read_with, m)?)?;
     m.add_function(wrap_pyfunction!(io::write, m)?)?;
+    model_shapes::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
