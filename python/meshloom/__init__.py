@@ -11,6 +11,7 @@ every edit.
 - `Mesh.from_arrays` / `Mesh.to_arrays` with numpy; meshes pickle.
 """
 
+from . import shapes
 from ._meshloom import Edge, Face, FaceTree, Halfedge, Mesh, Vertex, __version__, read, read_with, write
 from .errors import (
     BuildError,
@@ -39,6 +40,7 @@ __all__ = [
     "read",
     "read_with",
     "write",
+    "shapes",
     "MeshloomError",
     "StaleKeyError",
     "RefusedError",

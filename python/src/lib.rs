@@ -20,6 +20,7 @@ pub mod gc;
 pub mod intersect;
 pub mod io;
 pub mod mesh;
+pub mod model_shapes;
 pub mod model_split;
 pub mod tree;
 
@@ -35,6 +36,7 @@ fn _meshloom(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(io::read, m)?)?;
     m.add_function(wrap_pyfunction!(io::read_with, m)?)?;
     m.add_function(wrap_pyfunction!(io::write, m)?)?;
+    model_shapes::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

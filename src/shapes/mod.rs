@@ -26,12 +26,36 @@
 //! `0..=`[`MAX_SUBDIVISIONS`], segment, ring, row and column counts to their
 //! documented minimum and at most [`MAX_SEGMENTS`]. Only [`torus`], whose
 //! radii are caller-chosen floats, can fail (on a non-finite position).
+//!
+//! # Textured primitives
+//!
+//! [`box_mesh`], [`cylinder`], [`cone`], [`textured_grid`],
+//! [`textured_uv_sphere`], [`textured_icosphere`] and [`textured_torus`]
+//! come with a corner UV column laid out as Blender's primitives lay theirs
+//! out, and a face material id per side when asked ([`ShapeOptions`]); see
+//! [`textured`]. They check their parameters instead of clamping them.
+//!
+//! ```
+//! use meshloom::attr::HalfedgeAttr;
+//! use meshloom::shapes::{cylinder, ShapeOptions};
+//! let opts = ShapeOptions { materials: true, ..ShapeOptions::default() };
+//! let can = cylinder(0.5, 1.0, 24, &opts)?;
+//! let uv: HalfedgeAttr<[f64; 2]> = can.attr_handle("uv")?;
+//! let inside = |p: &[f64; 2]| p.iter().all(|x| (0.0..=1.0).contains(x));
+//! assert!(can.halfedges().filter_map(|h| can.attr(&uv, h).unwrap()).all(inside));
+//! # Ok::<(), meshloom::Error>(())
+//! ```
 
 mod grid;
 mod sphere;
+pub mod textured;
 
 pub use grid::{disk, disk_polygons, grid, grid_polygons, torus, torus_polygons, GridFaces};
 pub use sphere::{icosphere, icosphere_polygons, uv_sphere, uv_sphere_polygons};
+pub use textured::{
+    box_mesh, cone, cylinder, textured_grid, textured_icosphere, textured_torus,
+    textured_uv_sphere, ShapeOptions, BOTTOM, MATERIAL, SIDE, TOP, UV,
+};
 
 use crate::{Mesh, Polygons};
 
