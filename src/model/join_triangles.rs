@@ -13,6 +13,11 @@
 //! slot. The counts then follow BMesh's (Blender 3.4, which ranks the same
 //! way; later versions also reprioritise around existing quads).
 //!
+//! BMesh's `cmp_materials`, `cmp_uvs` (or `cmp_vcols`: a corner colour
+//! column) and `cmp_sharp` are [`Delimit`]'s `material`, `seams` and
+//! `sharp`; its `cmp_seam` (an edge flag) is a boolean edge column given as
+//! `sharp`.
+//!
 //! The commit removes every chosen diagonal in one pass of the low-level
 //! writer: one undo step.
 
