@@ -1,6 +1,6 @@
 //! `meshloom quads`: triangles joined into quads, stopped by `--delimit`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 const BIN: &str = env!("CARGO_BIN_EXE_meshloom");
@@ -39,7 +39,7 @@ usemtl b
 f 2/7 6/8 5/9
 ";
 
-fn quads(input: &PathBuf, extra: &[&str]) -> serde_json::Value {
+fn quads(input: &Path, extra: &[&str]) -> serde_json::Value {
     let out = path("out.obj");
     let mut args = vec![
         "quads",

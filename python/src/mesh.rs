@@ -112,7 +112,7 @@ fn query<T>(slf: &Bound<'_, PyMesh>, op: impl FnOnce(&Mesh) -> meshloom::Result<
 
 macro_rules! own_key {
     ($fn:ident, $class:ty, $key:ty) => {
-        fn $fn(slf: &Bound<'_, PyMesh>, k: &Bound<'_, $class>) -> PyResult<$key> {
+        pub(crate) fn $fn(slf: &Bound<'_, PyMesh>, k: &Bound<'_, $class>) -> PyResult<$key> {
             let k = k.get();
             if !k.mesh.is(slf) {
                 return Err(PyValueError::new_err(format!(
