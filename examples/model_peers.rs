@@ -12,7 +12,7 @@
 //! selection are outside the clock, as the peer's are); the clock is
 //! process CPU time. `BENCH_ONLY` (comma list) filters the workloads.
 
-use meshloom::model::{ExtrudeOptions, InsetOptions, LoopCutOptions};
+use meshloom::model::{ExtrudeOptions, InsetOptions, JoinTrianglesOptions, LoopCutOptions};
 use meshloom::{FaceKey, Mesh};
 use std::path::Path;
 use std::time::Instant;
@@ -62,6 +62,20 @@ fn main() {
             inset("inset_region_half", &grid, half_by_x(&grid), false, rounds);
         }
     }
+    if wanted("join_triangles") {
+        let tris = meshloom::io::read(dir.join("trigrid_500.obj")).expect("triangle grid");
+        join_triangles(&tris, rounds);
+    }
+}
+
+/// `join_triangles`: every face, Blender's 40° face and shape angles.
+fn join_triangles(mesh: &Mesh, rounds: usize) {
+    let options = JoinTrianglesOptions::default();
+    let mut quads = 0;
+    let (t, m) = time_fresh(rounds, mesh, |m| {
+        quads = m.join_triangles(&options).expect("join").quads.len();
+    });
+    line("join_triangles", t, &counts(&m), &format!("{quads} quads"));
 }
 
 /// `extrude_region_half`: the faces whose centroid's x is below the

@@ -242,6 +242,22 @@ Example:
 Example:
   meshloom sample data/bunny.off inside.csv --inside 10000 --seed 7")]
     Sample(SampleArgs),
+    /// Join pairs of adjacent triangles into quads (Blender's Tris to Quads).
+    ///
+    /// Two triangles join when their normals differ by at most
+    /// --face-angle, every corner of the quad is within --shape-angle of a
+    /// right angle and the quad is convex; the best pairs go first, each
+    /// triangle joins once. --delimit keeps the edges between faces of
+    /// different materials (the "material" face column), UV seams (the
+    /// "uv" corner column, else the readers' "texcoord") and sharp edges
+    /// (the boolean "sharp" edge column); a column the file lacks keeps
+    /// nothing. A quad keeps its first triangle's face values and every
+    /// corner's UVs.
+    #[command(after_help = "\
+Example:
+  meshloom quads scan.obj quads.obj
+  meshloom quads model.obj quads.obj --face-angle 30 --delimit material,seams --json")]
+    Quads(QuadsArgs),
 }
 
 /// How to read an input file.
@@ -709,6 +725,33 @@ pub struct RenderArgs {
     /// concave, white flat, red convex; range ± the 98th percentile of |H|).
     #[arg(long, value_enum, default_value = "plain")]
     pub color: ColorBy,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
+/// `meshloom quads`.
+#[derive(Args, Debug)]
+pub struct QuadsArgs {
+    /// The mesh file to read.
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// The mesh file to write (format from its extension).
+    #[arg(value_parser = mesh_path)]
+    pub output: PathBuf,
+    /// The largest angle between the two triangles' normals, in degrees
+    /// (180: no limit).
+    #[arg(long, default_value_t = 40.0, value_parser = non_negative)]
+    pub face_angle: f64,
+    /// The largest distance of a quad's corner from 90°, in degrees (180:
+    /// no limit; the quad is always convex).
+    #[arg(long, default_value_t = 40.0, value_parser = non_negative)]
+    pub shape_angle: f64,
+    /// The edges to keep, comma-separated: material, seams, sharp.
+    #[arg(long, value_delimiter = ',', value_parser = ["material", "seams", "sharp"])]
+    pub delimit: Vec<String>,
+    /// Print the report as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
     #[command(flatten)]
     pub read: ReadArgs,
 }

@@ -21,7 +21,8 @@ use clap::Parser;
 
 use cli::{Cli, Command};
 use commands::{
-    check, convert, decimate, fair, remesh, render, sample, smooth, stats, subdivide, validate,
+    check, convert, decimate, fair, quads, remesh, render, sample, smooth, stats, subdivide,
+    validate,
 };
 
 /// Why a command failed, and the exit code that says so.
@@ -75,6 +76,7 @@ fn main() -> ExitCode {
         Command::Subdivide(a) => subdivide::run(&a),
         Command::Remesh(a) => remesh::run(&a),
         Command::Sample(a) => sample::run(&a),
+        Command::Quads(a) => quads::run(&a),
     };
     match done {
         Ok(()) => ExitCode::SUCCESS,

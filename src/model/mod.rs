@@ -18,6 +18,7 @@
 //! | [`Mesh::inset_faces`](crate::Mesh::inset_faces) | a smaller copy of regions (or of each face) inside them, joined by a rim of quads |
 //! | [`Mesh::loop_cut`](crate::Mesh::loop_cut) | cut an edge ring's quads with new edge loops |
 //! | [`Mesh::split_edges`](crate::Mesh::split_edges) | rip: disconnect the faces along chosen edges (seams from [`Delimit::edges`]) |
+//! | [`Mesh::join_triangles`](crate::Mesh::join_triangles) | pair adjacent triangles into quads by angle and shape, best pairs first, stopping at delimiters |
 //! | [`Mesh::transform_vertices`](crate::Mesh::transform_vertices), [`Mesh::transform_faces`](crate::Mesh::transform_faces) | scale, rotate and move a selection about a pivot (each region about its own, for faces) |
 
 mod delimit;
@@ -25,6 +26,7 @@ mod duplicate;
 mod extrude;
 mod inset;
 mod interp;
+mod join_triangles;
 mod loop_cut;
 mod split_edges;
 #[cfg(test)]
@@ -32,11 +34,11 @@ mod testing;
 mod transform;
 
 pub use delimit::Delimit;
-#[allow(unused_imports)] // the merging tools use it
 pub(crate) use delimit::Delimiters;
 pub use duplicate::Duplicate;
 pub use extrude::{ExtrudeOptions, Extrusion};
 pub use inset::{Inset, InsetOptions};
+pub use join_triangles::{JoinTrianglesOptions, Joined};
 pub use loop_cut::{LoopCut, LoopCutOptions, MAX_CUTS};
 pub use split_edges::SplitEdges;
 pub use transform::{Pivot, Transform};

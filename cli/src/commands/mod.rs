@@ -6,6 +6,7 @@ pub mod convert;
 pub mod decimate;
 pub mod fair;
 pub mod normals;
+pub mod quads;
 pub mod remesh;
 pub mod render;
 pub mod sample;
