@@ -36,8 +36,6 @@ pub struct Delimit {
     pub sharp: Option<EdgeAttr<bool>>,
 }
 
-// Until the merging tools land, only the tests call these.
-#[allow(dead_code)]
 /// [`Delimit`] resolved against one mesh: the columns found, ready to ask
 /// edge by edge.
 pub(crate) struct Delimiters<'m> {
@@ -47,7 +45,6 @@ pub(crate) struct Delimiters<'m> {
     sharp: Option<AttrView<'m, EdgeKey, bool>>,
 }
 
-#[allow(dead_code)]
 impl<'m> Delimiters<'m> {
     /// Find `d`'s columns in `mesh`.
     ///
@@ -92,7 +89,6 @@ impl<'m> Delimiters<'m> {
     }
 }
 
-#[allow(dead_code)]
 /// The column of arena `kind` named `name`, if a name is given.
 fn column<'m>(
     mesh: &'m Mesh,
