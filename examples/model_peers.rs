@@ -12,7 +12,7 @@
 //! selection are outside the clock, as the peer's are); the clock is
 //! process CPU time. `BENCH_ONLY` (comma list) filters the workloads.
 
-use meshloom::model::{ExtrudeOptions, InsetOptions, LoopCutOptions};
+use meshloom::model::{DissolveLimitedOptions, ExtrudeOptions, InsetOptions, LoopCutOptions};
 use meshloom::{FaceKey, Mesh};
 use std::path::Path;
 use std::time::Instant;
@@ -62,6 +62,20 @@ fn main() {
             inset("inset_region_half", &grid, half_by_x(&grid), false, rounds);
         }
     }
+    if wanted("dissolve_limited") {
+        dissolve_limited(dir, rounds);
+    }
+}
+
+/// `dissolve_limited`: the whole triangulated grid at 5°, no delimiters,
+/// no "all boundaries".
+fn dissolve_limited(dir: &Path, rounds: usize) {
+    let mesh = meshloom::io::read(dir.join("trigrid_500.obj")).expect("triangle grid");
+    let options = DissolveLimitedOptions::default();
+    let (t, m) = time_fresh(rounds, &mesh, |m| {
+        m.dissolve_limited(&options).expect("dissolve");
+    });
+    line("dissolve_limited", t, &counts(&m), "");
 }
 
 /// `extrude_region_half`: the faces whose centroid's x is below the
