@@ -12,7 +12,9 @@
 //! selection are outside the clock, as the peer's are); the clock is
 //! process CPU time. `BENCH_ONLY` (comma list) filters the workloads.
 
-use meshloom::model::{ExtrudeOptions, InsetOptions, JoinTrianglesOptions, LoopCutOptions};
+use meshloom::model::{
+    DissolveLimitedOptions, ExtrudeOptions, InsetOptions, JoinTrianglesOptions, LoopCutOptions,
+};
 use meshloom::{FaceKey, Mesh};
 use std::path::Path;
 use std::time::Instant;
@@ -66,6 +68,9 @@ fn main() {
         let tris = meshloom::io::read(dir.join("trigrid_500.obj")).expect("triangle grid");
         join_triangles(&tris, rounds);
     }
+    if wanted("dissolve_limited") {
+        dissolve_limited(dir, rounds);
+    }
 }
 
 /// `join_triangles`: every face, Blender's 40° face and shape angles.
@@ -76,6 +81,16 @@ fn join_triangles(mesh: &Mesh, rounds: usize) {
         quads = m.join_triangles(&options).expect("join").quads.len();
     });
     line("join_triangles", t, &counts(&m), &format!("{quads} quads"));
+
+/// `dissolve_limited`: the whole triangulated grid at 5°, no delimiters,
+/// no "all boundaries".
+fn dissolve_limited(dir: &Path, rounds: usize) {
+    let mesh = meshloom::io::read(dir.join("trigrid_500.obj")).expect("triangle grid");
+    let options = DissolveLimitedOptions::default();
+    let (t, m) = time_fresh(rounds, &mesh, |m| {
+        m.dissolve_limited(&options).expect("dissolve");
+    });
+    line("dissolve_limited", t, &counts(&m), "");
 }
 
 /// `extrude_region_half`: the faces whose centroid's x is below the

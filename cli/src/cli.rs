@@ -190,6 +190,21 @@ Example:
   meshloom lod bunny.off out/bunny.obj --ratios 0.5,0.25,0.1
   meshloom lod part.glb part.glb --ratios 0.3,0.1 --seams lock --json")]
     Lod(LodArgs),
+    /// Merge nearly coplanar faces into polygons (limited dissolve).
+    ///
+    /// Faces whose normals differ by less than the --limited angle
+    /// (degrees) merge, smallest angle first, then vertices left between
+    /// two edges that bend by less go (Blender's Limited Dissolve). Edges
+    /// on the boundary always stay; --delimit keeps material borders (the
+    /// face column --material-column), UV seams (the corner column
+    /// --seams-column) and sharp edges (the boolean edge column
+    /// --sharp-column). Integer face columns (material ids) are never
+    /// merged away.
+    #[command(after_help = "\
+Example:
+  meshloom dissolve scan.obj flat.obj --limited 5
+  meshloom dissolve model.obj out.obj --limited 10 --delimit material,seams --json")]
+    Dissolve(DissolveArgs),
     /// Draw a shaded picture of a mesh as PNG.
     ///
     /// Orthographic, flat or smooth shading, optional wireframe and
@@ -551,6 +566,42 @@ pub struct DecimateArgs {
     /// Deprecated: `--seams lock`.
     #[arg(long, hide = true, conflicts_with = "seams")]
     pub keep_seams: bool,
+    /// Print the report as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub read: ReadArgs,
+}
+
+/// `meshloom dissolve`.
+#[derive(Args, Debug)]
+pub struct DissolveArgs {
+    /// The mesh file to read.
+    #[arg(value_parser = mesh_path)]
+    pub input: PathBuf,
+    /// The mesh file to write (format from its extension).
+    #[arg(value_parser = mesh_path)]
+    pub output: PathBuf,
+    /// The angle limit in degrees (at most 90 acts).
+    #[arg(long, value_parser = non_negative)]
+    pub limited: f64,
+    /// What keeps edges besides the boundary: a comma list of material,
+    /// seams, sharp.
+    #[arg(long, value_delimiter = ',', value_parser = ["material", "seams", "sharp"])]
+    pub delimit: Vec<String>,
+    /// The face column `--delimit material` compares.
+    #[arg(long, default_value = "material")]
+    pub material_column: String,
+    /// The corner column whose seams `--delimit seams` keeps (the files'
+    /// UVs are `texcoord`).
+    #[arg(long, default_value = "texcoord")]
+    pub seams_column: String,
+    /// The boolean edge column `--delimit sharp` reads.
+    #[arg(long, default_value = "sharp")]
+    pub sharp_column: String,
+    /// Dissolve every vertex left between two edges, whatever the angle.
+    #[arg(long)]
+    pub boundaries: bool,
     /// Print the report as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,

@@ -21,8 +21,8 @@ use clap::Parser;
 
 use cli::{Cli, Command};
 use commands::{
-    check, convert, decimate, fair, quads, remesh, render, sample, smooth, stats, subdivide,
-    validate,
+    check, convert, decimate, dissolve, fair, quads, remesh, render, sample, smooth, stats,
+    subdivide, validate,
 };
 
 /// Why a command failed, and the exit code that says so.
@@ -72,6 +72,7 @@ fn main() -> ExitCode {
         Command::Fair(a) => fair::run(&a),
         Command::Decimate(a) => decimate::decimate(&a),
         Command::Lod(a) => decimate::lod(&a),
+        Command::Dissolve(a) => dissolve::run(&a),
         Command::Render(a) => render::run(&a),
         Command::Subdivide(a) => subdivide::run(&a),
         Command::Remesh(a) => remesh::run(&a),

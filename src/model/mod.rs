@@ -17,11 +17,15 @@
 //! | [`Mesh::extrude_faces`](crate::Mesh::extrude_faces) | push faces out as regions (or each on its own) with walls along their boundary |
 //! | [`Mesh::inset_faces`](crate::Mesh::inset_faces) | a smaller copy of regions (or of each face) inside them, joined by a rim of quads |
 //! | [`Mesh::loop_cut`](crate::Mesh::loop_cut) | cut an edge ring's quads with new edge loops |
+//! | [`Mesh::dissolve_vertices`](crate::Mesh::dissolve_vertices), [`Mesh::dissolve_edges`](crate::Mesh::dissolve_edges), [`Mesh::dissolve_faces`](crate::Mesh::dissolve_faces) | remove elements, merging the faces around them; a region of faces into one face |
+//! | [`Mesh::dissolve_limited`](crate::Mesh::dissolve_limited) | merge nearly coplanar faces and straighten chains below an angle, stopping at delimiters |
 //! | [`Mesh::split_edges`](crate::Mesh::split_edges) | rip: disconnect the faces along chosen edges (seams from [`Delimit::edges`]) |
 //! | [`Mesh::join_triangles`](crate::Mesh::join_triangles) | pair adjacent triangles into quads by angle and shape, best pairs first, stopping at delimiters |
 //! | [`Mesh::transform_vertices`](crate::Mesh::transform_vertices), [`Mesh::transform_faces`](crate::Mesh::transform_faces) | scale, rotate and move a selection about a pivot (each region about its own, for faces) |
 
 mod delimit;
+mod dissolve;
+mod dissolve_limited;
 mod duplicate;
 mod extrude;
 mod inset;
@@ -35,6 +39,8 @@ mod transform;
 
 pub use delimit::Delimit;
 pub(crate) use delimit::Delimiters;
+pub use dissolve::{DissolveEdgesOptions, Dissolved};
+pub use dissolve_limited::DissolveLimitedOptions;
 pub use duplicate::Duplicate;
 pub use extrude::{ExtrudeOptions, Extrusion};
 pub use inset::{Inset, InsetOptions};

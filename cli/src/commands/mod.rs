@@ -4,6 +4,7 @@ pub mod check;
 pub mod constraints;
 pub mod convert;
 pub mod decimate;
+pub mod dissolve;
 pub mod fair;
 pub mod normals;
 pub mod quads;
