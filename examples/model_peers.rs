@@ -64,12 +64,12 @@ fn main() {
             inset("inset_region_half", &grid, half_by_x(&grid), false, rounds);
         }
     }
+    if wanted("dissolve_limited") {
+        dissolve_limited(dir, rounds);
+    }
     if wanted("join_triangles") {
         let tris = meshloom::io::read(dir.join("trigrid_500.obj")).expect("triangle grid");
         join_triangles(&tris, rounds);
-    }
-    if wanted("dissolve_limited") {
-        dissolve_limited(dir, rounds);
     }
 }
 
@@ -81,6 +81,7 @@ fn join_triangles(mesh: &Mesh, rounds: usize) {
         quads = m.join_triangles(&options).expect("join").quads.len();
     });
     line("join_triangles", t, &counts(&m), &format!("{quads} quads"));
+}
 
 /// `dissolve_limited`: the whole triangulated grid at 5°, no delimiters,
 /// no "all boundaries".
