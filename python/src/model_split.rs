@@ -6,6 +6,7 @@ use meshloom::{EdgeKey, FaceKey};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::algo::flag_column;
 use crate::elements::{self, PyEdge, PyFace};
 use crate::mesh::{edit, ekey, fkey, query, PyMesh};
 
@@ -50,7 +51,7 @@ impl PyMesh {
         sharp: Option<String>,
     ) -> PyResult<Vec<Py<PyEdge>>> {
         let keys = query(slf, |m| {
-            let sharp = sharp.map(|s| m.attr_handle(&s)).transpose()?;
+            let sharp = flag_column::<EdgeKey>(m, sharp.as_deref())?;
             Delimit {
                 material,
                 seams,
