@@ -16,9 +16,13 @@
 //! | [`Mesh::extrude_faces`](crate::Mesh::extrude_faces) | push faces out as regions (or each on its own) with walls along their boundary |
 //! | [`Mesh::inset_faces`](crate::Mesh::inset_faces) | a smaller copy of regions (or of each face) inside them, joined by a rim of quads |
 //! | [`Mesh::loop_cut`](crate::Mesh::loop_cut) | cut an edge ring's quads with new edge loops |
+//! | [`Mesh::bridge_loops`](crate::Mesh::bridge_loops) | join two loops or chains of boundary edges by a band of quads (holes consumed or joined) |
+//! | [`Mesh::grid_fill`](crate::Mesh::grid_fill) | fill a hole of an even number of edges with a grid of quads |
 //! | [`Mesh::transform_vertices`](crate::Mesh::transform_vertices), [`Mesh::transform_faces`](crate::Mesh::transform_faces) | scale, rotate and move a selection about a pivot (each region about its own, for faces) |
 
+mod bridge;
 mod extrude;
+mod grid_fill;
 mod inset;
 mod interp;
 mod loop_cut;
@@ -26,7 +30,9 @@ mod loop_cut;
 mod testing;
 mod transform;
 
+pub use bridge::{Bridge, BridgeOptions, MAX_BRIDGE_CUTS};
 pub use extrude::{ExtrudeOptions, Extrusion};
+pub use grid_fill::{GridFill, GridFillOptions};
 pub use inset::{Inset, InsetOptions};
 pub use loop_cut::{LoopCut, LoopCutOptions, MAX_CUTS};
 pub use transform::{Pivot, Transform};
