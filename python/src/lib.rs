@@ -20,6 +20,7 @@ pub mod gc;
 pub mod intersect;
 pub mod io;
 pub mod mesh;
+pub mod model_bridge;
 pub mod model_dissolve;
 pub mod model_quads;
 pub mod model_shapes;

@@ -13,6 +13,8 @@
 //!
 //! | tool | what it does |
 //! |---|---|
+//! | [`Mesh::bridge_loops`](crate::Mesh::bridge_loops) | join two loops or chains of boundary edges by a band of quads (holes consumed or joined) |
+//! | [`Mesh::grid_fill`](crate::Mesh::grid_fill) | fill a hole of an even number of edges with a grid of quads |
 //! | [`Mesh::duplicate_faces`](crate::Mesh::duplicate_faces), [`Mesh::separate`](crate::Mesh::separate) | copies of faces beside their sources, or moved into a mesh of their own |
 //! | [`Mesh::extrude_faces`](crate::Mesh::extrude_faces) | push faces out as regions (or each on its own) with walls along their boundary |
 //! | [`Mesh::inset_faces`](crate::Mesh::inset_faces) | a smaller copy of regions (or of each face) inside them, joined by a rim of quads |
@@ -23,11 +25,13 @@
 //! | [`Mesh::join_triangles`](crate::Mesh::join_triangles) | pair adjacent triangles into quads by angle and shape, best pairs first, stopping at delimiters |
 //! | [`Mesh::transform_vertices`](crate::Mesh::transform_vertices), [`Mesh::transform_faces`](crate::Mesh::transform_faces) | scale, rotate and move a selection about a pivot (each region about its own, for faces) |
 
+mod bridge;
 mod delimit;
 mod dissolve;
 mod dissolve_limited;
 mod duplicate;
 mod extrude;
+mod grid_fill;
 mod inset;
 mod interp;
 mod join_triangles;
@@ -37,12 +41,14 @@ mod split_edges;
 mod testing;
 mod transform;
 
+pub use bridge::{Bridge, BridgeOptions, MAX_BRIDGE_CUTS};
 pub use delimit::Delimit;
 pub(crate) use delimit::Delimiters;
 pub use dissolve::{DissolveEdgesOptions, Dissolved};
 pub use dissolve_limited::DissolveLimitedOptions;
 pub use duplicate::Duplicate;
 pub use extrude::{ExtrudeOptions, Extrusion};
+pub use grid_fill::{GridFill, GridFillOptions};
 pub use inset::{Inset, InsetOptions};
 pub use join_triangles::{JoinTrianglesOptions, Joined};
 pub use loop_cut::{LoopCut, LoopCutOptions, MAX_CUTS};
