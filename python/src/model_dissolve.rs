@@ -45,8 +45,9 @@ impl PyMesh {
 
     /// Remove `edges`, merging the faces on their two sides (edges on a
     /// hole are skipped); `vertices`: also take out vertices left between
-    /// two edges. One undo step; returns the dissolve's dict.
-    #[pyo3(signature = (edges, *, vertices = false))]
+    /// two edges (as Blender's menu does). One undo step; returns the
+    /// dissolve's dict.
+    #[pyo3(signature = (edges, *, vertices = true))]
     fn dissolve_edges<'py>(
         slf: &Bound<'py, Self>,
         edges: Vec<Bound<'py, PyEdge>>,

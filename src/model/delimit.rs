@@ -17,8 +17,12 @@ use crate::layout::Eid;
 use crate::mesh::Mesh;
 use crate::store::ErasedColumn;
 
-/// Which columns stop a merge (see the [module](self)). The default
-/// delimits nothing but the boundary.
+/// Which columns stop a merge. An edge delimits when the faces on its
+/// two sides differ in the `material` face column (any type, compared by
+/// value), when it is a seam of the `seams` corner column (the values at
+/// one of its ends differ across it: a UV seam), or when the `sharp`
+/// boolean edge column is `true` on it; boundary edges always delimit.
+/// The default delimits nothing but the boundary.
 ///
 /// ```
 /// use meshloom::model::Delimit;

@@ -2,26 +2,7 @@
 //! elements and merge the faces around them into one, as BMesh's dissolve
 //! operators do (`bmo_dissolve.cc`).
 //!
-//! All three come down to the same two steps. First, **regions**: groups
-//! of faces joined through the edges to dissolve become one face each;
-//! every edge with a region face on both sides goes (as `BM_faces_join`
-//! removes every edge two joined faces share), and so does every vertex
-//! with only region faces around it. A region must be a disk: one simple
-//! boundary loop (no hole inside, an annulus; no vertex met twice; no
-//! handle), else the call is refused, where BMesh skips the region or
-//! keeps a last edge: a meshloom face has one boundary and meets a vertex
-//! once. Second, **joins**: a vertex left between exactly two edges is
-//! taken out and its two edges become one (BMesh's
-//! `BM_vert_collapse_edge`).
-//!
-//! Each tool plans both steps on the mesh as it is (a refused call changes
-//! nothing), then commits them as one edit (one undo step). Attributes:
-//! a region's face is the `merge` of its faces (the survivor first, then
-//! the others, weighted by area), so conserved totals are kept, an
-//! `incompatible` column (a material id) keeps a value its faces agree on;
-//! surviving corners and edges keep their values; two joined edges `merge`
-//! by length (the kept one first), and the corner that moves onto the
-//! kept half-edge copies its value.
+//! The steps, the rules and the attributes are told with [`Dissolved`].
 
 use std::collections::{HashMap, HashSet};
 
@@ -50,6 +31,27 @@ impl Default for DissolveEdgesOptions {
 }
 
 /// What a dissolve left and removed.
+///
+/// All three come down to the same two steps. First, **regions**: groups
+/// of faces joined through the edges to dissolve become one face each;
+/// every edge with a region face on both sides goes (as `BM_faces_join`
+/// removes every edge two joined faces share), and so does every vertex
+/// with only region faces around it. A region must be a disk: one simple
+/// boundary loop (no hole inside, an annulus; no vertex met twice; no
+/// handle), else the call is refused, where BMesh skips the region or
+/// keeps a last edge: a meshloom face has one boundary and meets a vertex
+/// once. Second, **joins**: a vertex left between exactly two edges is
+/// taken out and its two edges become one (BMesh's
+/// `BM_vert_collapse_edge`).
+///
+/// Each tool plans both steps on the mesh as it is (a refused call changes
+/// nothing), then commits them as one edit (one undo step). Attributes:
+/// a region's face is the `merge` of its faces (the survivor first, then
+/// the others, weighted by area), so conserved totals are kept, an
+/// `incompatible` column (a material id) keeps a value its faces agree on;
+/// surviving corners and edges keep their values; two joined edges `merge`
+/// by length (the kept one first), and the corner that moves onto the
+/// kept half-edge copies its value.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Dissolved {
     /// The faces that merged faces became, one per region (each keeps the
@@ -112,7 +114,7 @@ impl Mesh {
     /// around neighbouring selected vertices merge together), and a vertex
     /// then left between two edges (on the boundary, or one that had two
     /// edges to start with) is taken out of its edge chain: its two edges
-    /// become one. See the [module](self) for the attributes. One undo
+    /// become one. See [`Dissolved`] for the steps and the attributes. One undo
     /// step.
     ///
     /// # Errors
@@ -161,8 +163,8 @@ impl Mesh {
     /// have no face beyond them and are skipped, as BMesh skips them. With
     /// `options.vertices`, vertices left between two edges are then taken
     /// out of their chains where that is valid (see
-    /// [`DissolveEdgesOptions`]). See the [module](self) for the
-    /// attributes. One undo step.
+    /// [`DissolveEdgesOptions`]). See [`Dissolved`] for the
+    /// steps and the attributes. One undo step.
     ///
     /// # Errors
     /// [`Error::StaleKey`](crate::Error::StaleKey); [`Refusal::Empty`] for
@@ -178,7 +180,10 @@ impl Mesh {
     /// let mut mesh = meshloom::shapes::cube();
     /// let e = mesh.edges().next().unwrap();
     /// let d = mesh.dissolve_edges(&[e], &DissolveEdgesOptions::default())?;
-    /// assert_eq!((mesh.face_count(), mesh.face(d.faces[0])?.degree()), (5, 6));
+    /// // Two squares into one; the edge's ends, left between two edges, go
+    /// // too (the faces beside them become triangles).
+    /// assert_eq!((mesh.face_count(), mesh.face(d.faces[0])?.degree()), (5, 4));
+    /// mesh.validate()?;
     /// # Ok::<(), meshloom::Error>(())
     /// ```
     pub fn dissolve_edges(
@@ -203,7 +208,7 @@ impl Mesh {
     /// (sharing edges) becomes one face, in one pass (BMesh's
     /// `BM_faces_join`): the edges between them go, and the vertices with
     /// only them around. A face alone stays as it is. See the
-    /// [module](self) for the attributes. One undo step.
+    /// [`Dissolved`] for the steps and the attributes. One undo step.
     ///
     /// # Errors
     /// [`Error::StaleKey`](crate::Error::StaleKey); [`Refusal::Empty`] for

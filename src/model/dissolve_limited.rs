@@ -3,35 +3,7 @@
 //! dissolve does (`bmesh_decimate_dissolve.cc`,
 //! `BM_mesh_decimate_dissolve_ex`).
 //!
-//! **Faces.** Every edge with a face on both sides that no delimiter keeps
-//! is a candidate, ordered by the angle between its faces' normals,
-//! smallest first; below the limit, its two faces merge (every edge they
-//! share goes). A merged face's normal is the sum of its parts' vector
-//! areas (exact for any polygon), and an edge's angle is measured again
-//! when the queue reaches it: if it grew, the edge is queued again at its
-//! new angle (or dropped past the limit). BMesh re-measures every edge of
-//! a merged face at once; measuring when reached keeps the cost to the
-//! merged region (the smaller face's loop is walked and relabelled at each
-//! merge), not to its whole boundary at every step. A merge that would not
-//! leave one simple loop (a hole inside, a vertex met twice) is skipped,
-//! as BMesh's join fails there.
-//!
-//! **Vertices.** A vertex left between two edges is then taken out of its
-//! chain, smallest angle first: its angle is how far the chain bends there,
-//! times the angle between its two faces over 90° when both are faces and
-//! neither edge delimits (BMesh's product, so a chain between two nearly
-//! coplanar faces goes). With `boundaries`, every such vertex goes, bend
-//! or not (BMesh's "all boundaries"). A join is skipped where a face or
-//! hole would keep fewer than three sides, two vertices would get a second
-//! edge, or the cut-off corner holds another corner of its face or flips a
-//! neighbouring one (BMesh's degenerate check), so no face folds or loses
-//! its area.
-//!
-//! **Delimiters**: the [`Delimit`] columns, the boundary, and every face
-//! column whose rule is `incompatible` (a material id): such a value is
-//! never merged away. Attributes follow [`Mesh::dissolve_faces`]: a merged
-//! face is the `merge` of its faces by area (the one whose key survives
-//! first), joined edges merge by length, corners keep their values.
+//! The steps, the rules and the attributes are told with [`DissolveLimitedOptions`].
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -50,6 +22,36 @@ use crate::vec3::{self, V3};
 const OP: &str = "dissolve_limited";
 
 /// Options of [`Mesh::dissolve_limited`].
+///
+/// **Faces.** Every edge with a face on both sides that no delimiter keeps
+/// is a candidate, ordered by the angle between its faces' normals,
+/// smallest first; below the limit, its two faces merge (every edge they
+/// share goes). A merged face's normal is the sum of its parts' vector
+/// areas (exact for any polygon), and an edge's angle is measured again
+/// when the queue reaches it: if it grew, the edge is queued again at its
+/// new angle (or dropped past the limit). BMesh re-measures every edge of
+/// a merged face at once; measuring when reached keeps the cost to the
+/// merged region (the smaller face's loop is walked and relabelled at each
+/// merge), not to its whole boundary at every step. A merge that would not
+/// leave one simple loop (a hole inside, a vertex met twice) is skipped,
+/// as BMesh's join fails there.
+///
+/// **Vertices.** A vertex left between two edges is then taken out of its
+/// chain, smallest angle first: its angle is how far the chain bends there,
+/// times the angle between its two faces over 90° when both are faces and
+/// neither edge delimits (BMesh's product, so a chain between two nearly
+/// coplanar faces goes). With `boundaries`, every such vertex goes, bend
+/// or not (BMesh's "all boundaries"). A join is skipped where a face or
+/// hole would keep fewer than three sides, two vertices would get a second
+/// edge, or the cut-off corner holds another corner of its face or flips a
+/// neighbouring one (BMesh's degenerate check), so no face folds or loses
+/// its area.
+///
+/// **Delimiters**: the [`Delimit`] columns, the boundary, and every face
+/// column whose rule is `incompatible` (a material id): such a value is
+/// never merged away. Attributes follow [`Mesh::dissolve_faces`]: a merged
+/// face is the `merge` of its faces by area (the one whose key survives
+/// first), joined edges merge by length, corners keep their values.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DissolveLimitedOptions {
     /// The angle limit in radians (default 5°): faces whose normals differ
@@ -145,7 +147,7 @@ impl Mesh {
     /// Merge the faces across edges whose faces' normals differ by less
     /// than `options.angle` and which no delimiter keeps, smallest angle
     /// first, then take out the vertices left on chains of two edges that
-    /// bend by less (see the [module](self) for the order, the rules and
+    /// bend by less (see [`DissolveLimitedOptions`] for the order, the rules and
     /// where meshloom differs from BMesh). Faces stay simple polygons with
     /// one boundary and an area. One undo step.
     ///
