@@ -2,16 +2,12 @@
 //! dissolve of a whole file, delimited by material ids (always: they are
 //! never merged away), UV seams and sharp edges on request.
 
+mod common;
+
+use common::{scratch, Scratch};
 use std::process::{Command, Output};
 
 const BIN: &str = env!("CARGO_BIN_EXE_meshloom");
-
-fn path(name: &str) -> std::path::PathBuf {
-    std::env::temp_dir().join(format!(
-        "meshloom-cli-dissolve-{}-{name}",
-        std::process::id()
-    ))
-}
 
 fn run(args: &[&str]) -> Output {
     Command::new(BIN).args(args).output().unwrap()
@@ -30,7 +26,7 @@ fn json(o: &Output) -> serde_json::Value {
 /// A flat 2 × 1 strip of squares, two triangles each; the right square's
 /// corners have their own texture coordinates (a UV seam at x = 1), and
 /// with `materials` the squares have materials a and b.
-fn strip(name: &str, materials: bool) -> String {
+fn strip(dir: &Scratch, name: &str, materials: bool) -> String {
     let mut obj = String::from("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\n");
     obj += "vt 0 0\nvt 0.5 0\nvt 0 0.5\nvt 0.5 0.5\nvt 0.6 0\nvt 1 0\nvt 0.6 0.5\nvt 1 0.5\n";
     if materials {
@@ -41,16 +37,17 @@ fn strip(name: &str, materials: bool) -> String {
         obj += "usemtl b\n";
     }
     obj += "f 2/5 3/6 6/8\nf 2/5 6/8 5/7\n";
-    let p = path(name);
+    let p = dir.join(name);
     std::fs::write(&p, obj).unwrap();
     p.to_str().unwrap().to_owned()
 }
 
 #[test]
 fn a_flat_strip_becomes_one_face_or_stops_at_delimiters() {
-    let out = path("out.obj");
+    let dir = scratch("dissolve-strip");
+    let out = dir.join("out.obj");
     let out = out.to_str().unwrap();
-    let plain = strip("plain.obj", false);
+    let plain = strip(&dir, "plain.obj", false);
     let r = json(&run(&["dissolve", &plain, out, "--limited", "5", "--json"]));
     assert_eq!(
         (r["faces_before"].as_u64(), r["faces"].as_u64()),
@@ -70,7 +67,7 @@ fn a_flat_strip_becomes_one_face_or_stops_at_delimiters() {
     ]));
     assert_eq!(r["faces"].as_u64(), Some(2));
     // Material ids are never merged away, named or not.
-    let mats = strip("mats.obj", true);
+    let mats = strip(&dir, "mats.obj", true);
     for extra in [&[][..], &["--delimit", "material"][..]] {
         let mut args = vec!["dissolve", &mats, out, "--limited", "5", "--json"];
         args.extend_from_slice(extra);
@@ -85,9 +82,10 @@ fn a_flat_strip_becomes_one_face_or_stops_at_delimiters() {
 
 #[test]
 fn a_missing_column_or_a_bad_angle_fails() {
-    let out = path("bad.obj");
+    let dir = scratch("dissolve-bad");
+    let out = dir.join("bad.obj");
     let out = out.to_str().unwrap();
-    let plain = strip("bad-in.obj", false);
+    let plain = strip(&dir, "bad-in.obj", false);
     let o = run(&[
         "dissolve",
         &plain,

@@ -1,13 +1,12 @@
 //! `meshloom quads`: triangles joined into quads, stopped by `--delimit`.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use common::{scratch, Scratch};
+use std::path::Path;
 use std::process::{Command, Output};
 
 const BIN: &str = env!("CARGO_BIN_EXE_meshloom");
-
-fn path(name: &str) -> PathBuf {
-    std::env::temp_dir().join(format!("meshloom-cli-quads-{}-{name}", std::process::id()))
-}
 
 fn run(args: &[&str]) -> Output {
     Command::new(BIN).args(args).output().unwrap()
@@ -39,8 +38,8 @@ usemtl b
 f 2/7 6/8 5/9
 ";
 
-fn quads(input: &Path, extra: &[&str]) -> serde_json::Value {
-    let out = path("out.obj");
+fn quads(dir: &Scratch, input: &Path, extra: &[&str]) -> serde_json::Value {
+    let out = dir.join("out.obj");
     let mut args = vec![
         "quads",
         input.to_str().unwrap(),
@@ -60,26 +59,27 @@ fn quads(input: &Path, extra: &[&str]) -> serde_json::Value {
 
 #[test]
 fn triangles_join_unless_a_delimiter_keeps_their_edge() {
-    let input = path("strip.obj");
+    let dir = scratch("quads-strip");
+    let input = dir.join("strip.obj");
     std::fs::write(&input, STRIP).unwrap();
-    let all = quads(&input, &[]);
+    let all = quads(&dir, &input, &[]);
     assert_eq!(
         (all["quads"].as_u64(), all["faces"].as_u64()),
         (Some(2), Some(2))
     );
     for word in ["material", "seams"] {
-        let kept = quads(&input, &["--delimit", word]);
+        let kept = quads(&dir, &input, &["--delimit", word]);
         assert_eq!(kept["quads"], 1, "{word}");
         assert_eq!(kept["triangles_left"], 2, "{word}");
     }
-    let both = quads(&input, &["--delimit", "material,seams,sharp"]);
+    let both = quads(&dir, &input, &["--delimit", "material,seams,sharp"]);
     assert_eq!(both["quads"], 1);
     assert_eq!(both["delimit"].as_array().unwrap().len(), 2);
     // A tight shape angle still joins the unit squares; written quads
     // read back as quads.
-    let tight = quads(&input, &["--shape-angle", "1", "--face-angle", "0.5"]);
+    let tight = quads(&dir, &input, &["--shape-angle", "1", "--face-angle", "0.5"]);
     assert_eq!(tight["quads"], 2);
-    let written = std::fs::read_to_string(path("out.obj")).unwrap();
+    let written = std::fs::read_to_string(dir.join("out.obj")).unwrap();
     let faces: Vec<&str> = written.lines().filter(|l| l.starts_with("f ")).collect();
     assert_eq!(faces.len(), 2);
     assert!(faces.iter().all(|f| f.split_whitespace().count() == 5));
@@ -87,9 +87,10 @@ fn triangles_join_unless_a_delimiter_keeps_their_edge() {
 
 #[test]
 fn bad_words_are_usage_errors() {
-    let input = path("strip2.obj");
+    let dir = scratch("quads-bad");
+    let input = dir.join("strip2.obj");
     std::fs::write(&input, STRIP).unwrap();
-    let out = path("out2.obj");
+    let out = dir.join("out2.obj");
     let (i, o) = (input.to_str().unwrap(), out.to_str().unwrap());
     assert_eq!(
         run(&["quads", i, o, "--delimit", "colour"]).status.code(),
